@@ -1,0 +1,235 @@
+// relief: the command line. The only code that prints or exits; everything
+// else is the relief_core library.
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <tuple>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "core/atomic_file.h"
+#include "pipeline.h"
+#include "relief/version.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+/// Exit codes (also in README.md and `relief --help`).
+enum class Exit : int {
+    Ok = 0,          ///< success
+    Internal = 1,    ///< a bug in relief: please report it
+    BadInput = 2,    ///< bad arguments, scene, samples or template; over budget; cannot write
+    ToolFailed = 3,  ///< POV-Ray is missing or failed (its own error text is printed)
+};
+
+constexpr const char* kExitCodes =
+    "Exit codes: 0 success; 1 internal error; 2 bad input (arguments, scene file, samples,\n"
+    "template, output budget) or an output that cannot be written; 3 POV-Ray missing or failed.";
+
+int code(Exit e) { return static_cast<int>(e); }
+
+void printDiagnostics(const relief::Diagnostics& diags, bool wrote) {
+    // In file order, so a user fixes them top to bottom.
+    auto sorted = diags.all();
+    std::stable_sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) {
+        return std::tie(a.loc.file, a.loc.line) < std::tie(b.loc.file, b.loc.line);
+    });
+    for (const auto& d : sorted) std::cerr << relief::formatDiagnostic(d) << '\n';
+    if (diags.errorCount() > 0)
+        std::cerr << fmt::format("relief: {} error{}, {} warning{}; {}\n", diags.errorCount(),
+                                 diags.errorCount() == 1 ? "" : "s", diags.warningCount(),
+                                 diags.warningCount() == 1 ? "" : "s",
+                                 wrote ? "output may be incomplete" : "nothing written");
+}
+
+// Where the templates are: --templates, $RELIEF_TEMPLATES, the installed
+// share/relief/templates beside the binary, or the source tree.
+fs::path findTemplates(const std::string& option) {
+    if (!option.empty()) return option;
+    if (const char* env = std::getenv("RELIEF_TEMPLATES")) return env;
+    std::error_code ec;
+    const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+    if (!ec) {
+        const fs::path installed = exe.parent_path().parent_path() / "share/relief/templates";
+        if (fs::exists(installed / "scene.pov.in", ec)) return installed;
+    }
+    return RELIEF_SOURCE_TEMPLATES_DIR;
+}
+
+void ensureParent(const fs::path& file) {
+    if (file.has_parent_path()) fs::create_directories(file.parent_path());
+}
+
+// One status line, rewritten in place on a terminal.
+class Progress {
+public:
+    explicit Progress(bool quiet) : quiet_(quiet), tty_(::isatty(STDERR_FILENO)) {}
+    void show(const std::string& line) {
+        if (quiet_) return;
+        if (tty_) {
+            std::cerr << "\r\033[K" << line << std::flush;
+            open_ = true;
+        } else if (line != last_) {
+            // Not a terminal (a log): stage lines, and render progress per 10 %.
+            const auto open = line.rfind('(');
+            const int pct = open == std::string::npos ? -1 : std::atoi(line.c_str() + open + 1);
+            if (pct < 0 || pct / 10 != lastDecile_) std::cerr << line << '\n';
+            lastDecile_ = pct < 0 ? -1 : pct / 10;
+        }
+        last_ = line;
+    }
+    void done() {
+        if (open_) std::cerr << "\r\033[K" << std::flush;
+        open_ = false;
+    }
+
+private:
+    bool quiet_, tty_, open_ = false;
+    std::string last_;
+    int lastDecile_ = -1;
+};
+
+struct CommonOptions {
+    std::string scene;
+    std::string output;
+    std::string templates;
+    int threads = 0;
+    bool quiet = false;
+};
+
+// `relief compile` and `relief render`: stages 1-4, then (render) POV-Ray.
+int runPipeline(const CommonOptions& o, const std::string& dumpNet, bool render) {
+    relief::Diagnostics diags;
+    Progress progress(o.quiet);
+    progress.show("reading " + o.scene);
+    auto loaded = relief::loadScene(o.scene, diags);
+    if (!loaded) {
+        progress.done();
+        printDiagnostics(diags, false);
+        return code(Exit::BadInput);
+    }
+    const auto& desc = loaded->scene;
+    relief::OutputPaths paths;
+    if (render) {
+        paths = relief::outputPathsFor(
+            o.output.empty() ? relief::defaultPngPath(o.scene, desc.output) : fs::path(o.output));
+    } else {
+        paths.pov = o.output.empty()
+                        ? fs::path("out") / (fs::path(o.scene).stem().string() + ".pov")
+                        : fs::path(o.output);
+        paths.sidecar = paths.pov;
+        paths.sidecar.replace_extension(".json");
+    }
+    relief::CompileOptions copts;
+    copts.povPath = paths.pov;
+    copts.templatesDir = findTemplates(o.templates);
+    copts.dumpNetPath = dumpNet;
+    copts.threads = o.threads;
+
+    progress.show(fmt::format("compiling {} ({}, depth {})", o.scene, desc.scheme, desc.depth));
+    ensureParent(paths.pov);
+    if (!dumpNet.empty()) ensureParent(dumpNet);
+    auto compiled = relief::compileScene(*loaded, copts, diags);
+    progress.done();
+    if (!compiled) {
+        printDiagnostics(diags, false);
+        return code(Exit::BadInput);
+    }
+    printDiagnostics(diags, true);  // warnings only
+    if (!o.quiet)
+        std::cerr << fmt::format("wrote {} ({} x {} vertices, {} triangles, {:.1f} MB)\n",
+                                 paths.pov.string(), compiled->refinedRows,
+                                 compiled->refinedCols,
+                                 2LL * (compiled->refinedRows - 1) * (compiled->refinedCols - 1),
+                                 compiled->povBytes / 1e6);
+    if (!render) {
+        relief::writeFileAtomically(paths.sidecar,
+                                    relief::sidecarJson(*compiled, paths, nullptr));
+        return code(Exit::Ok);
+    }
+
+    relief::render::RenderRequest req;
+    req.pov = paths.pov;
+    req.png = paths.png;
+    req.width = desc.width;
+    req.height = desc.height;
+    req.antialias = desc.antialias;
+    req.includeDirs = {copts.templatesDir};
+    req.threads = o.threads;
+    ensureParent(paths.png);
+    auto result = relief::render::renderPov(req, [&](const std::string& line) {
+        progress.show("povray: " + line);
+    });
+    progress.done();
+    if (!result.ok) {
+        std::cerr << "relief: POV-Ray failed on " << paths.pov.string() << ":\n"
+                  << result.error << '\n';
+        return code(Exit::ToolFailed);
+    }
+    relief::writeFileAtomically(paths.sidecar, relief::sidecarJson(*compiled, paths, &result));
+    if (!o.quiet)
+        std::cerr << fmt::format("wrote {} ({} x {}; POV-Ray parse {:.2f} s, trace {:.2f} s)\n",
+                                 paths.png.string(), desc.width, desc.height,
+                                 result.parseSeconds, result.traceSeconds);
+    return code(Exit::Ok);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{fmt::format(
+        "relief {}: compiles georeferenced elevation samples into a ray-traced still.\n"
+        "scene file (TOML) -> control net (GeographicLib, GDAL) -> subdivision -> POV-Ray "
+        "mesh2 -> PNG",
+        relief::kVersion)};
+    app.footer(std::string("\n") + kExitCodes + "\nScene format: docs/scene-format.md");
+    app.set_version_flag("--version", fmt::format("relief {}", relief::kVersion));
+    app.require_subcommand(1);
+
+    CommonOptions common;
+    std::string dumpNet;
+    auto addCommon = [&](CLI::App* sub, const char* outputHelp) {
+        sub->add_option("scene", common.scene, "scene file (TOML)")->required();
+        sub->add_option("-o,--output", common.output, outputHelp);
+        sub->add_option("--templates", common.templates,
+                        "folder with scene.pov.in (default: $RELIEF_TEMPLATES, the installed "
+                        "share/relief/templates, or the source tree's)");
+        sub->add_option("--threads", common.threads, "refiner and POV-Ray threads (0: all cores)")
+            ->check(CLI::Range(0, 256));
+        sub->add_flag("-q,--quiet", common.quiet, "print errors only");
+    };
+    CLI::App* compile = app.add_subcommand(
+        "compile", "write the POV-Ray scene (.pov) and a JSON sidecar; no rendering");
+    addCommon(compile, "the .pov to write (default: out/<scene name>.pov)");
+    compile->add_option("--dump-net", dumpNet,
+                        "also write the control net: .csv (x,y,z in the frame, metres) or .asc "
+                        "(ESRI ASCII grid; needs net.spacing_m)");
+    CLI::App* render = app.add_subcommand(
+        "render", "compile, then render the still with POV-Ray (.png, .pov and .json sidecar)");
+    addCommon(render, "the PNG to write (default: [render] output, else out/<scene name>.png)");
+    render->add_option("--dump-net", dumpNet, "also write the control net (.csv or .asc)");
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::Success& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        app.exit(e);
+        return code(Exit::BadInput);
+    }
+    try {
+        return runPipeline(common, dumpNet, render->parsed());
+    } catch (const std::runtime_error& e) {  // I/O: cannot write an output
+        std::cerr << "relief: error: " << e.what() << '\n';
+        return code(Exit::BadInput);
+    } catch (const std::exception& e) {
+        std::cerr << "relief: internal error: " << e.what() << '\n';
+        return code(Exit::Internal);
+    }
+}

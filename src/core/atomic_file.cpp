@@ -1,0 +1,70 @@
+#include "core/atomic_file.h"
+
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include <fmt/format.h>
+#include <fmt/std.h>
+
+namespace relief {
+
+AtomicFile::AtomicFile(std::filesystem::path finalPath) : final_(std::move(finalPath)) {
+    temp_ = final_;
+    temp_ += fmt::format(".tmp-{}", ::getpid());
+    file_ = std::fopen(temp_.c_str(), "wb");
+    if (!file_)
+        throw std::runtime_error(fmt::format("cannot write {}: {}", final_.string(),
+                                             std::strerror(errno)));
+}
+
+AtomicFile::~AtomicFile() {
+    if (file_) std::fclose(file_);
+    if (!committed_) {
+        std::error_code ec;
+        std::filesystem::remove(temp_, ec);
+    }
+}
+
+void AtomicFile::write(std::string_view bytes) {
+    if (!bytes.empty() && std::fwrite(bytes.data(), 1, bytes.size(), file_) != bytes.size())
+        throw std::runtime_error(
+            fmt::format("cannot write {}: {}", final_.string(), std::strerror(errno)));
+}
+
+void AtomicFile::commit() {
+    const bool ok = std::fflush(file_) == 0 && ::fsync(::fileno(file_)) == 0;
+    const int err = errno;
+    const bool closed = std::fclose(file_) == 0;
+    file_ = nullptr;
+    if (!ok || !closed)
+        throw std::runtime_error(
+            fmt::format("cannot write {}: {}", final_.string(), std::strerror(err)));
+    std::error_code ec;
+    std::filesystem::rename(temp_, final_, ec);
+    if (ec)
+        throw std::runtime_error(
+            fmt::format("cannot rename into {}: {}", final_.string(), ec.message()));
+    committed_ = true;
+}
+
+void writeFileAtomically(const std::filesystem::path& path, std::string_view bytes) {
+    AtomicFile f(path);
+    f.write(bytes);
+    f.commit();
+}
+
+std::string readFile(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw std::runtime_error(fmt::format("cannot read {}: {}", path.string(),
+                                                  std::strerror(errno)));
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+}  // namespace relief

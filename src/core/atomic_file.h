@@ -1,0 +1,41 @@
+#pragma once
+// Outputs are never half-written: everything goes to a temporary file in the
+// destination's folder and is renamed into place only when complete.
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+namespace relief {
+
+class AtomicFile {
+public:
+    /// Opens `<final>.tmp-<pid>` for writing. Throws std::runtime_error with the
+    /// path and the system's reason when that fails (missing folder, no permission).
+    explicit AtomicFile(std::filesystem::path finalPath);
+    ~AtomicFile();  ///< removes the temporary file unless commit() succeeded
+    AtomicFile(const AtomicFile&) = delete;
+    AtomicFile& operator=(const AtomicFile&) = delete;
+
+    std::FILE* stream() { return file_; }
+    void write(std::string_view bytes);
+    const std::filesystem::path& tempPath() const { return temp_; }
+    const std::filesystem::path& finalPath() const { return final_; }
+
+    /// Flushes, closes and renames into place. Throws on any I/O error.
+    void commit();
+
+private:
+    std::filesystem::path final_;
+    std::filesystem::path temp_;
+    std::FILE* file_ = nullptr;
+    bool committed_ = false;
+};
+
+/// Writes `bytes` to `path` atomically.
+void writeFileAtomically(const std::filesystem::path& path, std::string_view bytes);
+
+/// Reads a whole file; throws std::runtime_error naming the path on failure.
+std::string readFile(const std::filesystem::path& path);
+
+}  // namespace relief

@@ -1,0 +1,36 @@
+#pragma once
+// Stage 4 of 5 (part 1). Input: the refined Grid (frame metres). Output: Mesh,
+// in POV-Ray scene units and axes, with normals and an elevation palette.
+#include <array>
+#include <vector>
+
+#include "core/types.h"
+#include "scene/scene_desc.h"
+
+namespace relief::emit {
+
+inline constexpr int kPaletteSize = 256;
+
+/// POV-Ray's axes: x = east, y = up, z = north (left-handed, so the map is
+/// not mirrored). One scene unit is `metresPerUnit` metres, a power of ten
+/// chosen so the terrain spans 10-100 units: POV-Ray stores vertices as
+/// 32-bit floats and treats bounding boxes over ~2e10 cubic units as infinite.
+struct Mesh {
+    int rows = 0, cols = 0;
+    std::vector<Vec3> positions;  ///< scene units, relative to `originM`
+    std::vector<Vec3> normals;    ///< unit length, scene axes
+    std::vector<unsigned char> palette;  ///< per vertex: index into paletteColors
+    std::vector<scene::ColorStop> paletteColors;  ///< kPaletteSize entries (linear RGB)
+    double metresPerUnit = 1;
+    Vec3 originM;                 ///< frame position (metres) of the scene origin (x, y; z = 0)
+    double exaggeration = 1;
+    double zMinM = 0, zMaxM = 0;  ///< elevation range of the refined surface, metres
+    Vec3 boundsMin, boundsMax;    ///< scene units, scene axes
+};
+
+/// Builds the mesh: centres the terrain on the origin, applies the vertical
+/// exaggeration, computes normals from the grid (central differences, one-sided
+/// at the edges) and maps each vertex's true elevation to the palette.
+Mesh buildMesh(const Grid& refined, const scene::SceneDesc& scene);
+
+}  // namespace relief::emit

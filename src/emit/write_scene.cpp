@@ -1,0 +1,244 @@
+#include "emit/write_scene.h"
+
+#include <cmath>
+#include <cstring>
+#include <memory>
+#include <numbers>
+#include <optional>
+
+#include <fmt/format.h>
+
+#include "core/atomic_file.h"
+#include "core/number_format.h"
+
+namespace relief::emit {
+
+namespace {
+
+constexpr int kPositionDecimals = 5;  // 1e-5 units: finer than float32 at 100 units
+constexpr int kNormalDecimals = 5;
+constexpr int kColorDecimals = 5;
+
+// Buffered sink: the writer formats into a fixed block and hands it to stdio
+// in large pieces.
+class BlockWriter {
+public:
+    explicit BlockWriter(std::FILE* out) : out_(out) {}
+    ~BlockWriter() { flush(); }
+    // Room for `n` more characters.
+    char* reserve(size_t n) {
+        if (used_ + n > kSize) flush();
+        return buf_ + used_;
+    }
+    void commit(char* end) { used_ = static_cast<size_t>(end - buf_); }
+    void put(std::string_view s) {
+        char* p = reserve(s.size());
+        std::memcpy(p, s.data(), s.size());
+        commit(p + s.size());
+    }
+    size_t total() const { return total_ + used_; }
+
+private:
+    void flush() {
+        std::fwrite(buf_, 1, used_, out_);
+        total_ += used_;
+        used_ = 0;
+    }
+    static constexpr size_t kSize = 1 << 20;
+    std::FILE* out_;
+    char buf_[kSize];
+    size_t used_ = 0;
+    size_t total_ = 0;
+};
+
+inline char* writeVector(char* p, const Vec3& v, int decimals) {
+    *p++ = '<';
+    p = writeFixed(p, v.x, decimals);
+    *p++ = ',';
+    p = writeFixed(p, v.y, decimals);
+    *p++ = ',';
+    p = writeFixed(p, v.z, decimals);
+    *p++ = '>';
+    return p;
+}
+
+std::string vec(const Vec3& v, int decimals = 6) {
+    char buf[120];
+    return std::string(buf, writeVector(buf, v, decimals));
+}
+
+std::string num(double v, int decimals = 6) {
+    char buf[40];
+    return std::string(buf, writeFixed(buf, v, decimals));
+}
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+// Unit vector (scene axes) towards compass bearing `azimuthDeg` at `altitudeDeg` above the horizon.
+Vec3 direction(double azimuthDeg, double altitudeDeg) {
+    const double a = azimuthDeg * kDeg, e = altitudeDeg * kDeg;
+    return {std::sin(a) * std::cos(e), std::sin(e), std::cos(a) * std::cos(e)};
+}
+
+}  // namespace
+
+size_t writeMesh2(const Mesh& mesh, std::FILE* out) {
+    auto w = std::make_unique<BlockWriter>(out);
+    const size_t n = mesh.positions.size();
+    w->put("mesh2 {\n  vertex_vectors {\n    ");
+    {
+        char* p = w->reserve(24);
+        p = writeUnsigned(p, n);
+        w->commit(p);
+    }
+    for (size_t i = 0; i < n; ++i) {
+        char* p = w->reserve(128);
+        *p++ = ',';
+        *p++ = '\n';
+        p = writeVector(p, mesh.positions[i], kPositionDecimals);
+        w->commit(p);
+    }
+    w->put("\n  }\n  normal_vectors {\n    ");
+    {
+        char* p = w->reserve(24);
+        w->commit(writeUnsigned(p, n));
+    }
+    for (size_t i = 0; i < n; ++i) {
+        char* p = w->reserve(128);
+        *p++ = ',';
+        *p++ = '\n';
+        p = writeVector(p, mesh.normals[i], kNormalDecimals);
+        w->commit(p);
+    }
+    w->put("\n  }\n  texture_list {\n    ");
+    {
+        char* p = w->reserve(24);
+        w->commit(writeUnsigned(p, mesh.paletteColors.size()));
+    }
+    for (const auto& c : mesh.paletteColors) {
+        char* p = w->reserve(160);
+        const char open[] = ",\n    texture { pigment { rgb ";
+        std::memcpy(p, open, sizeof open - 1);
+        p += sizeof open - 1;
+        p = writeVector(p, {c.r, c.g, c.b}, kColorDecimals);
+        const char close[] = " } finish { TerrainFinish } }";
+        std::memcpy(p, close, sizeof close - 1);
+        p += sizeof close - 1;
+        w->commit(p);
+    }
+    const long long quads = static_cast<long long>(mesh.rows - 1) * (mesh.cols - 1);
+    w->put("\n  }\n  face_indices {\n    ");
+    {
+        char* p = w->reserve(24);
+        w->commit(writeUnsigned(p, static_cast<std::uint64_t>(2 * quads)));
+    }
+    const size_t cols = static_cast<size_t>(mesh.cols);
+    auto face = [&](size_t a, size_t b, size_t c) {
+        char* p = w->reserve(96);
+        *p++ = ',';
+        *p++ = '\n';
+        *p++ = '<';
+        p = writeUnsigned(p, a);
+        *p++ = ',';
+        p = writeUnsigned(p, b);
+        *p++ = ',';
+        p = writeUnsigned(p, c);
+        *p++ = '>';
+        *p++ = ',';
+        p = writeUnsigned(p, mesh.palette[a]);
+        *p++ = ',';
+        p = writeUnsigned(p, mesh.palette[b]);
+        *p++ = ',';
+        p = writeUnsigned(p, mesh.palette[c]);
+        w->commit(p);
+    };
+    for (size_t r = 0; r + 1 < static_cast<size_t>(mesh.rows); ++r) {
+        for (size_t c = 0; c + 1 < cols; ++c) {
+            // South-west, south-east, north-east, north-west corners of the quad.
+            const size_t sw = r * cols + c, se = sw + 1, nw = sw + cols, ne = nw + 1;
+            face(sw, se, ne);
+            face(sw, ne, nw);
+        }
+    }
+    w->put("\n  }\n  inside_vector <0, 1, 0>\n}");
+    return w->total();
+}
+
+Bindings sceneBindings(const Mesh& mesh, const scene::SceneDesc& scene,
+                       const ParameterList& header) {
+    Bindings b;
+    std::string head;
+    for (const auto& [key, value] : header) head += fmt::format("// {}: {}\n", key, value);
+    b["header"].text = head;
+
+    const Vec3 lo = mesh.boundsMin, hi = mesh.boundsMax;
+    const Vec3 target{0.5 * (lo.x + hi.x), 0.5 * (lo.y + hi.y), 0.5 * (lo.z + hi.z)};
+    const double radius = 0.5 * length(hi - lo);
+    const double aspect = static_cast<double>(scene.width) / scene.height;
+    const Vec3 back = direction(scene.cameraAzimuthDeg, scene.cameraElevationDeg);
+    // Camera basis: `right` is horizontal, `up` completes it (POV-Ray's `angle`
+    // is the horizontal field of view).
+    const Vec3 right = {back.z, 0, -back.x};
+    const double rightLen = length(right);
+    const Vec3 r = (1.0 / rightLen) * right;
+    const Vec3 u = cross(r, back);  // left-handed axes: this points up
+    const double tanH = std::tan(0.5 * scene.fovDeg * kDeg);
+    const double tanV = tanH / aspect;
+    // Nearest distance at which all eight corners of the bounding box are in view,
+    // plus a 6 % margin.
+    double fitDistance = 0;
+    for (int corner = 0; corner < 8; ++corner) {
+        const Vec3 c{corner & 1 ? hi.x : lo.x, corner & 2 ? hi.y : lo.y, corner & 4 ? hi.z : lo.z};
+        const Vec3 v = c - target;
+        fitDistance = std::max({fitDistance, dot(v, back) + std::fabs(dot(v, r)) / tanH,
+                                dot(v, back) + std::fabs(dot(v, u)) / tanV});
+    }
+    fitDistance *= 1.06;
+    const double distance =
+        scene.cameraDistanceM > 0 ? scene.cameraDistanceM / mesh.metresPerUnit : fitDistance;
+    const Vec3 eye = target + distance * back;
+    b["camera_location"].text = vec(eye);
+    b["camera_look_at"].text = vec(target);
+    if (scene.projection == scene::Projection::Perspective) {
+        b["camera_projection"].text = std::string("perspective");
+        b["camera_right"].text = fmt::format("x*{}", num(aspect));
+        b["camera_up"].text = std::string("y");
+        b["camera_angle"].text = fmt::format("angle {}", num(scene.fovDeg));
+    } else {
+        const double h = 2.1 * radius;
+        b["camera_projection"].text = "orthographic";
+        b["camera_right"].text = fmt::format("x*{}", num(h * aspect));
+        b["camera_up"].text = fmt::format("y*{}", num(h));
+        b["camera_angle"].text = "";
+    }
+    const Vec3 sunDir = direction(scene.sunAzimuthDeg, scene.sunAltitudeDeg);
+    b["sun_position"].text = vec(target + (100.0 * radius) * sunDir);
+    b["scene_center"].text = vec(target);
+    b["mesh"].writer = [&mesh](std::FILE* out) { writeMesh2(mesh, out); };
+    return b;
+}
+
+std::optional<Template> loadSceneTemplate(const std::filesystem::path& templatesDir,
+                                          Diagnostics& diags) {
+    const auto path = templatesDir / "scene.pov.in";
+    try {
+        return Template{path.string(), readFile(path)};
+    } catch (const std::exception& e) {
+        diags.error({path.string(), 0, 0},
+                    "cannot read the scene template; give the folder with --templates or set "
+                    "RELIEF_TEMPLATES");
+        return std::nullopt;
+    }
+}
+
+bool writeScene(const std::filesystem::path& out, const Template& tmpl, const Mesh& mesh,
+                const scene::SceneDesc& scene, const ParameterList& header, Diagnostics& diags) {
+    const Bindings bindings = sceneBindings(mesh, scene, header);
+    if (!checkTemplate(tmpl, bindings, diags)) return false;
+    AtomicFile file(out);
+    renderTemplate(tmpl, bindings, file.stream());
+    file.commit();
+    return true;
+}
+
+}  // namespace relief::emit

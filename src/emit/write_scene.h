@@ -1,0 +1,39 @@
+#pragma once
+// Stage 4 of 5 (part 2). Input: Mesh and SceneDesc. Output: a POV-Ray scene
+// (.pov) from templates/scene.pov.in with the mesh as a `mesh2`. The same
+// inputs give byte-identical output: every number goes through the
+// locale-free writers of core/number_format.h.
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/diagnostics.h"
+#include "emit/mesh.h"
+#include "emit/template.h"
+#include "scene/scene_desc.h"
+
+namespace relief::emit {
+
+/// Ordered key/value pairs recorded in the .pov header and the JSON sidecar.
+using ParameterList = std::vector<std::pair<std::string, std::string>>;
+
+/// Writes `mesh2 { vertex_vectors, normal_vectors, texture_list (the 256-entry
+/// palette), face_indices (two triangles per grid quad, counter-clockwise seen
+/// from above, each with its three palette indices) }`. Returns bytes written.
+size_t writeMesh2(const Mesh& mesh, std::FILE* out);
+
+/// The template's bindings: header, camera, sun, sky and the mesh.
+Bindings sceneBindings(const Mesh& mesh, const scene::SceneDesc& scene,
+                       const ParameterList& header);
+
+/// Loads `<templatesDir>/scene.pov.in`.
+std::optional<Template> loadSceneTemplate(const std::filesystem::path& templatesDir,
+                                          Diagnostics& diags);
+
+/// Checks bindings, then writes the .pov atomically (temp file + rename).
+bool writeScene(const std::filesystem::path& out, const Template& tmpl, const Mesh& mesh,
+                const scene::SceneDesc& scene, const ParameterList& header, Diagnostics& diags);
+
+}  // namespace relief::emit

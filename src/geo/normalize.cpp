@@ -1,0 +1,275 @@
+#include "geo/normalize.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <GeographicLib/LocalCartesian.hpp>
+#include <GeographicLib/UTMUPS.hpp>
+#include <cpl_conv.h>
+#include <cpl_error.h>
+#include <gdal_alg.h>
+#include <gdalgrid.h>
+#include <fmt/format.h>
+
+#include "core/number_format.h"
+
+namespace relief::geo {
+
+using GeographicLib::GeographicErr;
+using GeographicLib::UTMUPS;
+
+std::string Frame::describe() const {
+    if (kind == scene::FrameKind::Utm)
+        return utmZone == 0 ? fmt::format("UPS {}", northp ? "north" : "south")
+                            : fmt::format("UTM zone {}{}", utmZone, northp ? "N" : "S");
+    return fmt::format("local tangent plane at lat {} lon {}", formatShortest(originLatDeg),
+                       formatShortest(originLonDeg));
+}
+
+std::optional<Frame> chooseFrame(const scene::SceneDesc& scene,
+                                 const std::vector<GeoSample>& samples, Diagnostics& diags) {
+    double latMin = 90, latMax = -90, lonMin = 180, lonMax = -180;
+    for (const auto& s : samples) {
+        latMin = std::min(latMin, s.latDeg);
+        latMax = std::max(latMax, s.latDeg);
+        lonMin = std::min(lonMin, s.lonDeg);
+        lonMax = std::max(lonMax, s.lonDeg);
+    }
+    const double latC = 0.5 * (latMin + latMax);
+    const double lonC = 0.5 * (lonMin + lonMax);
+    Frame f;
+    f.kind = scene.frame;
+    if (f.kind == scene::FrameKind::Local) {
+        f.originLatDeg = latC;
+        f.originLonDeg = lonC;
+        return f;
+    }
+    if (scene.utmZone == "auto") {
+        f.utmZone = UTMUPS::StandardZone(latC, lonC);
+        f.northp = latC >= 0;
+        return f;
+    }
+    try {
+        UTMUPS::DecodeZone(scene.utmZone, f.utmZone, f.northp);
+    } catch (const GeographicErr&) {
+        diags.error(scene.utmZoneLoc,
+                    fmt::format("frame.zone = \"{}\" is not a UTM zone; write a number 1-60 and "
+                                "a hemisphere, e.g. \"60S\", or \"auto\"",
+                                scene.utmZone));
+        return std::nullopt;
+    }
+    return f;
+}
+
+std::vector<FramePoint> projectSamples(const Frame& frame, const std::vector<GeoSample>& samples,
+                                       Diagnostics& diags) {
+    std::vector<FramePoint> out;
+    out.reserve(samples.size());
+    if (frame.kind == scene::FrameKind::Local) {
+        const GeographicLib::LocalCartesian lc(frame.originLatDeg, frame.originLonDeg, 0.0);
+        for (const auto& s : samples) {
+            FramePoint fp{{}, s.loc};
+            lc.Forward(s.latDeg, s.lonDeg, s.elevM, fp.p.x, fp.p.y, fp.p.z);
+            out.push_back(fp);
+        }
+        return out;
+    }
+    int reported = 0;
+    for (const auto& s : samples) {
+        FramePoint fp{{}, s.loc};
+        try {
+            int zone = 0;
+            bool northp = false;
+            double gamma, k;
+            UTMUPS::Forward(s.latDeg, s.lonDeg, zone, northp, fp.p.x, fp.p.y, gamma, k,
+                            frame.utmZone);
+            if (northp != frame.northp)  // keep one hemisphere's false northing for all
+                fp.p.y += frame.northp ? -UTMUPS::UTMShift() : UTMUPS::UTMShift();
+        } catch (const GeographicErr& e) {
+            if (++reported <= 20)
+                diags.error(s.loc, fmt::format("lat {}° lon {}° cannot be projected into {} ({}); "
+                                               "use frame.kind = \"local\" or another zone",
+                                               formatShortest(s.latDeg), formatShortest(s.lonDeg),
+                                               frame.describe(), e.what()));
+            continue;
+        }
+        fp.p.z = s.elevM;
+        out.push_back(fp);
+    }
+    return out;
+}
+
+namespace {
+
+// One GDALGridCreate call. GDAL registers pixel centres, so the nodes
+// x0 + i*dx are the centres of a raster spanning [x0 - dx/2, x0 + (n-1/2)dx];
+// GDAL's row 0 is at the smallest y, like ours.
+bool gdalGrid(const char* algorithmAndOptions, const std::vector<double>& xs,
+              const std::vector<double>& ys, const std::vector<double>& zs,
+              const ControlNet& net, std::vector<double>& out, std::string& error) {
+    GDALGridAlgorithm algorithm;
+    void* options = nullptr;
+    if (ParseAlgorithmAndOptions(algorithmAndOptions, &algorithm, &options) != CE_None) {
+        error = CPLGetLastErrorMsg();
+        return false;
+    }
+    const int rows = net.grid.rows, cols = net.grid.cols;
+    out.assign(static_cast<size_t>(rows) * cols, 0.0);
+    CPLPushErrorHandler(CPLQuietErrorHandler);
+    // GDAL's SSE/AVX inverse-distance kernels work in float32, which rounds UTM
+    // northings (~6e6 m) to half a metre; the double-precision path is exact.
+    CPLSetThreadLocalConfigOption("GDAL_USE_AVX", "NO");
+    CPLSetThreadLocalConfigOption("GDAL_USE_SSE", "NO");
+    const CPLErr err = GDALGridCreate(
+        algorithm, options, static_cast<GUInt32>(xs.size()), xs.data(), ys.data(), zs.data(),
+        net.x0 - 0.5 * net.dx, net.x0 + (cols - 0.5) * net.dx, net.y0 - 0.5 * net.dy,
+        net.y0 + (rows - 0.5) * net.dy, static_cast<GUInt32>(cols), static_cast<GUInt32>(rows),
+        GDT_Float64, out.data(), nullptr, nullptr);
+    if (err != CE_None) error = CPLGetLastErrorMsg();
+    CPLSetThreadLocalConfigOption("GDAL_USE_AVX", nullptr);
+    CPLSetThreadLocalConfigOption("GDAL_USE_SSE", nullptr);
+    CPLPopErrorHandler();
+    CPLFree(options);
+    return err == CE_None;
+}
+
+constexpr double kNoData = -1.0e30;
+
+}  // namespace
+
+std::optional<ControlNet> gridSamples(const scene::SceneDesc& scene, const Frame& frame,
+                                      const std::vector<FramePoint>& points, Diagnostics& diags) {
+    const std::string csv = scene.samplesPathAsWritten;
+    if (points.size() < 4) {
+        diags.error({csv, 0, 0}, fmt::format("only {} distinct sample point(s); at least 4 are "
+                                             "needed to build a surface",
+                                             points.size()));
+        return std::nullopt;
+    }
+    ControlNet net;
+    net.frame = frame;
+    net.sampleCount = points.size();
+    double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300;
+    for (const auto& fp : points) {
+        xmin = std::min(xmin, fp.p.x), xmax = std::max(xmax, fp.p.x);
+        ymin = std::min(ymin, fp.p.y), ymax = std::max(ymax, fp.p.y);
+    }
+    if (scene.extentM) {
+        const auto& e = *scene.extentM;
+        xmin = e[0], ymin = e[1], xmax = e[2], ymax = e[3];
+    }
+    const double width = xmax - xmin, height = ymax - ymin;
+    int rows = scene.netRows, cols = scene.netCols;
+    if (scene.netSpacingM > 0) {
+        // The largest net with this spacing inside the extent, centred in it.
+        cols = static_cast<int>(std::floor(width / scene.netSpacingM + 1e-9)) + 1;
+        rows = static_cast<int>(std::floor(height / scene.netSpacingM + 1e-9)) + 1;
+        if (rows < 4 || cols < 4) {
+            diags.error(scene.netLoc,
+                        fmt::format("net.spacing_m = {} m gives only {} x {} nodes over the "
+                                    "{} x {} m extent; at least 4 x 4 are needed: use a smaller "
+                                    "spacing",
+                                    formatShortest(scene.netSpacingM), rows, cols,
+                                    formatShortest(width), formatShortest(height)));
+            return std::nullopt;
+        }
+        net.dx = net.dy = scene.netSpacingM;
+        net.x0 = xmin + 0.5 * (width - (cols - 1) * net.dx);
+        net.y0 = ymin + 0.5 * (height - (rows - 1) * net.dy);
+    } else {
+        net.dx = width / (cols - 1);
+        net.dy = height / (rows - 1);
+        net.x0 = xmin;
+        net.y0 = ymin;
+    }
+    net.grid.rows = rows;
+    net.grid.cols = cols;
+
+    std::vector<double> xs, ys, zs;
+    xs.reserve(points.size()), ys.reserve(points.size()), zs.reserve(points.size());
+    for (const auto& fp : points) {
+        xs.push_back(fp.p.x);
+        ys.push_back(fp.p.y);
+        zs.push_back(fp.p.z);
+    }
+    const std::string noData = fmt::format("{}", kNoData);
+    std::string algorithm;
+    switch (scene.gridding) {
+        case scene::Gridding::Linear: algorithm = "linear:radius=0:nodata=" + noData; break;
+        case scene::Gridding::InverseDistance:
+            algorithm = "invdist:power=2:smoothing=0:nodata=" + noData;
+            break;
+        case scene::Gridding::Nearest:
+            algorithm = "nearest:radius1=0:radius2=0:nodata=" + noData;
+            break;
+    }
+    std::vector<double> z;
+    std::string error;
+    if (!gdalGrid(algorithm.c_str(), xs, ys, zs, net, z, error)) {
+        diags.error({csv, 0, 0}, fmt::format("GDAL gridding failed: {}", error));
+        return std::nullopt;
+    }
+    // Nodes outside the convex hull of the samples: nearest sample.
+    std::vector<double> nearest;
+    for (size_t i = 0; i < z.size(); ++i) {
+        if (z[i] > kNoData * 0.5) continue;
+        if (nearest.empty() &&
+            !gdalGrid(("nearest:radius1=0:radius2=0:nodata=" + noData).c_str(), xs, ys, zs, net,
+                      nearest, error)) {
+            diags.error({csv, 0, 0}, fmt::format("GDAL gridding failed: {}", error));
+            return std::nullopt;
+        }
+        z[i] = nearest[i];
+        ++net.filledOutsideHull;
+    }
+
+    net.grid.points.resize(z.size());
+    for (int r = 0; r < rows; ++r)
+        for (int c = 0; c < cols; ++c)
+            net.grid.at(r, c) = {net.x0 + c * net.dx, net.y0 + r * net.dy,
+                                 z[static_cast<size_t>(r) * cols + c]};
+    return net;
+}
+
+std::optional<ControlNet> normalize(const scene::SceneDesc& scene,
+                                    const std::vector<GeoSample>& samples, Diagnostics& diags) {
+    auto frame = chooseFrame(scene, samples, diags);
+    if (!frame) return std::nullopt;
+    auto points = projectSamples(*frame, samples, diags);
+    if (diags.hasErrors()) return std::nullopt;
+    return gridSamples(scene, *frame, points, diags);
+}
+
+std::string netToCsv(const ControlNet& net) {
+    std::string out = "x,y,z\n";
+    char buf[100];
+    for (const Vec3& p : net.grid.points) {
+        char* e = writeFixed(buf, p.x, 4);
+        *e++ = ',';
+        e = writeFixed(e, p.y, 4);
+        *e++ = ',';
+        e = writeFixed(e, p.z, 4);
+        *e++ = '\n';
+        out.append(buf, e);
+    }
+    return out;
+}
+
+std::string netToAsciiGrid(const ControlNet& net) {
+    const int rows = net.grid.rows, cols = net.grid.cols;
+    std::string out = fmt::format(
+        "ncols {}\nnrows {}\nxllcenter {}\nyllcenter {}\ncellsize {}\nNODATA_value -9999\n", cols,
+        rows, formatShortest(net.x0), formatShortest(net.y0), formatShortest(net.dx));
+    char buf[40];
+    for (int r = rows - 1; r >= 0; --r) {
+        for (int c = 0; c < cols; ++c) {
+            char* e = writeFixed(buf, net.grid.at(r, c).z, 4);
+            *e++ = c + 1 < cols ? ' ' : '\n';
+            out.append(buf, e);
+        }
+    }
+    return out;
+}
+
+}  // namespace relief::geo

@@ -1,0 +1,209 @@
+#include "pipeline.h"
+
+#include <chrono>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "core/atomic_file.h"
+#include "core/number_format.h"
+#include "emit/mesh.h"
+#include "geo/samples.h"
+#include "relief/version.h"
+#include "scene/read_scene.h"
+#include "subdiv/refine.h"
+
+namespace relief {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double secondsSince(Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+const char* name(scene::Gridding g) {
+    switch (g) {
+        case scene::Gridding::Linear: return "linear";
+        case scene::Gridding::InverseDistance: return "invdist";
+        case scene::Gridding::Nearest: return "nearest";
+    }
+    return "?";
+}
+
+emit::ParameterList describe(const scene::SceneDesc& s, const geo::ControlNet& net,
+                             const std::map<std::string, double>& schemeParams,
+                             const subdiv::OutputEstimate& est, double metresPerUnit) {
+    emit::ParameterList p;
+    auto add = [&](std::string k, std::string v) { p.emplace_back(std::move(k), std::move(v)); };
+    add("relief", kVersion);
+    add("scene", s.sceneFile.string());
+    add("scene_sha1", s.sceneSha1);
+    add("samples.path", s.samplesPathAsWritten);
+    add("samples.count", std::to_string(net.sampleCount));
+    add("frame", net.frame.describe());
+    add("net.size", fmt::format("{} rows x {} cols", net.grid.rows, net.grid.cols));
+    add("net.spacing_m", fmt::format("{} x {}", formatShortest(net.dx), formatShortest(net.dy)));
+    add("net.origin_m", fmt::format("{}, {}", formatShortest(net.x0), formatShortest(net.y0)));
+    add("net.gridding", name(s.gridding));
+    add("net.filled_outside_hull", std::to_string(net.filledOutsideHull));
+    add("vertical.exaggeration", formatShortest(s.exaggeration));
+    std::string params;
+    for (const auto& [k, v] : schemeParams)
+        params += fmt::format("{}{} = {}", params.empty() ? "" : ", ", k, formatShortest(v));
+    add("subdivision.scheme", s.scheme);
+    add("subdivision.params", params);
+    add("subdivision.boundary", "point reflection");
+    add("subdivision.depth", std::to_string(s.depth));
+    add("refined.size", fmt::format("{} rows x {} cols", est.rows, est.cols));
+    add("refined.vertices", fmt::format("{:.0f}", est.vertices));
+    add("refined.triangles", fmt::format("{:.0f}", est.triangles));
+    add("texture.ramp", s.ramp.preset);
+    add("lighting.sun", fmt::format("azimuth {} deg, altitude {} deg",
+                                    formatShortest(s.sunAzimuthDeg),
+                                    formatShortest(s.sunAltitudeDeg)));
+    add("camera", fmt::format("{}, azimuth {} deg, elevation {} deg, distance {}, fov {} deg",
+                              s.projection == scene::Projection::Perspective ? "perspective"
+                                                                             : "orthographic",
+                              formatShortest(s.cameraAzimuthDeg),
+                              formatShortest(s.cameraElevationDeg),
+                              s.cameraDistanceM > 0 ? formatShortest(s.cameraDistanceM) + " m"
+                                                    : std::string("fit"),
+                              formatShortest(s.fovDeg)));
+    add("render", fmt::format("{} x {}, antialias {}", s.width, s.height,
+                              s.antialias ? "on" : "off"));
+    add("scene_unit_m", formatShortest(metresPerUnit));
+    return p;
+}
+
+}  // namespace
+
+std::filesystem::path defaultPngPath(const std::filesystem::path& scenePath,
+                                     const std::string& sceneOutput) {
+    if (!sceneOutput.empty()) return sceneOutput;
+    return std::filesystem::path("out") / (scenePath.stem().string() + ".png");
+}
+
+OutputPaths outputPathsFor(const std::filesystem::path& png) {
+    OutputPaths p;
+    p.png = png;
+    p.pov = png;
+    p.pov.replace_extension(".pov");
+    p.sidecar = png;
+    p.sidecar.replace_extension(".json");
+    return p;
+}
+
+std::optional<LoadedScene> loadScene(const std::filesystem::path& scenePath,
+                                     Diagnostics& diags) {
+    const auto t0 = Clock::now();
+    auto desc = scene::readScene(scenePath, diags);
+    if (!desc) return std::nullopt;
+    std::map<std::string, double> params;
+    auto scheme = subdiv::makeScheme(desc->scheme, desc->schemeLoc, desc->schemeParams,
+                                     desc->schemeParamLocs, diags, &params);
+    if (diags.hasErrors()) return std::nullopt;
+    return LoadedScene{std::move(*desc), std::move(*scheme), std::move(params),
+                       secondsSince(t0)};
+}
+
+std::optional<CompileResult> compileScene(const LoadedScene& loaded,
+                                          const CompileOptions& options, Diagnostics& diags) {
+    CompileResult result;
+    const scene::SceneDesc& desc = loaded.scene;
+    const subdiv::Scheme& scheme = loaded.scheme;
+    result.times.readScene = loaded.seconds;
+
+    auto t0 = Clock::now();
+    const auto samples =
+        geo::readSamples(desc.samplesPath, desc.samplesPathAsWritten, diags);
+    if (diags.hasErrors()) return std::nullopt;
+    auto net = geo::normalize(desc, samples, diags);
+    if (!net) return std::nullopt;
+    result.times.normalize = secondsSince(t0);
+
+    result.estimate = subdiv::estimateOutput(scheme, net->grid.rows, net->grid.cols,
+                                             desc.depth);
+    if (!subdiv::checkBudget(result.estimate,
+                             {desc.maxTriangles, desc.maxSdlMB, desc.maxParseS},
+                             desc.schemeLoc, desc.depth, diags))
+        return std::nullopt;
+
+    auto tmpl = emit::loadSceneTemplate(options.templatesDir, diags);
+    if (!tmpl) return std::nullopt;
+
+    t0 = Clock::now();
+    const Grid refined = subdiv::refineGrid(scheme, net->grid, desc.depth, options.threads);
+    result.times.subdivide = secondsSince(t0);
+
+    t0 = Clock::now();
+    const emit::Mesh mesh = emit::buildMesh(refined, desc);
+    result.refinedRows = refined.rows;
+    result.refinedCols = refined.cols;
+    result.metresPerUnit = mesh.metresPerUnit;
+    result.parameters = describe(desc, *net, loaded.schemeParams, result.estimate, mesh.metresPerUnit);
+
+    if (!options.dumpNetPath.empty()) {
+        const bool asc = options.dumpNetPath.extension() == ".asc";
+        if (asc && std::abs(net->dx - net->dy) > 1e-9 * net->dx) {
+            diags.error({options.dumpNetPath.string(), 0, 0},
+                        fmt::format("an ESRI ASCII grid needs square cells, but the net's "
+                                    "spacing is {} x {} m; set net.spacing_m or dump to .csv",
+                                    formatShortest(net->dx), formatShortest(net->dy)));
+            return std::nullopt;
+        }
+    }
+    if (!emit::writeScene(options.povPath, *tmpl, mesh, desc, result.parameters, diags))
+        return std::nullopt;
+    if (!options.dumpNetPath.empty())
+        writeFileAtomically(options.dumpNetPath, options.dumpNetPath.extension() == ".asc"
+                                                     ? geo::netToAsciiGrid(*net)
+                                                     : geo::netToCsv(*net));
+    result.times.emit = secondsSince(t0);
+    std::error_code ec;
+    result.povBytes = std::filesystem::file_size(options.povPath, ec);
+    result.scene = desc;
+    result.net = std::move(*net);
+    return result;
+}
+
+std::string sidecarJson(const CompileResult& c, const OutputPaths& paths,
+                        const render::RenderResult* render) {
+    using nlohmann::ordered_json;
+    ordered_json j;
+    j["relief_version"] = kVersion;
+    j["inputs"] = {{"scene", c.scene.sceneFile.string()},
+                   {"scene_sha1", c.scene.sceneSha1},
+                   {"samples", c.scene.samplesPath.string()},
+                   {"sample_count", c.net.sampleCount}};
+    ordered_json params = ordered_json::object();
+    for (const auto& [k, v] : c.parameters) params[k] = v;
+    j["parameters"] = params;
+    j["net"] = {{"rows", c.net.grid.rows},
+                {"cols", c.net.grid.cols},
+                {"dx_m", c.net.dx},
+                {"dy_m", c.net.dy},
+                {"frame", c.net.frame.describe()},
+                {"filled_outside_hull", c.net.filledOutsideHull}};
+    j["refined"] = {{"rows", c.refinedRows},
+                    {"cols", c.refinedCols},
+                    {"vertices", static_cast<long long>(c.refinedRows) * c.refinedCols},
+                    {"triangles", 2LL * (c.refinedRows - 1) * (c.refinedCols - 1)},
+                    {"pov_bytes", c.povBytes}};
+    ordered_json times = {{"read_scene", c.times.readScene},
+                          {"normalize", c.times.normalize},
+                          {"subdivide", c.times.subdivide},
+                          {"emit", c.times.emit}};
+    if (render) {
+        times["povray_parse"] = render->parseSeconds;
+        times["povray_trace"] = render->traceSeconds;
+        times["povray_wall"] = render->wallSeconds;
+        j["povray_command"] = render->command;
+    }
+    j["seconds"] = times;
+    j["outputs"] = {{"pov", paths.pov.string()}};
+    if (render) j["outputs"]["png"] = paths.png.string();
+    return j.dump(2) + "\n";
+}
+
+}  // namespace relief

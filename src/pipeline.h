@@ -1,0 +1,75 @@
+#pragma once
+// The stages composed: scene file -> SceneDesc -> ControlNet -> refined Grid
+// -> Mesh -> .pov -> PNG. Each stage is a free function in its own folder;
+// this file only wires them together, times them and names the outputs.
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+
+#include "core/diagnostics.h"
+#include "emit/write_scene.h"
+#include "geo/normalize.h"
+#include "render/povray.h"
+#include "scene/scene_desc.h"
+#include "subdiv/budget.h"
+#include "subdiv/scheme.h"
+
+namespace relief {
+
+/// Stage 1 and the scheme's parameters: everything the scene file says, checked.
+struct LoadedScene {
+    scene::SceneDesc scene;
+    subdiv::Scheme scheme;
+    std::map<std::string, double> schemeParams;  ///< every parameter, defaults filled in
+    double seconds = 0;
+};
+
+/// Reads and validates the scene file and its scheme parameters, reporting
+/// every problem at once. Nothing is written.
+std::optional<LoadedScene> loadScene(const std::filesystem::path& scenePath, Diagnostics& diags);
+
+struct CompileOptions {
+    std::filesystem::path povPath;       ///< where the .pov goes
+    std::filesystem::path templatesDir;
+    std::filesystem::path dumpNetPath;   ///< optional: .csv (x,y,z) or .asc (ESRI ASCII grid)
+    int threads = 0;                     ///< refiner threads; 0 = all cores
+};
+
+struct StageTimes {
+    double readScene = 0, normalize = 0, subdivide = 0, emit = 0;  ///< seconds
+};
+
+struct CompileResult {
+    scene::SceneDesc scene;
+    geo::ControlNet net;  ///< the control net (its grid is kept; it is small)
+    subdiv::OutputEstimate estimate;
+    int refinedRows = 0, refinedCols = 0;
+    double metresPerUnit = 1;
+    emit::ParameterList parameters;  ///< as recorded in the .pov header
+    StageTimes times;
+    std::uintmax_t povBytes = 0;
+};
+
+/// Runs stages 2-4 and writes the .pov (and the net dump, if asked).
+/// Nothing is written when any stage reports an error.
+std::optional<CompileResult> compileScene(const LoadedScene& loaded,
+                                          const CompileOptions& options, Diagnostics& diags);
+
+/// Output paths derived from a scene: `out/<stem>.png` unless the scene's
+/// [render] output or the caller says otherwise; the .pov and the .json
+/// sidecar sit beside the PNG.
+struct OutputPaths {
+    std::filesystem::path png, pov, sidecar;
+};
+OutputPaths outputPathsFor(const std::filesystem::path& png);
+std::filesystem::path defaultPngPath(const std::filesystem::path& scenePath,
+                                     const std::string& sceneOutput);
+
+/// The JSON sidecar: inputs, parameters, net size, vertex and triangle
+/// counts, time per stage (and POV-Ray's, when `render` is given).
+std::string sidecarJson(const CompileResult& compiled, const OutputPaths& paths,
+                        const render::RenderResult* render);
+
+}  // namespace relief

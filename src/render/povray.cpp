@@ -1,0 +1,211 @@
+#include "render/povray.h"
+
+#include <fcntl.h>
+#include <poll.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <cstring>
+#include <deque>
+#include <regex>
+
+#include <fmt/format.h>
+
+#include "core/atomic_file.h"
+#include "render/png.h"
+
+extern char** environ;
+
+namespace relief::render {
+
+namespace {
+
+// A private HOME and POVINI, removed when done: POV-Ray then reads no user
+// or system configuration, and the I/O-restriction config we give it keeps it
+// from warning.
+class PovrayHome {
+public:
+    PovrayHome() {
+        char pattern[] = "/tmp/relief-povray-XXXXXX";
+        if (!::mkdtemp(pattern)) throw std::runtime_error("cannot create a temporary folder");
+        dir_ = pattern;
+        std::filesystem::create_directories(dir_ / ".povray" / "3.7");
+        writeFileAtomically(dir_ / ".povray" / "3.7" / "povray.conf",
+                            "[File I/O Security]\nnone\n");
+        writeFileAtomically(dir_ / "povray.ini", "");
+    }
+    ~PovrayHome() {
+        std::error_code ec;
+        std::filesystem::remove_all(dir_, ec);
+    }
+    const std::filesystem::path& dir() const { return dir_; }
+
+private:
+    std::filesystem::path dir_;
+};
+
+double parseSeconds(const std::string& log, const char* label) {
+    // "  Parse Time:       0 hours  0 minutes  1 seconds (1.234 seconds)"
+    const std::regex re(std::string(label) + R"(:\s+\d+ hours\s+\d+ minutes\s+\d+ seconds \(([0-9.]+) seconds\))");
+    std::smatch m;
+    return std::regex_search(log, m, re) ? std::atof(m[1].str().c_str()) : 0.0;
+}
+
+// POV-Ray's own error lines: "File '...' line N: Parse Error: ..." and the
+// like, or the last lines of its output when it died without one.
+std::string errorText(const std::deque<std::string>& lines) {
+    std::string out;
+    for (const auto& l : lines)
+        if (l.find("Error") != std::string::npos || l.find("error") != std::string::npos ||
+            l.rfind("File '", 0) == 0 || l.find("line ") == 0)
+            out += (out.empty() ? "" : "\n") + l;
+    if (!out.empty()) return out;
+    size_t start = lines.size() > 8 ? lines.size() - 8 : 0;
+    for (size_t i = start; i < lines.size(); ++i) out += (out.empty() ? "" : "\n") + lines[i];
+    return out;
+}
+
+}  // namespace
+
+std::string findPovray() {
+    const char* path = std::getenv("PATH");
+    if (!path) return "";
+    std::string p(path);
+    size_t start = 0;
+    while (start <= p.size()) {
+        size_t end = p.find(':', start);
+        if (end == std::string::npos) end = p.size();
+        const auto candidate = std::filesystem::path(p.substr(start, end - start)) / "povray";
+        if (::access(candidate.c_str(), X_OK) == 0) return candidate.string();
+        start = end + 1;
+    }
+    return "";
+}
+
+RenderResult renderPov(const RenderRequest& req, const ProgressFn& progress) {
+    RenderResult result;
+    const auto t0 = std::chrono::steady_clock::now();
+    const std::string povray = findPovray();
+    if (povray.empty()) {
+        result.error = "povray is not installed (on Debian: apt-get install povray)";
+        return result;
+    }
+    PovrayHome home;
+    std::filesystem::path rawPng = req.png;
+    rawPng += fmt::format(".povray-{}.png", ::getpid());
+
+    std::vector<std::string> args{povray,
+                                  "+I" + req.pov.string(),
+                                  "+O" + rawPng.string(),
+                                  fmt::format("+W{}", req.width),
+                                  fmt::format("+H{}", req.height),
+                                  "-D",
+                                  "+FN8",
+                                  "-P"};
+    // Adaptive anti-aliasing without jitter: pixels do not depend on the thread count.
+    if (req.antialias) args.insert(args.end(), {"+A0.3", "+AM2", "+R3", "-J"});
+    else args.push_back("-A");
+    if (req.threads > 0) args.push_back(fmt::format("+WT{}", req.threads));
+    for (const auto& dir : req.includeDirs) args.push_back("+L" + dir.string());
+    result.command = args;
+
+    std::vector<std::string> envStrings;
+    for (char** e = environ; *e; ++e) {
+        const std::string kv(*e);
+        if (kv.rfind("HOME=", 0) == 0 || kv.rfind("POVINI=", 0) == 0) continue;
+        envStrings.push_back(kv);
+    }
+    envStrings.push_back("HOME=" + home.dir().string());
+    envStrings.push_back("POVINI=" + (home.dir() / "povray.ini").string());
+    std::vector<char*> envp, argv;
+    for (auto& s : envStrings) envp.push_back(s.data());
+    envp.push_back(nullptr);
+    for (auto& s : args) argv.push_back(s.data());
+    argv.push_back(nullptr);
+
+    int pipeFd[2];
+    if (::pipe2(pipeFd, O_CLOEXEC) != 0) {
+        result.error = "cannot create a pipe";
+        return result;
+    }
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_adddup2(&actions, pipeFd[1], STDOUT_FILENO);
+    posix_spawn_file_actions_adddup2(&actions, pipeFd[1], STDERR_FILENO);
+    posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+    pid_t pid = 0;
+    const int spawnErr = ::posix_spawn(&pid, povray.c_str(), &actions, nullptr, argv.data(),
+                                       envp.data());
+    posix_spawn_file_actions_destroy(&actions);
+    ::close(pipeFd[1]);
+    if (spawnErr != 0) {
+        ::close(pipeFd[0]);
+        result.error = fmt::format("cannot run {}: {}", povray, std::strerror(spawnErr));
+        return result;
+    }
+
+    // POV-Ray ends progress lines with '\r' and the rest with '\n'.
+    std::string log, current;
+    std::deque<std::string> lastLines;
+    char buf[4096];
+    const std::regex parsing(R"(^Parsing \d+K tokens)");
+    while (true) {
+        const ssize_t n = ::read(pipeFd[0], buf, sizeof buf);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) break;
+        log.append(buf, static_cast<size_t>(n));
+        for (ssize_t i = 0; i < n; ++i) {
+            const char ch = buf[i];
+            if (ch != '\r' && ch != '\n') {
+                current.push_back(ch);
+                continue;
+            }
+            if (current.empty()) continue;
+            if (progress) {
+                if (current.rfind("Rendered ", 0) == 0 || std::regex_search(current, parsing))
+                    progress(current);
+                else if (current.find("[Parsing...]") != std::string::npos)
+                    progress("parsing the scene");
+                else if (current.find("[Rendering...]") != std::string::npos)
+                    progress("tracing");
+            }
+            lastLines.push_back(current);
+            if (lastLines.size() > 200) lastLines.pop_front();
+            current.clear();
+        }
+    }
+    if (!current.empty()) lastLines.push_back(current);
+    ::close(pipeFd[0]);
+    int status = 0;
+    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    }
+    result.parseSeconds = parseSeconds(log, "Parse Time");
+    result.traceSeconds = parseSeconds(log, "Trace Time");
+
+    std::error_code ec;
+    const bool exitedOk = WIFEXITED(status) && WEXITSTATUS(status) == 0;
+    if (!exitedOk || !std::filesystem::exists(rawPng, ec)) {
+        result.error = errorText(lastLines);
+        if (result.error.empty())
+            result.error = WIFEXITED(status)
+                               ? fmt::format("povray exited with status {}", WEXITSTATUS(status))
+                               : "povray was killed by a signal";
+        std::filesystem::remove(rawPng, ec);
+        return result;
+    }
+    const std::string pngError = writeCanonicalPng(rawPng, req.png);
+    std::filesystem::remove(rawPng, ec);
+    if (!pngError.empty()) {
+        result.error = pngError;
+        return result;
+    }
+    result.ok = true;
+    result.wallSeconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return result;
+}
+
+}  // namespace relief::render

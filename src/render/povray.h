@@ -1,0 +1,41 @@
+#pragma once
+// Stage 5 of 5. Input: a .pov file. Output: a PNG rendered by POV-Ray 3.7,
+// run in a controlled environment (its own HOME and POVINI, so no user
+// configuration leaks in), with progress reported from its stderr.
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace relief::render {
+
+struct RenderRequest {
+    std::filesystem::path pov;
+    std::filesystem::path png;  ///< final path; written atomically
+    int width = 800;
+    int height = 600;
+    bool antialias = true;
+    std::vector<std::filesystem::path> includeDirs;  ///< passed as +L
+    int threads = 0;  ///< 0: POV-Ray's default (all cores)
+};
+
+struct RenderResult {
+    bool ok = false;
+    std::string error;          ///< POV-Ray's own error text (or why it could not run)
+    double parseSeconds = 0;    ///< from POV-Ray's statistics
+    double traceSeconds = 0;
+    double wallSeconds = 0;
+    std::vector<std::string> command;  ///< the povray command line, for the record
+};
+
+/// A progress line such as "Parsing 120K tokens" or "Rendered 5120 of 480000 pixels (1%)".
+using ProgressFn = std::function<void(const std::string&)>;
+
+/// Runs povray. The PNG is written without its render date, so the same scene
+/// gives the same bytes; it appears at `png` only when the render succeeded.
+RenderResult renderPov(const RenderRequest& request, const ProgressFn& progress);
+
+/// The povray executable on PATH, or "" when it is not installed.
+std::string findPovray();
+
+}  // namespace relief::render

@@ -1,0 +1,456 @@
+#include "scene/read_scene.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <set>
+
+#include <OpenImageIO/hash.h>
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include "core/atomic_file.h"
+#include "core/number_format.h"
+#include "core/text_distance.h"
+#include "scene/color_ramp.h"
+
+namespace relief::scene {
+
+namespace {
+
+SourceLoc locOf(const std::string& file, const toml::source_region& r) {
+    return {file, static_cast<int>(r.begin.line), static_cast<int>(r.begin.column)};
+}
+
+std::string quoteName(std::string_view s) { return fmt::format("\"{}\"", s); }
+
+std::string didYouMean(std::string_view word, const std::vector<std::string>& candidates) {
+    const std::string best = closestMatch(word, candidates);
+    return best.empty() ? std::string() : fmt::format(" (did you mean \"{}\"?)", best);
+}
+
+std::string joinQuoted(const std::vector<std::string>& names) {
+    std::string out;
+    for (size_t i = 0; i < names.size(); ++i) out += (i ? ", " : "") + quoteName(names[i]);
+    return out;
+}
+
+// One [section] of the scene file. Each getter marks its key as known,
+// checks the type and the range, and reports with the key's location.
+// Keys left unmarked are reported as unknown by finish().
+class Section {
+public:
+    Section(const toml::table* table, std::string name, const std::string& file,
+            Diagnostics& diags, SourceLoc sectionLoc)
+        : table_(table), name_(std::move(name)), file_(file), diags_(diags),
+          sectionLoc_(std::move(sectionLoc)) {}
+
+    bool present() const { return table_ != nullptr; }
+    const SourceLoc& loc() const { return sectionLoc_; }
+
+    SourceLoc keyLoc(const std::string& key) const {
+        if (const toml::node* n = find(key)) return locOf(file_, n->source());
+        return sectionLoc_;
+    }
+
+    const toml::node* find(const std::string& key) const {
+        return table_ ? table_->get(key) : nullptr;
+    }
+
+    // A number (integer, float, or a fraction string like "7/32") in [lo, hi].
+    std::optional<double> number(const std::string& key, double lo, double hi,
+                                 std::string_view unit, bool loOpen = false,
+                                 bool hiOpen = false) {
+        known_.insert(key);
+        const toml::node* n = find(key);
+        if (!n) return std::nullopt;
+        std::optional<double> v;
+        if (auto i = n->value_exact<int64_t>()) v = static_cast<double>(*i);
+        else if (auto d = n->value_exact<double>()) v = *d;
+        else if (auto s = n->value_exact<std::string>()) v = parseFraction(*s);
+        if (!v) {
+            error(key, fmt::format("{} must be a number{}{}", qualified(key),
+                                   unit.empty() ? "" : " in ", unit));
+            return std::nullopt;
+        }
+        const bool belowLo = loOpen ? !(*v > lo) : !(*v >= lo);
+        const bool aboveHi = hiOpen ? !(*v < hi) : !(*v <= hi);
+        if (!std::isfinite(*v) || belowLo || aboveHi) {
+            error(key, fmt::format("{} = {} is outside {}{}, {}{}{}{}", qualified(key),
+                                   formatShortest(*v), loOpen ? "(" : "[", formatShortest(lo),
+                                   formatShortest(hi), hiOpen ? ")" : "]",
+                                   unit.empty() ? "" : " ", unit));
+            return std::nullopt;
+        }
+        return v;
+    }
+
+    std::optional<int> integer(const std::string& key, int lo, int hi, std::string_view unit) {
+        known_.insert(key);
+        const toml::node* n = find(key);
+        if (!n) return std::nullopt;
+        auto i = n->value_exact<int64_t>();
+        if (!i) {
+            error(key, fmt::format("{} must be an integer{}{}", qualified(key),
+                                   unit.empty() ? "" : " number of ", unit));
+            return std::nullopt;
+        }
+        if (*i < lo || *i > hi) {
+            error(key, fmt::format("{} = {} is outside [{}, {}]{}{}", qualified(key), *i, lo, hi,
+                                   unit.empty() ? "" : " ", unit));
+            return std::nullopt;
+        }
+        return static_cast<int>(*i);
+    }
+
+    std::optional<bool> boolean(const std::string& key) {
+        known_.insert(key);
+        const toml::node* n = find(key);
+        if (!n) return std::nullopt;
+        auto b = n->value_exact<bool>();
+        if (!b) error(key, fmt::format("{} must be true or false", qualified(key)));
+        return b;
+    }
+
+    std::optional<std::string> string(const std::string& key) {
+        known_.insert(key);
+        const toml::node* n = find(key);
+        if (!n) return std::nullopt;
+        auto s = n->value_exact<std::string>();
+        if (!s) error(key, fmt::format("{} must be a string", qualified(key)));
+        return s;
+    }
+
+    // A string that must be one of `choices`.
+    std::optional<std::string> choice(const std::string& key,
+                                      const std::vector<std::string>& choices) {
+        auto s = string(key);
+        if (!s) return std::nullopt;
+        for (const auto& c : choices)
+            if (c == *s) return s;
+        error(key, fmt::format("{} = \"{}\" is not one of {}{}", qualified(key), *s,
+                               joinQuoted(choices), didYouMean(*s, choices)));
+        return std::nullopt;
+    }
+
+    void markKnown(const std::string& key) { known_.insert(key); }
+
+    void require(const std::string& key, std::string_view what) {
+        if (!find(key))
+            diags_.error(sectionLoc_, fmt::format("missing {}: {}", qualified(key), what));
+    }
+
+    void error(const std::string& key, std::string message) {
+        diags_.error(keyLoc(key), std::move(message));
+    }
+
+    // Reports the keys no getter asked for, with the closest known key.
+    void finish() {
+        if (!table_) return;
+        const std::vector<std::string> knownList(known_.begin(), known_.end());
+        for (auto&& [k, v] : *table_) {
+            const std::string key(k.str());
+            if (known_.count(key)) continue;
+            diags_.error(locOf(file_, k.source()),
+                         fmt::format("unknown key {}{}", qualified(key), didYouMean(key, knownList)));
+        }
+    }
+
+    std::string qualified(const std::string& key) const { return name_ + "." + key; }
+
+private:
+    const toml::table* table_;
+    std::string name_;
+    const std::string& file_;
+    Diagnostics& diags_;
+    SourceLoc sectionLoc_;
+    std::set<std::string> known_;
+};
+
+const std::vector<std::string> kSections{"samples", "frame",    "net",      "vertical",
+                                         "subdivision", "limits", "texture", "lighting",
+                                         "camera",   "render"};
+
+}  // namespace
+
+std::optional<double> parseFraction(std::string_view text) {
+    const std::string s(text);
+    const char* begin = s.c_str();
+    char* end = nullptr;
+    const double num = std::strtod(begin, &end);
+    if (end == begin) return std::nullopt;
+    while (*end == ' ') ++end;
+    if (*end == '\0') return num;
+    if (*end != '/') return std::nullopt;
+    const char* denBegin = end + 1;
+    const double den = std::strtod(denBegin, &end);
+    if (end == denBegin || *end != '\0' || den == 0.0) return std::nullopt;
+    return num / den;
+}
+
+std::optional<SceneDesc> readScene(const std::filesystem::path& path, Diagnostics& diags) {
+    const std::string file = path.string();
+    std::string text;
+    try {
+        text = readFile(path);
+    } catch (const std::exception& e) {
+        diags.error({file, 0, 0}, fmt::format("cannot read the scene file ({})",
+                                              std::strerror(errno)));
+        return std::nullopt;
+    }
+
+    toml::table root;
+    try {
+        root = toml::parse(text, file);
+    } catch (const toml::parse_error& e) {
+        diags.error(locOf(file, e.source()), fmt::format("invalid TOML: {}", e.description()));
+        return std::nullopt;
+    }
+
+    SceneDesc scene;
+    scene.sceneFile = path;
+    {
+        OIIO::SHA1 sha(text.data(), text.size());
+        scene.sceneSha1 = sha.digest();
+    }
+
+    // Unknown or mistyped top-level sections.
+    for (auto&& [k, v] : root) {
+        const std::string key(k.str());
+        const bool known = std::find(kSections.begin(), kSections.end(), key) != kSections.end();
+        if (!known)
+            diags.error(locOf(file, k.source()),
+                        fmt::format("unknown section [{}]{}", key, didYouMean(key, kSections)));
+        else if (!v.is_table())
+            diags.error(locOf(file, k.source()),
+                        fmt::format("\"{}\" must be a section ([{}])", key, key));
+    }
+    auto section = [&](const std::string& name) {
+        const toml::table* t = root.get_as<toml::table>(name);
+        SourceLoc loc = t ? locOf(file, t->source()) : SourceLoc{file, 0, 0};
+        return Section(t, name, file, diags, loc);
+    };
+
+    // [samples]
+    {
+        Section s = section("samples");
+        if (!s.present()) {
+            diags.error({file, 0, 0}, "missing section [samples]: give path = \"data.csv\" "
+                                      "(columns lon,lat,elev)");
+        } else {
+            s.require("path", "the CSV file of samples (columns lon,lat,elev), relative to the "
+                              "scene file");
+            if (auto p = s.string("path")) {
+                scene.samplesPathAsWritten = *p;
+                scene.samplesPath = path.parent_path() / *p;
+                scene.samplesLoc = s.keyLoc("path");
+                std::error_code ec;
+                if (!std::filesystem::is_regular_file(scene.samplesPath, ec))
+                    s.error("path", fmt::format("samples.path: file \"{}\" not found (looked "
+                                                "for {}; the path is relative to the scene file)",
+                                                *p, scene.samplesPath.string()));
+            }
+        }
+        s.finish();
+    }
+
+    // [frame]
+    {
+        Section s = section("frame");
+        if (auto k = s.choice("kind", {"utm", "local"}))
+            scene.frame = *k == "utm" ? FrameKind::Utm : FrameKind::Local;
+        if (auto z = s.string("zone")) {
+            scene.utmZone = *z;
+            scene.utmZoneLoc = s.keyLoc("zone");
+            if (scene.frame == FrameKind::Local)
+                s.error("zone", "frame.zone is only used with kind = \"utm\"; remove it");
+        }
+        s.finish();
+    }
+
+    // [net]
+    {
+        Section s = section("net");
+        scene.netLoc = s.loc();
+        auto rows = s.integer("rows", 4, 100000, "nodes");
+        auto cols = s.integer("cols", 4, 100000, "nodes");
+        auto spacing = s.number("spacing_m", 0, 1e7, "m", true);
+        if (spacing && (s.find("rows") || s.find("cols")))
+            s.error("spacing_m", "give either net.spacing_m or net.rows and net.cols, not both");
+        else if (spacing)
+            scene.netSpacingM = *spacing;
+        else if (rows && cols) {
+            scene.netRows = *rows;
+            scene.netCols = *cols;
+        } else if (s.find("rows") || s.find("cols")) {
+            if (!s.find("rows") || !s.find("cols"))
+                diags.error(s.loc(), "net: give both rows and cols (or spacing_m alone)");
+        } else {
+            scene.netRows = 64;  // default: 64 x 64 nodes over the samples' extent
+            scene.netCols = 64;
+        }
+        s.markKnown("extent_m");
+        if (const toml::node* e = s.find("extent_m")) {
+            const toml::array* a = e->as_array();
+            std::array<double, 4> ext{};
+            bool ok = a && a->size() == 4;
+            for (size_t i = 0; ok && i < 4; ++i) {
+                if (auto d = (*a)[i].value<double>()) ext[i] = *d;
+                else ok = false;
+            }
+            if (!ok)
+                s.error("extent_m", "net.extent_m must be [xmin, ymin, xmax, ymax] in metres");
+            else if (!(ext[2] > ext[0] && ext[3] > ext[1]))
+                s.error("extent_m", "net.extent_m needs xmin < xmax and ymin < ymax (metres)");
+            else
+                scene.extentM = ext;
+        }
+        if (auto g = s.choice("gridding", {"linear", "invdist", "nearest"}))
+            scene.gridding = *g == "linear"    ? Gridding::Linear
+                             : *g == "invdist" ? Gridding::InverseDistance
+                                               : Gridding::Nearest;
+        s.finish();
+    }
+
+    // [vertical]
+    {
+        Section s = section("vertical");
+        if (auto e = s.number("exaggeration", 0, 100, "(unitless factor)", true))
+            scene.exaggeration = *e;
+        s.finish();
+    }
+
+    // [subdivision]: the scheme's own parameters are checked by the subdiv stage.
+    {
+        Section s = section("subdivision");
+        if (auto n = s.string("scheme")) {
+            scene.scheme = *n;
+            scene.schemeLoc = s.keyLoc("scheme");
+        } else {
+            scene.schemeLoc = s.loc();
+        }
+        if (auto d = s.integer("depth", 0, 8, "levels")) scene.depth = *d;
+        if (const toml::table* t = root.get_as<toml::table>("subdivision")) {
+            for (auto&& [k, v] : *t) {
+                const std::string key(k.str());
+                if (key == "scheme" || key == "depth") continue;
+                s.markKnown(key);
+                std::optional<double> value;
+                if (auto i = v.value_exact<int64_t>()) value = static_cast<double>(*i);
+                else if (auto d = v.value_exact<double>()) value = *d;
+                else if (auto str = v.value_exact<std::string>()) value = parseFraction(*str);
+                if (!value || !std::isfinite(*value)) {
+                    diags.error(locOf(file, v.source()),
+                                fmt::format("subdivision.{} must be a number or a fraction "
+                                            "such as \"7/32\"",
+                                            key));
+                    continue;
+                }
+                scene.schemeParams[key] = *value;
+                scene.schemeParamLocs[key] = locOf(file, k.source());
+            }
+        }
+        s.finish();
+    }
+
+    // [limits]
+    {
+        Section s = section("limits");
+        if (auto v = s.number("max_triangles", 1, 1e10, "triangles")) scene.maxTriangles = *v;
+        if (auto v = s.number("max_sdl_mb", 0.001, 1e6, "MB")) scene.maxSdlMB = *v;
+        if (auto v = s.number("max_parse_s", 0.001, 1e6, "s")) scene.maxParseS = *v;
+        s.finish();
+    }
+
+    // [texture]
+    {
+        Section s = section("texture");
+        std::vector<std::string> ramps = rampPresetNames();
+        ramps.push_back("custom");
+        if (auto r = s.choice("ramp", ramps)) scene.ramp.preset = *r;
+        s.markKnown("stops");
+        const toml::node* stopsNode = s.find("stops");
+        if (stopsNode && scene.ramp.preset != "custom") {
+            s.error("stops", "texture.stops is only used with ramp = \"custom\"; add "
+                             "ramp = \"custom\" or remove the stops");
+        } else if (scene.ramp.preset == "custom") {
+            const toml::array* a = stopsNode ? stopsNode->as_array() : nullptr;
+            if (!a || a->size() < 2) {
+                diags.error(stopsNode ? locOf(file, stopsNode->source()) : s.loc(),
+                            "ramp = \"custom\" needs texture.stops = [{ elev_m = 0, color = "
+                            "\"#rrggbb\" }, ...] with at least 2 stops");
+            } else {
+                for (const toml::node& item : *a) {
+                    const toml::table* st = item.as_table();
+                    ColorStop stop{};
+                    auto elev = st ? st->get("elev_m") : nullptr;
+                    auto color = st ? st->get("color") : nullptr;
+                    std::optional<double> e = elev ? elev->value<double>() : std::nullopt;
+                    std::optional<std::string> c =
+                        color ? color->value_exact<std::string>() : std::nullopt;
+                    if (!e || !c || !parseHexColor(*c, stop)) {
+                        diags.error(locOf(file, item.source()),
+                                    "each texture.stops entry must be { elev_m = <metres>, "
+                                    "color = \"#rrggbb\" }");
+                        continue;
+                    }
+                    stop.elevM = *e;
+                    if (!scene.ramp.stops.empty() && stop.elevM <= scene.ramp.stops.back().elevM)
+                        diags.error(locOf(file, item.source()),
+                                    fmt::format("texture.stops: elev_m = {} m must be above the "
+                                                "previous stop ({} m); list stops bottom to top",
+                                                formatShortest(stop.elevM),
+                                                formatShortest(scene.ramp.stops.back().elevM)));
+                    scene.ramp.stops.push_back(stop);
+                }
+            }
+        }
+        s.finish();
+    }
+
+    // [lighting]
+    {
+        Section s = section("lighting");
+        if (auto v = s.number("sun_azimuth_deg", 0, 360, "degrees (compass bearing)", false, true))
+            scene.sunAzimuthDeg = *v;
+        if (auto v = s.number("sun_altitude_deg", 0, 90, "degrees", true))
+            scene.sunAltitudeDeg = *v;
+        s.finish();
+    }
+
+    // [camera]
+    {
+        Section s = section("camera");
+        if (auto v = s.number("azimuth_deg", 0, 360, "degrees (compass bearing)", false, true))
+            scene.cameraAzimuthDeg = *v;
+        if (auto v = s.number("elevation_deg", 0, 90, "degrees", true))
+            scene.cameraElevationDeg = *v;
+        if (auto v = s.number("distance_m", 0, 1e8, "m", true)) scene.cameraDistanceM = *v;
+        if (auto v = s.number("fov_deg", 1, 170, "degrees")) scene.fovDeg = *v;
+        if (auto p = s.choice("projection", {"perspective", "orthographic"}))
+            scene.projection =
+                *p == "perspective" ? Projection::Perspective : Projection::Orthographic;
+        s.finish();
+    }
+
+    // [render]
+    {
+        Section s = section("render");
+        if (auto v = s.integer("width", 16, 16384, "pixels")) scene.width = *v;
+        if (auto v = s.integer("height", 16, 16384, "pixels")) scene.height = *v;
+        if (auto v = s.boolean("antialias")) scene.antialias = *v;
+        if (auto v = s.string("output")) {
+            if (v->size() < 5 || v->substr(v->size() - 4) != ".png")
+                s.error("output", fmt::format("render.output = \"{}\" must name a .png file", *v));
+            else
+                scene.output = *v;
+        }
+        s.finish();
+    }
+
+    return scene;  // complete even when `diags` holds errors, so later checks can add theirs
+}
+
+}  // namespace relief::scene

@@ -1,0 +1,44 @@
+#include "subdiv/budget.h"
+
+#include <fmt/format.h>
+
+#include "core/number_format.h"
+
+namespace relief::subdiv {
+
+OutputEstimate estimateOutput(const Scheme& scheme, int rows, int cols, int depth) {
+    OutputEstimate e;
+    e.rows = rows;
+    e.cols = cols;
+    for (int i = 0; i < depth; ++i) {
+        e.rows = scheme.refinedCount(e.rows);
+        e.cols = scheme.refinedCount(e.cols);
+    }
+    e.vertices = static_cast<double>(e.rows) * static_cast<double>(e.cols);
+    e.triangles = 2.0 * static_cast<double>(e.rows - 1) * static_cast<double>(e.cols - 1);
+    e.sdlBytes = e.vertices * kSdlBytesPerVertex + e.triangles * kSdlBytesPerTriangle;
+    e.parseSeconds = e.triangles * kParseSecondsPerTriangle;
+    return e;
+}
+
+bool checkBudget(const OutputEstimate& est, const Budget& budget, const SourceLoc& where,
+                 int depth, Diagnostics& diags) {
+    std::string over;
+    auto add = [&](std::string s) { over += (over.empty() ? "" : "; ") + s; };
+    if (est.triangles > budget.maxTriangles)
+        add(fmt::format("{:.3g} triangles > limits.max_triangles = {:.3g}", est.triangles,
+                        budget.maxTriangles));
+    if (est.sdlBytes / 1e6 > budget.maxSdlMB)
+        add(fmt::format("{:.0f} MB of SDL > limits.max_sdl_mb = {}", est.sdlBytes / 1e6,
+                        formatShortest(budget.maxSdlMB)));
+    if (est.parseSeconds > budget.maxParseS)
+        add(fmt::format("~{:.1f} s of POV-Ray parsing > limits.max_parse_s = {}",
+                        est.parseSeconds, formatShortest(budget.maxParseS)));
+    if (over.empty()) return true;
+    diags.error(where, fmt::format("depth {} refines the net to {} x {} vertices: {}; lower "
+                                   "subdivision.depth, use a coarser net, or raise [limits]",
+                                   depth, est.rows, est.cols, over));
+    return false;
+}
+
+}  // namespace relief::subdiv

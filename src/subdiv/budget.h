@@ -1,0 +1,37 @@
+#pragma once
+// Stage 3 of 5 (part 3): what a refinement will cost, known before doing it.
+#include <string>
+
+#include "core/diagnostics.h"
+#include "subdiv/scheme.h"
+
+namespace relief::subdiv {
+
+struct OutputEstimate {
+    long long rows = 0, cols = 0;  ///< refined grid size
+    double vertices = 0;
+    double triangles = 0;
+    double sdlBytes = 0;  ///< the .pov's size, from the writer's bytes per vertex and face
+    double parseSeconds = 0;  ///< POV-Ray's parse time at ~4 us per triangle (measured here)
+};
+
+struct Budget {
+    double maxTriangles;
+    double maxSdlMB;
+    double maxParseS;
+};
+
+inline constexpr double kParseSecondsPerTriangle = 4e-6;
+// Measured on the writer's output (emit/write_scene.cpp) for the default scene: a vertex line plus
+// its normal line, and a face line with its three palette indices.
+inline constexpr double kSdlBytesPerVertex = 58;
+inline constexpr double kSdlBytesPerTriangle = 31;
+
+OutputEstimate estimateOutput(const Scheme& scheme, int rows, int cols, int depth);
+
+/// Reports an error at `where` when the estimate exceeds the budget, naming
+/// each exceeded figure and the ways out. Returns true when within budget.
+bool checkBudget(const OutputEstimate& est, const Budget& budget, const SourceLoc& where,
+                 int depth, Diagnostics& diags);
+
+}  // namespace relief::subdiv

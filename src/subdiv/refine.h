@@ -1,0 +1,30 @@
+#pragma once
+// Stage 3 of 5 (part 2). Input: a Grid (control net, metres) and a Scheme.
+// Output: the refined Grid. One generic refiner for every scheme: a tensor
+// product, rows first, then columns, `levels` times.
+#include <span>
+#include <vector>
+
+#include "core/types.h"
+#include "subdiv/scheme.h"
+
+namespace relief::subdiv {
+
+/// Refines an open curve once. Needs at least max(ghosts) + 1 points.
+std::vector<Vec3> refineCurve(const Scheme& scheme, std::span<const Vec3> points);
+
+/// Which axis a single pass refines.
+enum class Axis { AlongRows, AlongColumns };
+
+/// One pass: refines every row (AlongRows: cols -> m(cols-1)+1) or every
+/// column (AlongColumns: rows -> m(rows-1)+1). `threads` <= 0: all cores.
+Grid refinePass(const Scheme& scheme, const Grid& in, Axis axis, int threads = 0);
+
+/// `levels` steps of rows-then-columns. Preconditions: rows and cols are at
+/// least minPoints(scheme). `threads` <= 0: all cores.
+Grid refineGrid(const Scheme& scheme, const Grid& net, int levels, int threads = 0);
+
+/// Smallest number of points along an axis that the boundary rule supports.
+int minPoints(const Scheme& scheme);
+
+}  // namespace relief::subdiv

@@ -1,0 +1,77 @@
+#pragma once
+// Stage 3 of 5 (part 1): subdivision schemes as data. A scheme is its arity,
+// one rule (a weight list and where it starts) per child position, and a named
+// boundary rule; one generic refiner (refine.h) applies any of them. Masks and
+// their derivations: ../shared/docs/schemes.md (from the source papers).
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/diagnostics.h"
+
+namespace relief::subdiv {
+
+/// New point of child position r:  P'_{m*i + r} = sum_j weights[j] * P_{i + offset + j}.
+struct Rule {
+    int offset;
+    std::vector<double> weights;  ///< sum to 1
+};
+
+/// How the points beyond the net's edge (the papers' ghost points) are made.
+enum class Boundary {
+    /// P_{-j} = 2 P_0 - P_j (and the mirror at the far end), regenerated at
+    /// every level. For symmetric schemes the edge points stay fixed and linear
+    /// data (a regular x, y lattice) are reproduced exactly.
+    PointReflection,
+};
+
+struct Scheme {
+    std::string name;
+    int arity = 2;            ///< 2 (binary) or 3 (ternary)
+    std::vector<Rule> rules;  ///< rules[r] for child position r = 0 .. arity-1
+    Boundary boundary = Boundary::PointReflection;
+
+    /// Ghost points needed before the first and after the last point.
+    int ghostsBefore() const;
+    int ghostsAfter() const;
+    /// Number of points after one step on an open curve of n points: m(n-1)+1.
+    long long refinedCount(long long n) const { return arity * (n - 1) + 1; }
+};
+
+/// A named, parameterised family of schemes (the registry's entries).
+struct ParamSpec {
+    std::string name;
+    double defaultValue;
+    double lo, hi;  ///< valid range, inclusive
+    std::string meaning;
+};
+
+struct SchemeFamily {
+    std::string name;
+    std::string description;
+    std::vector<ParamSpec> params;
+    std::function<Scheme(const std::map<std::string, double>&)> build;
+    /// Warnings for parameter values that work but surprise (e.g. asymmetry).
+    std::function<std::vector<std::string>(const std::map<std::string, double>&)> caveats;
+};
+
+const std::vector<SchemeFamily>& schemeFamilies();
+const SchemeFamily* findSchemeFamily(const std::string& name);
+
+/// Looks up the family, checks the parameter names (with suggestions) and
+/// ranges, fills in defaults, and builds the scheme. `params` maps name to
+/// value; `paramLocs` gives each one's source location for diagnostics.
+std::optional<Scheme> makeScheme(const std::string& name, const SourceLoc& nameLoc,
+                                 const std::map<std::string, double>& params,
+                                 const std::map<std::string, SourceLoc>& paramLocs,
+                                 Diagnostics& diags,
+                                 std::map<std::string, double>* resolvedParams = nullptr);
+
+// The families, also callable directly (tests, benchmarks).
+Scheme dlgFourPoint(double w);                                             // w = 1/16: classic
+Scheme fourPoint4p(double lambda, double mu, double nu, double omega);     // paper 001
+Scheme binary3p(double lambda, double mu, double omega);                   // paper 000
+
+}  // namespace relief::subdiv

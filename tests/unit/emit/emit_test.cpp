@@ -1,0 +1,93 @@
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <string>
+
+#include "emit/mesh.h"
+#include "emit/template.h"
+#include "emit/write_scene.h"
+
+namespace relief::emit {
+namespace {
+
+std::string render(const Template& t, const Bindings& b) {
+    char* data = nullptr;
+    size_t size = 0;
+    std::FILE* f = open_memstream(&data, &size);
+    renderTemplate(t, b, f);
+    std::fclose(f);
+    std::string out(data, size);
+    std::free(data);
+    return out;
+}
+
+TEST(Template, SubstitutesAndStreams) {
+    Template t{"t.in", "a {{x}} b\n{{big}}!"};
+    Bindings b;
+    b["x"].text = std::string("1");
+    b["big"].writer = [](std::FILE* f) { std::fputs("streamed", f); };
+    Diagnostics d;
+    EXPECT_TRUE(checkTemplate(t, b, d));
+    EXPECT_EQ(render(t, b), "a 1 b\nstreamed!");
+}
+
+TEST(Template, UnboundAndUnusedAreErrorsWithLocation) {
+    Template t{"scene.pov.in", "line one\n  camera {{camera_locaton}}\n"};
+    Bindings b;
+    b["camera_location"].text = "<0,0,0>";
+    Diagnostics d;
+    EXPECT_FALSE(checkTemplate(t, b, d));
+    ASSERT_EQ(d.errorCount(), 2);
+    EXPECT_EQ(formatDiagnostic(d.all()[0]),
+              "scene.pov.in:2:10: error: template placeholder {{camera_locaton}} has no value");
+    EXPECT_EQ(formatDiagnostic(d.all()[1]),
+              "scene.pov.in: error: template does not use {{camera_location}}; add it to the "
+              "template");
+}
+
+Grid tiltedPlane() {
+    Grid g;
+    g.rows = 3;
+    g.cols = 4;
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 4; ++c)
+            g.points.push_back({300000.0 + 100 * c, 5900000.0 + 100 * r, 50.0 + 10.0 * c});
+    return g;
+}
+
+TEST(Mesh, NormalsOfATiltedPlaneAndSceneUnits) {
+    scene::SceneDesc desc;
+    desc.exaggeration = 2;
+    const Mesh m = buildMesh(tiltedPlane(), desc);
+    EXPECT_EQ(m.metresPerUnit, 10.0);  // 300 m extent -> 10 m per unit
+    // Height rises 20 (exaggerated) per 100 m east: normal ~ (-0.2, 1, 0) normalised.
+    const double n = std::sqrt(1 + 0.04);
+    for (const Vec3& v : m.normals) {
+        EXPECT_NEAR(v.x, -0.2 / n, 1e-12);
+        EXPECT_NEAR(v.y, 1.0 / n, 1e-12);
+        EXPECT_NEAR(v.z, 0.0, 1e-12);
+    }
+    EXPECT_NEAR(m.positions[0].x, -15.0, 1e-9);  // centred: x from -150 m to +150 m
+    EXPECT_NEAR(m.positions[0].y, 10.0, 1e-9);   // 50 m * 2 / 10 m per unit
+    EXPECT_EQ(m.palette.front(), 0);
+    EXPECT_EQ(m.palette.back(), 255);
+}
+
+TEST(Mesh2, WriterOutputShape) {
+    scene::SceneDesc desc;
+    const Mesh m = buildMesh(tiltedPlane(), desc);
+    char* data = nullptr;
+    size_t size = 0;
+    std::FILE* f = open_memstream(&data, &size);
+    const size_t written = writeMesh2(m, f);
+    std::fclose(f);
+    const std::string out(data, size);
+    std::free(data);
+    EXPECT_EQ(written, out.size());
+    EXPECT_EQ(out.rfind("mesh2 {\n  vertex_vectors {\n    12,\n<-15.00000,5.00000,-10.00000>", 0), 0u);
+    EXPECT_NE(out.find("face_indices {\n    12,\n<0,1,5>,0,85,85,\n<0,5,4>,0,85,0"), std::string::npos);
+    EXPECT_NE(out.find("texture_list {\n    256,\n    texture { pigment { rgb <"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace relief::emit

@@ -1,0 +1,125 @@
+#include "geo/normalize.h"
+
+#include <gtest/gtest.h>
+
+#include <GeographicLib/LocalCartesian.hpp>
+#include <GeographicLib/UTMUPS.hpp>
+#include <cmath>
+#include <random>
+
+namespace relief::geo {
+namespace {
+
+using GeographicLib::UTMUPS;
+
+TEST(GeographicLib, UtmRoundTrip) {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> lat(-79, 83), lon(-180, 180);
+    for (int i = 0; i < 200; ++i) {
+        const double la = lat(rng), lo = lon(rng);
+        int zone;
+        bool northp;
+        double x, y, gamma, k, la2, lo2;
+        UTMUPS::Forward(la, lo, zone, northp, x, y, gamma, k);
+        UTMUPS::Reverse(zone, northp, x, y, la2, lo2, gamma, k);
+        EXPECT_NEAR(la2, la, 1e-9);
+        EXPECT_NEAR(std::remainder(lo2 - lo, 360.0), 0.0, 1e-9);
+    }
+}
+
+TEST(GeographicLib, LocalCartesianRoundTrip) {
+    const GeographicLib::LocalCartesian lc(-36.876, 174.764, 0);
+    for (double dlat : {-0.01, 0.0, 0.004})
+        for (double dlon : {-0.02, 0.003})
+            for (double h : {-50.0, 0.0, 1234.5}) {
+                double x, y, z, la, lo, hh;
+                lc.Forward(-36.876 + dlat, 174.764 + dlon, h, x, y, z);
+                lc.Reverse(x, y, z, la, lo, hh);
+                EXPECT_NEAR(la, -36.876 + dlat, 1e-11);
+                EXPECT_NEAR(lo, 174.764 + dlon, 1e-11);
+                EXPECT_NEAR(hh, h, 1e-6);
+            }
+}
+
+// Samples that form a complete grid, regular in UTM, go through the same
+// gridding path and come out exactly at the net nodes that coincide with them.
+TEST(Normalize, FullGridReproducesItsHeightsAtCoincidentNodes) {
+    const int zone = 10;
+    const double e0 = 500000, n0 = 5460000, step = 250;
+    const int rows = 9, cols = 12;
+    auto height = [](int r, int c) { return 100.0 + 37.0 * std::sin(0.7 * r) * std::cos(0.4 * c) + 3 * r; };
+    std::vector<GeoSample> samples;
+    for (int r = 0; r < rows; ++r)
+        for (int c = 0; c < cols; ++c) {
+            double lat, lon, gamma, k;
+            UTMUPS::Reverse(zone, true, e0 + step * c, n0 + step * r, lat, lon, gamma, k);
+            samples.push_back({lon, lat, height(r, c), {"grid.csv", r * cols + c + 2, 1}});
+        }
+    for (auto gridding : {scene::Gridding::Linear, scene::Gridding::InverseDistance,
+                          scene::Gridding::Nearest}) {
+        scene::SceneDesc desc;
+        desc.netSpacingM = step;
+        desc.gridding = gridding;
+        Diagnostics diags;
+        auto net = normalize(desc, samples, diags);
+        ASSERT_TRUE(net) << (diags.all().empty() ? "" : formatDiagnostic(diags.all()[0]));
+        EXPECT_EQ(net->frame.utmZone, zone);
+        ASSERT_EQ(net->grid.rows, rows);
+        ASSERT_EQ(net->grid.cols, cols);
+        EXPECT_EQ(net->filledOutsideHull, 0u);
+        for (int r = 0; r < rows; ++r)
+            for (int c = 0; c < cols; ++c) {
+                const Vec3& p = net->grid.at(r, c);
+                EXPECT_NEAR(p.x, e0 + step * c, 1e-6);
+                EXPECT_NEAR(p.y, n0 + step * r, 1e-6);
+                EXPECT_NEAR(p.z, height(r, c), 1e-6) << r << "," << c;
+            }
+    }
+}
+
+// Linear gridding is exact for a plane inside the hull, and the nodes outside
+// the hull take the nearest sample.
+TEST(Normalize, LinearGriddingOfAPlaneAndFillOutsideHull) {
+    std::vector<GeoSample> samples;
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> u(0, 1);
+    const GeographicLib::LocalCartesian lc(45.0, 7.0, 0);
+    for (int i = 0; i < 300; ++i) {
+        const double x = 2000 * u(rng), y = 1500 * u(rng);
+        double lat, lon, h;
+        lc.Reverse(x, y, 0, lat, lon, h);
+        samples.push_back({lon, lat, 0.0, {"p.csv", i + 2, 1}});
+    }
+    scene::SceneDesc desc;
+    desc.frame = scene::FrameKind::Utm;
+    desc.netRows = 15;
+    desc.netCols = 20;
+    Diagnostics diags;
+    // Heights: a plane in UTM coordinates.
+    auto frame = chooseFrame(desc, samples, diags);
+    ASSERT_TRUE(frame);
+    auto pts = projectSamples(*frame, samples, diags);
+    for (auto& p : pts) p.p.z = 0.01 * p.p.x - 0.02 * p.p.y;
+    auto net = gridSamples(desc, *frame, pts, diags);
+    ASSERT_TRUE(net);
+    EXPECT_GT(net->filledOutsideHull, 0u);
+    int inside = 0;
+    for (const Vec3& p : net->grid.points)
+        if (std::fabs(p.z - (0.01 * p.x - 0.02 * p.y)) < 1e-6) ++inside;
+    EXPECT_GE(inside, static_cast<int>(net->grid.points.size() - net->filledOutsideHull));
+}
+
+TEST(Normalize, DumpFormats) {
+    ControlNet net;
+    net.grid.rows = 2;
+    net.grid.cols = 2;
+    net.grid.points = {{0, 0, 1}, {10, 0, 2.5}, {0, 10, -3}, {10, 10, 4.25}};
+    net.x0 = 0, net.y0 = 0, net.dx = net.dy = 10;
+    EXPECT_EQ(netToCsv(net),
+              "x,y,z\n0,0,1.0000\n10.0000,0,2.5000\n0,10.0000,-3.0000\n10.0000,10.0000,4.2500\n");
+    EXPECT_EQ(netToAsciiGrid(net), "ncols 2\nnrows 2\nxllcenter 0\nyllcenter 0\ncellsize 10\n"
+                                   "NODATA_value -9999\n-3.0000 4.2500\n1.0000 2.5000\n");
+}
+
+}  // namespace
+}  // namespace relief::geo

@@ -1,0 +1,139 @@
+#include "subdiv/refine.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "reference/naive_four_point.h"
+#include "subdiv/budget.h"
+
+namespace relief::subdiv {
+namespace {
+
+Grid randomNet(int rows, int cols, unsigned seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> jitter(-0.3, 0.3), height(0, 100);
+    Grid g;
+    g.rows = rows;
+    g.cols = cols;
+    for (int r = 0; r < rows; ++r)
+        for (int c = 0; c < cols; ++c)
+            g.points.push_back({10.0 * c + jitter(rng), 10.0 * r + jitter(rng), height(rng)});
+    return g;
+}
+
+Grid lattice(int rows, int cols, double dx, double dy, unsigned seed) {
+    Grid g = randomNet(rows, cols, seed);
+    for (int r = 0; r < rows; ++r)
+        for (int c = 0; c < cols; ++c) {
+            g.at(r, c).x = 1000 + dx * c;
+            g.at(r, c).y = -500 + dy * r;
+        }
+    return g;
+}
+
+const std::vector<Scheme>& allSchemes() {
+    static const std::vector<Scheme> s{dlgFourPoint(1.0 / 16),
+                                       fourPoint4p(7.0 / 32, 7.0 / 32, 0.5, 3.0 / 64),
+                                       fourPoint4p(1.0 / 30, 1.0 / 30, 0.5, 1.0 / 3),
+                                       binary3p(0.01, 0.23, 0.07),
+                                       binary3p(0, 3.0 / 16, 1.0 / 32)};
+    return s;
+}
+
+TEST(Refine, InterpolatingSchemesKeepNetPoints) {
+    const Grid net = randomNet(6, 7, 1);
+    for (const Scheme& s : {dlgFourPoint(1.0 / 16), fourPoint4p(0, 0, 0.5, 0.05),
+                            binary3p(0, 0, -0.04)}) {
+        const Grid g = refineGrid(s, net, 3);
+        ASSERT_EQ(g.rows, 8 * 5 + 1);
+        ASSERT_EQ(g.cols, 8 * 6 + 1);
+        for (int r = 0; r < net.rows; ++r)
+            for (int c = 0; c < net.cols; ++c) EXPECT_EQ(g.at(8 * r, 8 * c), net.at(r, c)) << s.name;
+    }
+}
+
+// The classic 4-point (w = 1/16) reproduces cubic polynomials: new points
+// away from the boundary (whose ghost points are only linear) lie on the cubic.
+TEST(Refine, FourPointReproducesCubics) {
+    auto f = [](double t) { return 0.5 * t * t * t - 2 * t * t + 3 * t - 7; };
+    std::vector<Vec3> pts;
+    for (int i = 0; i < 10; ++i) pts.push_back({double(i), f(i), -f(i)});
+    const auto out = refineCurve(dlgFourPoint(1.0 / 16), pts);
+    ASSERT_EQ(out.size(), 19u);
+    for (size_t k = 2; k + 2 < out.size(); ++k) {
+        const double t = 0.5 * static_cast<double>(k);
+        EXPECT_NEAR(out[k].x, t, 1e-12);
+        EXPECT_NEAR(out[k].y, f(t), 1e-10) << k;
+        EXPECT_NEAR(out[k].z, -f(t), 1e-10) << k;
+    }
+}
+
+TEST(Refine, RowThenColumnEqualsColumnThenRow) {
+    const Grid net = randomNet(7, 9, 2);
+    for (const Scheme& s : allSchemes()) {
+        const Grid a = refinePass(s, refinePass(s, net, Axis::AlongRows), Axis::AlongColumns);
+        const Grid b = refinePass(s, refinePass(s, net, Axis::AlongColumns), Axis::AlongRows);
+        ASSERT_EQ(a.points.size(), b.points.size());
+        for (size_t i = 0; i < a.points.size(); ++i)
+            ASSERT_LT(length(a.points[i] - b.points[i]), 1e-10) << s.name << " at " << i;
+    }
+}
+
+// Point reflection at the boundary: a regular lattice stays a regular lattice
+// in x and y, the net's extent and its corners stay where they were.
+TEST(Refine, RegularLatticeStaysRegularAndKeepsExtent) {
+    const Grid net = lattice(6, 8, 20.0, 15.0, 3);
+    for (const Scheme& s : allSchemes()) {
+        const Grid g = refineGrid(s, net, 3);
+        for (int r = 0; r < g.rows; ++r)
+            for (int c = 0; c < g.cols; ++c) {
+                ASSERT_NEAR(g.at(r, c).x, 1000 + 20.0 * c / 8, 1e-9) << s.name;
+                ASSERT_NEAR(g.at(r, c).y, -500 + 15.0 * r / 8, 1e-9) << s.name;
+            }
+    }
+}
+
+TEST(Refine, TableRefinerMatchesNaiveFourPointLoop) {
+    const Grid net = randomNet(9, 12, 4);
+    const Grid fast = refineGrid(dlgFourPoint(1.0 / 16), net, 3, 2);
+    const Grid slow = reference::naiveFourPointGrid(net, 1.0 / 16, 3);
+    ASSERT_EQ(fast.rows, slow.rows);
+    ASSERT_EQ(fast.cols, slow.cols);
+    for (size_t i = 0; i < fast.points.size(); ++i)
+        ASSERT_LT(length(fast.points[i] - slow.points[i]), 1e-9) << i;
+}
+
+TEST(Refine, ThreadCountDoesNotChangeTheResult) {
+    const Grid net = randomNet(20, 17, 5);
+    const Scheme s = binary3p(0.01, 0.23, 0.07);
+    const Grid one = refineGrid(s, net, 2, 1), two = refineGrid(s, net, 2, 2);
+    EXPECT_EQ(one.points, two.points);
+}
+
+TEST(Budget, EstimateMatchesRefinedSize) {
+    const Grid net = randomNet(5, 6, 6);
+    const Scheme s = dlgFourPoint(1.0 / 16);
+    const auto est = estimateOutput(s, net.rows, net.cols, 3);
+    const Grid g = refineGrid(s, net, 3);
+    EXPECT_EQ(est.rows, g.rows);
+    EXPECT_EQ(est.cols, g.cols);
+    EXPECT_EQ(est.triangles, 2.0 * (g.rows - 1) * (g.cols - 1));
+    EXPECT_DOUBLE_EQ(est.parseSeconds, est.triangles * 4e-6);
+}
+
+TEST(Budget, RefusesOversizedOutputNamingTheLimit) {
+    Diagnostics diags;
+    const auto est = estimateOutput(dlgFourPoint(1.0 / 16), 257, 257, 5);
+    EXPECT_FALSE(checkBudget(est, {20e6, 2048, 120}, {"s.toml", 9, 1}, 5, diags));
+    ASSERT_EQ(diags.errorCount(), 1);
+    EXPECT_EQ(formatDiagnostic(diags.all()[0]),
+              "s.toml:9:1: error: depth 5 refines the net to 8193 x 8193 vertices: 1.34e+08 "
+              "triangles > limits.max_triangles = 2e+07; 8054 MB of SDL > limits.max_sdl_mb = "
+              "2048; ~536.9 s of POV-Ray parsing > limits.max_parse_s = 120; lower "
+              "subdivision.depth, use a coarser net, or raise [limits]");
+}
+
+}  // namespace
+}  // namespace relief::subdiv
