@@ -54,17 +54,28 @@ double parseSeconds(const std::string& log, const char* label) {
     return std::regex_search(log, m, re) ? std::atof(m[1].str().c_str()) : 0.0;
 }
 
-// POV-Ray's own error lines: "File '...' line N: Parse Error: ..." and the
-// like, or the last lines of its output when it died without one.
+// POV-Ray's own error text: everything from its first error line on, e.g.
+// "File 'x.pov' line 29: Parse Error: No matching } in 'pigment', ...". POV-Ray
+// wraps its messages at 80 columns, continuing with a leading space: unwrap.
 std::string errorText(const std::deque<std::string>& lines) {
+    static const std::regex first(R"(^File '.*' line \d+:|[Ee]rror)");
+    size_t start = lines.size();
+    for (size_t i = 0; i < lines.size(); ++i) {
+        // Skip the option echo ("Input file: ...", paths that contain "error").
+        if (lines[i].rfind("  ", 0) == 0) continue;
+        if (std::regex_search(lines[i], first)) {
+            start = i;
+            break;
+        }
+    }
+    if (start == lines.size()) start = lines.size() > 8 ? lines.size() - 8 : 0;
     std::string out;
-    for (const auto& l : lines)
-        if (l.find("Error") != std::string::npos || l.find("error") != std::string::npos ||
-            l.rfind("File '", 0) == 0 || l.find("line ") == 0)
-            out += (out.empty() ? "" : "\n") + l;
-    if (!out.empty()) return out;
-    size_t start = lines.size() > 8 ? lines.size() - 8 : 0;
-    for (size_t i = start; i < lines.size(); ++i) out += (out.empty() ? "" : "\n") + lines[i];
+    for (size_t i = start; i < lines.size(); ++i) {
+        if (i > start && lines[i].rfind(' ', 0) == 0 && lines[i].rfind("  ", 0) != 0)
+            out += lines[i];  // continuation of a wrapped line
+        else
+            out += (out.empty() ? "" : "\n") + lines[i];
+    }
     return out;
 }
 

@@ -5,6 +5,7 @@
 #include <GeographicLib/LocalCartesian.hpp>
 #include <GeographicLib/UTMUPS.hpp>
 #include <cmath>
+#include <iostream>
 #include <random>
 
 namespace relief::geo {
@@ -119,6 +120,48 @@ TEST(Normalize, DumpFormats) {
               "x,y,z\n0,0,1.0000\n10.0000,0,2.5000\n0,10.0000,-3.0000\n10.0000,10.0000,4.2500\n");
     EXPECT_EQ(netToAsciiGrid(net), "ncols 2\nnrows 2\nxllcenter 0\nyllcenter 0\ncellsize 10\n"
                                    "NODATA_value -9999\n-3.0000 4.2500\n1.0000 2.5000\n");
+}
+
+}  // namespace
+}  // namespace relief::geo
+
+namespace relief::geo {
+namespace {
+
+// Real data: the volcano's 1,000 scattered samples, gridded with Delaunay-linear
+// onto the same 20 m UTM net as its full 5,307-node grid. The net built from
+// the full grid is the reference for the held-out nodes. Measured: RMS 1.05 m,
+// max 7.5 m on a cone of 94-195 m (the misses are on the crater rim, where
+// 1-in-5 sampling cuts the peaks).
+TEST(Normalize, ScatteredVolcanoSamplesMatchTheFullGrid) {
+    const std::string data = std::string(RELIEF_SOURCE_DIR) + "/scenes/data/";
+    Diagnostics diags;
+    const auto full = readSamples(data + "volcano_full.csv", "volcano_full.csv", diags);
+    const auto some = readSamples(data + "volcano_samples_1000_seed20251124.csv", "samples.csv", diags);
+    ASSERT_EQ(full.size(), 5307u);
+    ASSERT_EQ(some.size(), 1000u);
+    scene::SceneDesc desc;
+    desc.netSpacingM = 20;
+    auto reference = normalize(desc, full, diags);
+    ASSERT_TRUE(reference);
+    EXPECT_EQ(reference->frame.describe(), "UTM zone 60S");
+    desc.extentM = std::array<double, 4>{reference->x0, reference->y0,
+                                         reference->x0 + (reference->grid.cols - 1) * 20.0,
+                                         reference->y0 + (reference->grid.rows - 1) * 20.0};
+    auto sparse = normalize(desc, some, diags);
+    ASSERT_TRUE(sparse);
+    ASSERT_EQ(sparse->grid.points.size(), reference->grid.points.size());
+    double sumSq = 0, maxAbs = 0;
+    for (size_t i = 0; i < sparse->grid.points.size(); ++i) {
+        ASSERT_NEAR(sparse->grid.points[i].x, reference->grid.points[i].x, 1e-6);
+        const double d = sparse->grid.points[i].z - reference->grid.points[i].z;
+        sumSq += d * d;
+        maxAbs = std::max(maxAbs, std::fabs(d));
+    }
+    const double rms = std::sqrt(sumSq / static_cast<double>(sparse->grid.points.size()));
+    std::cout << "held-out check: RMS " << rms << " m, max " << maxAbs << " m\n";
+    EXPECT_LT(rms, 1.5);
+    EXPECT_LT(maxAbs, 10.0);
 }
 
 }  // namespace
