@@ -22,6 +22,15 @@ double secondsSince(Clock::time_point t0) {
     return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
+}  // namespace
+
+std::string certifiedClass(const subdiv::SchemeReport& r) {
+    return r.smoothness < 0 ? fmt::format("convergence not proven (Hölder ~{:.2f})", r.holder)
+                            : fmt::format("C{} (Hölder ~{:.2f})", r.smoothness, r.holder);
+}
+
+namespace {
+
 const char* name(scene::Gridding g) {
     switch (g) {
         case scene::Gridding::Linear: return "linear";
@@ -32,7 +41,7 @@ const char* name(scene::Gridding g) {
 }
 
 emit::ParameterList describe(const scene::SceneDesc& s, const geo::ControlNet& net,
-                             const std::map<std::string, double>& schemeParams,
+                             const LoadedScene& loaded,
                              const subdiv::OutputEstimate& est, double metresPerUnit) {
     emit::ParameterList p;
     auto add = [&](std::string k, std::string v) { p.emplace_back(std::move(k), std::move(v)); };
@@ -49,10 +58,14 @@ emit::ParameterList describe(const scene::SceneDesc& s, const geo::ControlNet& n
     add("net.filled_outside_hull", std::to_string(net.filledOutsideHull));
     add("vertical.exaggeration", formatShortest(s.exaggeration));
     std::string params;
-    for (const auto& [k, v] : schemeParams)
+    for (const auto& [k, v] : loaded.schemeParams)
         params += fmt::format("{}{} = {}", params.empty() ? "" : ", ", k, formatShortest(v));
-    add("subdivision.scheme", s.scheme);
+    if (loaded.schemeFamily == "mask")
+        for (double v : s.mask) params += fmt::format("{}{}", params.empty() ? "mask " : ", ", formatShortest(v));
+    add("subdivision.scheme", loaded.schemeFamily);
+    if (!s.preset.empty()) add("subdivision.preset", s.preset);
     add("subdivision.params", params);
+    add("subdivision.certified", certifiedClass(loaded.report));
     add("subdivision.boundary", "point reflection");
     add("subdivision.depth", std::to_string(s.depth));
     add("refined.size", fmt::format("{} rows x {} cols", est.rows, est.cols));
@@ -99,12 +112,55 @@ std::optional<LoadedScene> loadScene(const std::filesystem::path& scenePath,
     const auto t0 = Clock::now();
     auto desc = scene::readScene(scenePath, diags);
     if (!desc) return std::nullopt;
-    std::map<std::string, double> params;
-    auto scheme = subdiv::makeScheme(desc->scheme, desc->schemeLoc, desc->schemeParams,
-                                     desc->schemeParamLocs, diags, &params);
-    if (diags.hasErrors()) return std::nullopt;
-    return LoadedScene{std::move(*desc), std::move(*scheme), std::move(params),
-                       secondsSince(t0)};
+    LoadedScene loaded;
+    loaded.schemeFamily = desc->scheme;
+    std::map<std::string, double> params = desc->schemeParams;
+    auto paramLocs = desc->schemeParamLocs;
+    bool ok = true;
+    if (!desc->preset.empty()) {
+        std::map<std::string, double> familyParams;
+        std::string family;
+        ok = subdiv::resolvePreset(desc->preset, desc->presetLoc, params, paramLocs, diags,
+                                   family, familyParams);
+        if (ok && !desc->scheme.empty() && desc->scheme != family) {
+            diags.error(desc->presetLoc,
+                        fmt::format("preset \"{}\" is a case of scheme \"{}\", not \"{}\"; remove "
+                                    "subdivision.scheme or the preset",
+                                    desc->preset, family, desc->scheme));
+            ok = false;
+        }
+        loaded.schemeFamily = family;
+        params = familyParams;
+        paramLocs.clear();
+    }
+    std::optional<subdiv::Scheme> scheme;
+    if (ok && loaded.schemeFamily == "mask") {
+        if (!params.empty())
+            diags.error(paramLocs.begin()->second,
+                        fmt::format("scheme = \"mask\" takes no parameter \"{}\"",
+                                    params.begin()->first));
+        else if (!desc->mask.empty())
+            scheme = subdiv::schemeFromMask(
+                desc->maskArity,
+                desc->maskFirst.value_or(-(static_cast<int>(desc->mask.size()) - 1) / 2),
+                desc->mask, desc->maskLoc, diags);
+    } else if (ok) {
+        scheme = subdiv::makeScheme(loaded.schemeFamily, desc->schemeLoc, params, paramLocs,
+                                    diags, &loaded.schemeParams);
+    }
+    if (diags.hasErrors() || !scheme) return std::nullopt;
+    loaded.scheme = std::move(*scheme);
+    loaded.report = subdiv::analyzeScheme(loaded.scheme);
+    if (loaded.report.smoothness < 0 && !desc->allowNonconvergent)
+        diags.warning(desc->schemeLoc,
+                      fmt::format("scheme \"{}\" with these parameters is not proven to converge "
+                                  "(relief check says why): the terrain will look rough and "
+                                  "fractal-like; set subdivision.allow_nonconvergent = true if "
+                                  "that is what you want",
+                                  loaded.schemeFamily));
+    loaded.scene = std::move(*desc);
+    loaded.seconds = secondsSince(t0);
+    return loaded;
 }
 
 std::optional<CompileResult> compileScene(const LoadedScene& loaded,
@@ -141,7 +197,7 @@ std::optional<CompileResult> compileScene(const LoadedScene& loaded,
     result.refinedRows = refined.rows;
     result.refinedCols = refined.cols;
     result.metresPerUnit = mesh.metresPerUnit;
-    result.parameters = describe(desc, *net, loaded.schemeParams, result.estimate, mesh.metresPerUnit);
+    result.parameters = describe(desc, *net, loaded, result.estimate, mesh.metresPerUnit);
 
     if (!options.dumpNetPath.empty()) {
         const bool asc = options.dumpNetPath.extension() == ".asc";

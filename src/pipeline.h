@@ -13,6 +13,7 @@
 #include "geo/normalize.h"
 #include "render/povray.h"
 #include "scene/scene_desc.h"
+#include "subdiv/analysis.h"
 #include "subdiv/budget.h"
 #include "subdiv/scheme.h"
 
@@ -21,14 +22,21 @@ namespace relief {
 /// Stage 1 and the scheme's parameters: everything the scene file says, checked.
 struct LoadedScene {
     scene::SceneDesc scene;
+    std::string schemeFamily;  ///< the scheme's name (a preset resolved to its family)
     subdiv::Scheme scheme;
     std::map<std::string, double> schemeParams;  ///< every parameter, defaults filled in
+    subdiv::SchemeReport report;  ///< certified smoothness and the rest (relief check)
     double seconds = 0;
 };
 
-/// Reads and validates the scene file and its scheme parameters, reporting
-/// every problem at once. Nothing is written.
+/// Reads and validates the scene file and its scheme (name, preset or mask, and
+/// parameters), reporting every problem at once, then certifies the scheme's
+/// smoothness; a scheme not proven to converge is a warning unless
+/// subdivision.allow_nonconvergent is set. Nothing is written.
 std::optional<LoadedScene> loadScene(const std::filesystem::path& scenePath, Diagnostics& diags);
+
+/// "C1 (Hölder ~1.68)" or "convergence not proven (...)".
+std::string certifiedClass(const subdiv::SchemeReport& report);
 
 struct CompileOptions {
     std::filesystem::path povPath;       ///< where the .pov goes

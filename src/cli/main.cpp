@@ -13,7 +13,11 @@
 #include <fmt/format.h>
 
 #include "core/atomic_file.h"
+#include "core/number_format.h"
 #include "pipeline.h"
+#include "scene/read_scene.h"
+#include "subdiv/analysis.h"
+#include <nlohmann/json.hpp>
 #include "relief/version.h"
 
 namespace fs = std::filesystem;
@@ -132,7 +136,10 @@ int runPipeline(const CommonOptions& o, const std::string& dumpNet, bool render)
     copts.dumpNetPath = dumpNet;
     copts.threads = o.threads;
 
-    progress.show(fmt::format("compiling {} ({}, depth {})", o.scene, desc.scheme, desc.depth));
+    if (!o.quiet)
+        std::cerr << fmt::format("scheme {}: {}\n", loaded->schemeFamily,
+                                 relief::certifiedClass(loaded->report));
+    progress.show(fmt::format("compiling {} ({}, depth {})", o.scene, loaded->schemeFamily, desc.depth));
     ensureParent(paths.pov);
     if (!dumpNet.empty()) ensureParent(dumpNet);
     auto compiled = relief::compileScene(*loaded, copts, diags);
@@ -180,6 +187,125 @@ int runPipeline(const CommonOptions& o, const std::string& dumpNet, bool render)
     return code(Exit::Ok);
 }
 
+struct CheckOptions {
+    std::string scheme;
+    std::string preset;
+    std::vector<std::string> params;
+    bool json = false;
+};
+
+std::string weightList(const std::vector<double>& w) {
+    std::string out;
+    for (double v : w) out += (out.empty() ? "" : ", ") + relief::formatShortest(v == 0 ? 0.0 : v);
+    return out;
+}
+
+// `relief check`: what a scheme and its parameters give.
+int runCheck(const CheckOptions& o) {
+    relief::Diagnostics diags;
+    std::map<std::string, double> params;
+    std::map<std::string, relief::SourceLoc> locs;
+    for (const auto& kv : o.params) {
+        const auto eq = kv.find('=');
+        const auto value = eq == std::string::npos ? std::nullopt
+                                                   : relief::scene::parseFraction(kv.substr(eq + 1));
+        if (!value) {
+            std::cerr << "relief: error: --param " << kv
+                      << ": write KEY=VALUE, the value a number or a fraction such as 7/32\n";
+            return code(Exit::BadInput);
+        }
+        params[kv.substr(0, eq)] = *value;
+        locs[kv.substr(0, eq)] = {"--param " + kv, 0, 0};
+    }
+    std::string family = o.scheme;
+    if (!o.preset.empty()) {
+        std::map<std::string, double> familyParams;
+        if (!relief::subdiv::resolvePreset(o.preset, {"--preset", 0, 0}, params, locs, diags,
+                                           family, familyParams)) {
+            printDiagnostics(diags, false);
+            return code(Exit::BadInput);
+        }
+        if (!o.scheme.empty() && o.scheme != family) {
+            std::cerr << fmt::format("relief: error: preset \"{}\" belongs to scheme \"{}\", not "
+                                     "\"{}\"\n",
+                                     o.preset, family, o.scheme);
+            return code(Exit::BadInput);
+        }
+        params = familyParams;
+        locs.clear();
+    } else if (o.scheme.empty()) {
+        std::cerr << "relief: error: give --scheme NAME or --preset NAME (see relief check --help)\n";
+        return code(Exit::BadInput);
+    }
+    std::map<std::string, double> resolved;
+    auto scheme = relief::subdiv::makeScheme(family, {"--scheme", 0, 0}, params, locs, diags,
+                                             &resolved);
+    if (!scheme) {
+        printDiagnostics(diags, false);
+        return code(Exit::BadInput);
+    }
+    const auto rep = relief::subdiv::analyzeScheme(*scheme);
+    const auto notes = relief::subdiv::explainReport(rep, family, resolved);
+
+    if (o.json) {
+        nlohmann::ordered_json j;
+        j["scheme"] = family;
+        if (!o.preset.empty()) j["preset"] = o.preset;
+        j["parameters"] = resolved;
+        j["arity"] = scheme->arity;
+        nlohmann::ordered_json rules = nlohmann::ordered_json::array();
+        for (const auto& r : scheme->rules)
+            rules.push_back({{"offset", r.offset}, {"weights", r.weights}});
+        j["rules"] = rules;
+        j["symbol"] = {{"first_power", rep.symbol.first}, {"coefficients", rep.symbol.coeffs}};
+        j["sum_rules"] = rep.sumRules;
+        j["interpolating"] = rep.interpolating;
+        j["support_width"] = rep.supportWidth;
+        j["reproduction_degree"] = rep.reproductionDegree;
+        j["generation_degree"] = rep.generationDegree;
+        j["ghost_points"] = {{"before", rep.ghostsBefore}, {"after", rep.ghostsAfter}};
+        j["smoothness"] = rep.smoothness;
+        j["smoothness_by_paper_test"] = rep.smoothnessByPaperTest;
+        j["holder"] = rep.holder;
+        j["holder_lower_bound"] = rep.holderLower;
+        nlohmann::ordered_json tests = nlohmann::ordered_json::array();
+        for (const auto& t : rep.tests)
+            tests.push_back({{"k", t.k}, {"proved_at_L", t.provedAtL}, {"norm_L1", t.normAtL1},
+                             {"best_norm_root", t.bestNormRoot}});
+        j["difference_tests"] = tests;
+        j["notes"] = notes;
+        std::cout << j.dump(2) << '\n';
+        return code(Exit::Ok);
+    }
+    std::cout << fmt::format("scheme {}{}: arity {}\n", family,
+                             o.preset.empty() ? "" : " (preset " + o.preset + ")", scheme->arity);
+    std::string p;
+    for (const auto& [k, v] : resolved) p += fmt::format("{}{} = {}", p.empty() ? "" : ", ", k, relief::formatShortest(v));
+    if (!p.empty()) std::cout << "  parameters: " << p << '\n';
+    for (size_t r = 0; r < scheme->rules.size(); ++r)
+        std::cout << fmt::format("  P'[{}i+{}] = ({}) . P[i{:+d} ...]\n", scheme->arity, r,
+                                 weightList(scheme->rules[r].weights), scheme->rules[r].offset);
+    std::cout << fmt::format("  symbol a(z): z^{} * ({})\n", rep.symbol.first, weightList(rep.symbol.coeffs));
+    std::cout << fmt::format("  sum rules: {}\n", rep.sumRules ? "hold (every child position sums to 1)" : "FAIL");
+    std::cout << fmt::format("  {}; support width {} intervals; reproduces polynomials of degree {}; "
+                             "generates degree {}\n",
+                             rep.interpolating ? "interpolating" : "approximating",
+                             relief::formatShortest(rep.supportWidth), rep.reproductionDegree,
+                             rep.generationDegree);
+    std::cout << fmt::format("  ghost points per side: {} before, {} after\n", rep.ghostsBefore, rep.ghostsAfter);
+    for (const auto& t : rep.tests)
+        std::cout << fmt::format("  C{} test: one-step norm {:.6f} ({}); {}\n", t.k, t.normAtL1,
+                                 t.normAtL1 < 1 ? "< 1, proved by the papers' test" : ">= 1",
+                                 t.provedAtL ? fmt::format("proved at L = {}", t.provedAtL)
+                                             : std::string("not proved up to the L tried"));
+    std::cout << fmt::format("  certified: {}; Hölder exponent ~ {:.3f} (proven lower bound {:.3f})\n",
+                             rep.smoothness < 0 ? std::string("convergence not proven")
+                                                : fmt::format("C{}", rep.smoothness),
+                             rep.holder, rep.holderLower);
+    for (const auto& n : notes) std::cout << "  note: " << n << '\n';
+    return code(Exit::Ok);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -215,6 +341,17 @@ int main(int argc, char** argv) {
     addCommon(render, "the PNG to write (default: [render] output, else out/<scene name>.png)");
     render->add_option("--dump-net", dumpNet, "also write the control net (.csv or .asc)");
 
+    CheckOptions check;
+    CLI::App* checkCmd = app.add_subcommand(
+        "check", "what a scheme and its parameters give: mask, interpolation, support, "
+                 "reproduction, certified smoothness (difference-scheme test), Hölder estimate");
+    checkCmd->add_option("--scheme", check.scheme,
+                         "dlg4, four-point-4p, binary-3p, ternary-blend, ternary-4point, "
+                         "ternary-bspline");
+    checkCmd->add_option("--preset", check.preset, "a named special case, e.g. hassan, deslauriers-dubuc");
+    checkCmd->add_option("--param", check.params, "KEY=VALUE (fractions such as 7/32 allowed); repeatable");
+    checkCmd->add_flag("--json", check.json, "one JSON object");
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::Success& e) {
@@ -224,6 +361,7 @@ int main(int argc, char** argv) {
         return code(Exit::BadInput);
     }
     try {
+        if (checkCmd->parsed()) return runCheck(check);
         return runPipeline(common, dumpNet, render->parsed());
     } catch (const std::runtime_error& e) {  // I/O: cannot write an output
         std::cerr << "relief: error: " << e.what() << '\n';

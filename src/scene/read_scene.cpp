@@ -330,12 +330,47 @@ std::optional<SceneDesc> readScene(const std::filesystem::path& path, Diagnostic
             scene.schemeLoc = s.keyLoc("scheme");
         } else {
             scene.schemeLoc = s.loc();
+            if (s.find("preset")) scene.scheme = "";  // the preset names the scheme
         }
         if (auto d = s.integer("depth", 0, 8, "levels")) scene.depth = *d;
+        if (auto p = s.string("preset")) {
+            scene.preset = *p;
+            scene.presetLoc = s.keyLoc("preset");
+        }
+        if (auto b = s.boolean("allow_nonconvergent")) scene.allowNonconvergent = *b;
+        if (auto a = s.integer("arity", 2, 3, "(2 = binary, 3 = ternary)")) scene.maskArity = *a;
+        if (auto f = s.integer("mask_first", -1000, 1000, "(exponent of the first coefficient)"))
+            scene.maskFirst = *f;
+        s.markKnown("mask");
+        if (const toml::node* m = s.find("mask")) {
+            scene.maskLoc = locOf(file, m->source());
+            const toml::array* a = m->as_array();
+            bool ok = a && !a->empty();
+            for (size_t i = 0; ok && i < a->size(); ++i) {
+                std::optional<double> v = (*a)[i].value<double>();
+                if (!v) {
+                    if (auto str = (*a)[i].value_exact<std::string>()) v = parseFraction(*str);
+                }
+                if (v && std::isfinite(*v)) scene.mask.push_back(*v);
+                else ok = false;
+            }
+            if (!ok)
+                s.error("mask", "subdivision.mask must be a list of numbers or fractions (the "
+                                "coefficients a_k of the scheme's symbol)");
+        }
+        const bool isMask = scene.scheme == "mask";
+        if (isMask && (scene.mask.empty() || scene.maskArity == 0) && !diags.hasErrors())
+            diags.error(scene.schemeLoc, "scheme = \"mask\" needs subdivision.arity (2 or 3) and "
+                                         "subdivision.mask = [a_k, ...]");
+        if (!isMask && (s.find("mask") || s.find("arity") || s.find("mask_first")))
+            diags.error(s.keyLoc(s.find("mask") ? "mask" : s.find("arity") ? "arity" : "mask_first"),
+                        "subdivision.mask, arity and mask_first are only used with scheme = \"mask\"");
         if (const toml::table* t = root.get_as<toml::table>("subdivision")) {
             for (auto&& [k, v] : *t) {
                 const std::string key(k.str());
-                if (key == "scheme" || key == "depth") continue;
+                if (key == "scheme" || key == "depth" || key == "preset" || key == "mask" ||
+                    key == "arity" || key == "mask_first" || key == "allow_nonconvergent")
+                    continue;
                 s.markKnown(key);
                 std::optional<double> value;
                 if (auto i = v.value_exact<int64_t>()) value = static_cast<double>(*i);

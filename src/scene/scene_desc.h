@@ -55,6 +55,13 @@ struct SceneDesc {
     std::map<std::string, double> schemeParams;  ///< as written (missing ones: scheme defaults)
     std::map<std::string, SourceLoc> schemeParamLocs;
     SourceLoc schemeLoc;
+    std::string preset;             ///< a named special case ("hassan"), or ""
+    SourceLoc presetLoc;
+    int maskArity = 0;              ///< scheme = "mask": the user's own mask
+    std::optional<int> maskFirst;   ///< exponent of the first mask coefficient (default: centred)
+    std::vector<double> mask;
+    SourceLoc maskLoc;
+    bool allowNonconvergent = false;
     int depth = 3;
 
     // [limits]

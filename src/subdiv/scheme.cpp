@@ -50,6 +50,37 @@ Scheme binary3p(double lambda, double mu, double omega) {
             Boundary::PointReflection};
 }
 
+Scheme ternaryBlend(double alpha, double beta, double gamma) {
+    // Paper 004, eq. (3) in the form of schemes.md (OCR fix: Delta p_i = 2p_i - p_{i-1} - p_{i+1}).
+    return {"ternary-blend",
+            3,
+            {{-1, {-alpha, 1 + 2 * alpha, -alpha}},
+             {-1, {-beta, 2.0 / 3 + 2 * beta - gamma, 1.0 / 3 - beta + 2 * gamma, -gamma}},
+             {-1, {-gamma, 1.0 / 3 - beta + 2 * gamma, 2.0 / 3 + 2 * beta - gamma, -beta}}},
+            Boundary::PointReflection};
+}
+
+Scheme ternaryFourPoint(double theta) {
+    // Paper 004's 4-point ternary interpolating scheme (OCR fix: the second rule is
+    // the mirror of the first).
+    const double a = -theta / 9, b = 5.0 / 9 + theta / 3, c = 5.0 / 9 - theta / 3,
+                 d = -1.0 / 9 + theta / 9;
+    return {"ternary-4point",
+            3,
+            {{0, {1.0}}, {-1, {a, b, c, d}}, {-1, {d, c, b, a}}},
+            Boundary::PointReflection};
+}
+
+Scheme ternaryBSpline(double eta) {
+    // Paper 004's parametric cubic B-spline ternary scheme (eta = 1/27: cubic B-spline).
+    return {"ternary-bspline",
+            3,
+            {{-1, {1.0 / 9 + eta, 7.0 / 9 - 2 * eta, 1.0 / 9 + eta}},
+             {-1, {eta, 2.0 / 3 - 2 * eta, 1.0 / 3 + eta}},
+             {0, {1.0 / 3 + eta, 2.0 / 3 - 2 * eta, eta}}},
+            Boundary::PointReflection};
+}
+
 const std::vector<SchemeFamily>& schemeFamilies() {
     static const std::vector<SchemeFamily> families{
         {"dlg4",
@@ -91,8 +122,161 @@ const std::vector<SchemeFamily>& schemeFamilies() {
              return binary3p(p.at("lambda"), p.at("mu"), p.at("omega"));
          },
          nullptr},
+        {"ternary-blend",
+         "ternary blending scheme of paper 004 (interpolating when alpha = 0; presets for its "
+         "special cases)",
+         {{"alpha", 0, -1, 1, "weight of the neighbours of an old point"},
+          {"beta", 5.0 / 81, -1, 1, "outer weight next to the old point"},
+          {"gamma", 4.0 / 81, -1, 1, "outer weight on the far side"}},
+         [](const std::map<std::string, double>& p) {
+             return ternaryBlend(p.at("alpha"), p.at("beta"), p.at("gamma"));
+         },
+         nullptr},
+        {"ternary-4point",
+         "4-point ternary interpolating scheme of paper 004 (C2 for 3/5 < theta < 2/3; the "
+         "1-9 interpolating surface)",
+         {{"theta", 19.0 / 30, -3, 3, "shape parameter"}},
+         [](const std::map<std::string, double>& p) { return ternaryFourPoint(p.at("theta")); },
+         nullptr},
+        {"ternary-bspline",
+         "parametric cubic B-spline ternary scheme of paper 004 (eta = 1/27: cubic B-spline; C2 "
+         "for 0 < eta < 1/9)",
+         {{"eta", 1.0 / 27, -1, 1, "shape parameter"}},
+         [](const std::map<std::string, double>& p) { return ternaryBSpline(p.at("eta")); },
+         nullptr},
     };
     return families;
+}
+
+const std::vector<Preset>& presets() {
+    using Params = std::map<std::string, double>;
+    auto fixed = [](Params p) { return [p](const Params&) { return p; }; };
+    static const std::vector<Preset> list{
+        {"classic-4point", "Dyn-Levin-Gregory 4-point, w = 1/16", "dlg4", {},
+         fixed({{"w", 1.0 / 16}})},
+        {"quintic-bspline", "paper 000, Theorem 4 with lambda = 0: the quintic B-spline",
+         "binary-3p", {}, fixed({{"lambda", 0}, {"mu", 3.0 / 16}, {"omega", 1.0 / 32}})},
+        {"deslauriers-dubuc", "Deslauriers-Dubuc ternary 4-point interpolating scheme",
+         "ternary-blend", {}, fixed({{"alpha", 0}, {"beta", 5.0 / 81}, {"gamma", 4.0 / 81}})},
+        {"hassan", "Hassan's ternary 4-point interpolating scheme (parameter mu)", "ternary-blend",
+         {{"mu", 1.0 / 11, -1, 1, "Hassan's shape parameter"}},
+         [](const Params& p) {
+             const double mu = p.at("mu");
+             return Params{{"alpha", 0}, {"beta", 1.0 / 18 + mu / 6}, {"gamma", 1.0 / 18 - mu / 6}};
+         }},
+        {"ternary-bspline-1", "ternary linear B-spline (the control polygon itself)",
+         "ternary-blend", {}, fixed({{"alpha", 0}, {"beta", 0}, {"gamma", 0}})},
+        {"ternary-bspline-2", "ternary quadratic B-spline", "ternary-blend", {},
+         fixed({{"alpha", -1.0 / 9}, {"beta", 0}, {"gamma", 0}})},
+        {"ternary-bspline-3", "ternary cubic B-spline", "ternary-blend", {},
+         fixed({{"alpha", -4.0 / 27}, {"beta", -1.0 / 27}, {"gamma", 0}})},
+        {"ternary-bspline-4", "ternary quartic B-spline", "ternary-blend", {},
+         fixed({{"alpha", -5.0 / 27}, {"beta", -5.0 / 81}, {"gamma", -1.0 / 81}})},
+        {"one-nine-surface", "paper 004's 1-9 interpolating surface: ternary 4-point, theta = 19/30",
+         "ternary-4point", {}, fixed({{"theta", 19.0 / 30}})},
+        {"gentle-mountains", "paper 001, terrain example 1", "four-point-4p", {},
+         fixed({{"lambda", 7.0 / 32}, {"mu", 7.0 / 32}, {"nu", 0.5}, {"omega", 3.0 / 64}})},
+        {"sharp-mountains", "paper 001, terrain example 2", "four-point-4p", {},
+         fixed({{"lambda", 1.0 / 30}, {"mu", 1.0 / 30}, {"nu", 0.5}, {"omega", 1.0 / 3}})},
+    };
+    return list;
+}
+
+const Preset* findPreset(const std::string& name) {
+    for (const auto& p : presets())
+        if (p.name == name) return &p;
+    return nullptr;
+}
+
+bool resolvePreset(const std::string& presetName, const SourceLoc& loc,
+                   const std::map<std::string, double>& presetParams,
+                   const std::map<std::string, SourceLoc>& paramLocs, Diagnostics& diags,
+                   std::string& familyName, std::map<std::string, double>& familyParams) {
+    const Preset* preset = findPreset(presetName);
+    if (!preset) {
+        std::vector<std::string> names;
+        std::string list;
+        for (const auto& p : presets()) {
+            names.push_back(p.name);
+            list += (list.empty() ? "" : ", ") + p.name;
+        }
+        const std::string best = closestMatch(presetName, names);
+        diags.error(loc, fmt::format("unknown preset \"{}\"{}; known: {}", presetName,
+                                     best.empty() ? "" : " (did you mean \"" + best + "\"?)",
+                                     list));
+        return false;
+    }
+    std::map<std::string, double> own;
+    bool ok = true;
+    for (const auto& [key, value] : presetParams) {
+        const auto spec = std::find_if(preset->params.begin(), preset->params.end(),
+                                       [&](const ParamSpec& s) { return s.name == key; });
+        if (spec == preset->params.end()) {
+            const auto it = paramLocs.find(key);
+            diags.error(it == paramLocs.end() ? loc : it->second,
+                        fmt::format("preset \"{}\" fixes every parameter of \"{}\"{}; remove "
+                                    "\"{}\" or use scheme = \"{}\" instead",
+                                    presetName, preset->family,
+                                    preset->params.empty() ? "" : " but " + preset->params[0].name,
+                                    key, preset->family));
+            ok = false;
+        }
+    }
+    for (const auto& spec : preset->params) {
+        const auto it = presetParams.find(spec.name);
+        const double v = it == presetParams.end() ? spec.defaultValue : it->second;
+        if (!(v >= spec.lo && v <= spec.hi)) {
+            const auto locIt = paramLocs.find(spec.name);
+            diags.error(locIt == paramLocs.end() ? loc : locIt->second,
+                        fmt::format("{} = {} is outside [{}, {}] for preset \"{}\"", spec.name,
+                                    formatShortest(v), formatShortest(spec.lo),
+                                    formatShortest(spec.hi), presetName));
+            ok = false;
+        }
+        own[spec.name] = v;
+    }
+    if (!ok) return false;
+    familyName = preset->family;
+    familyParams = preset->familyParams(own);
+    return true;
+}
+
+std::optional<Scheme> schemeFromMask(int arity, int first, const std::vector<double>& mask,
+                                     const SourceLoc& loc, Diagnostics& diags) {
+    if (arity != 2 && arity != 3) {
+        diags.error(loc, fmt::format("mask arity = {} is not supported; use 2 (binary) or 3 "
+                                     "(ternary)", arity));
+        return std::nullopt;
+    }
+    if (mask.empty()) {
+        diags.error(loc, "the mask is empty; give its coefficients a_k as a list of numbers");
+        return std::nullopt;
+    }
+    Scheme s;
+    s.name = "mask";
+    s.arity = arity;
+    const int last = first + static_cast<int>(mask.size()) - 1;
+    for (int r = 0; r < arity; ++r) {
+        // Coefficient a_{r - m J} multiplies P_{i+J}: J runs over the l with first <= r - m J <= last.
+        const int jMin = static_cast<int>(std::ceil(static_cast<double>(r - last) / arity));
+        const int jMax = static_cast<int>(std::floor(static_cast<double>(r - first) / arity));
+        Rule rule{jMin, {}};
+        double sum = 0;
+        for (int j = jMin; j <= jMax; ++j) {
+            const double w = mask[static_cast<size_t>(r - arity * j - first)];
+            rule.weights.push_back(w);
+            sum += w;
+        }
+        if (rule.weights.empty() || std::fabs(sum - 1) > 1e-9) {
+            diags.error(loc, fmt::format("mask: the weights of child position {} sum to {}, not "
+                                         "1; every position must (the sum rule), or the scheme "
+                                         "cannot converge",
+                                         r, formatShortest(sum)));
+            return std::nullopt;
+        }
+        s.rules.push_back(std::move(rule));
+    }
+    return s;
 }
 
 const SchemeFamily* findSchemeFamily(const std::string& name) {

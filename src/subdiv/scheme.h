@@ -73,5 +73,34 @@ std::optional<Scheme> makeScheme(const std::string& name, const SourceLoc& nameL
 Scheme dlgFourPoint(double w);                                             // w = 1/16: classic
 Scheme fourPoint4p(double lambda, double mu, double nu, double omega);     // paper 001
 Scheme binary3p(double lambda, double mu, double omega);                   // paper 000
+Scheme ternaryBlend(double alpha, double beta, double gamma);               // paper 004
+Scheme ternaryFourPoint(double theta);                                     // paper 004
+Scheme ternaryBSpline(double eta);                                         // paper 004
+
+/// A named special case: a family and fixed parameters (e.g. "hassan" =
+/// ternary-blend with beta = 1/18 + mu/6, gamma = 1/18 - mu/6). A preset may
+/// take parameters of its own (Hassan's mu).
+struct Preset {
+    std::string name;
+    std::string description;
+    std::string family;
+    std::vector<ParamSpec> params;  ///< the preset's own parameters, if any
+    std::function<std::map<std::string, double>(const std::map<std::string, double>&)> familyParams;
+};
+const std::vector<Preset>& presets();
+const Preset* findPreset(const std::string& name);
+
+/// Resolves a preset into its family's name and parameters, checking the
+/// preset's own parameters. Reports unknown names with a suggestion.
+bool resolvePreset(const std::string& presetName, const SourceLoc& loc,
+                   const std::map<std::string, double>& presetParams,
+                   const std::map<std::string, SourceLoc>& paramLocs, Diagnostics& diags,
+                   std::string& familyName, std::map<std::string, double>& familyParams);
+
+/// A user's own scheme from its mask (symbol coefficients a_k, k = first, first+1, ...):
+/// P'_{m i + r} = sum_l a_{m i + r - m l} P_l. Reports masks whose child
+/// positions do not each sum to 1 (then the scheme cannot converge).
+std::optional<Scheme> schemeFromMask(int arity, int first, const std::vector<double>& mask,
+                                     const SourceLoc& loc, Diagnostics& diags);
 
 }  // namespace relief::subdiv

@@ -14,7 +14,7 @@ code=$?
 cat "$work/stderr.txt"
 status=0
 [ "$code" = 3 ] || { echo "FAIL: exit code $code, expected 3"; status=1; }
-grep -q "line 29: Parse Error: No matching } in 'pigment', undeclared identifier 'Nonexistent' found instead" "$work/stderr.txt" ||
+grep -qE "line [0-9]+: Parse Error: No matching } in 'pigment', undeclared identifier 'Nonexistent' found instead" "$work/stderr.txt" ||
   { echo "FAIL: POV-Ray's error text is not shown"; status=1; }
 ls "$work"/out.png* >/dev/null 2>&1 && { echo "FAIL: a PNG was left behind"; status=1; }
 exit $status

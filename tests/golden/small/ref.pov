@@ -14,6 +14,7 @@
 // vertical.exaggeration: 2
 // subdivision.scheme: four-point-4p
 // subdivision.params: lambda = 0.0625, mu = 0.0625, nu = 0.5, omega = 0.03125
+// subdivision.certified: C2 (Hölder ~2.42)
 // subdivision.boundary: point reflection
 // subdivision.depth: 2
 // refined.size: 45 rows x 33 cols
