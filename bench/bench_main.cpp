@@ -4,6 +4,7 @@
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <algorithm>
 #include <cstdio>
 
 #include "emit/mesh.h"
@@ -30,26 +31,64 @@ const Grid& net257() {
     return g;
 }
 
-void setVertexCounters(benchmark::State& state, const Grid& out) {
-    state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(out.points.size()));
-    state.counters["out_vertices"] = static_cast<double>(out.points.size());
+// Bytes each pass reads and writes: the refiner is memory-bound, so this is
+// the figure to hold against the STREAM copy below.
+double bytesMoved(const subdiv::Scheme& s, int rows, int cols, int levels) {
+    double bytes = 0;
+    long long r = rows, c = cols;
+    for (int l = 0; l < levels; ++l) {
+        const long long c2 = s.refinedCount(c), r2 = s.refinedCount(r);
+        bytes += static_cast<double>(r * c + r * c2) * sizeof(Vec3);   // rows pass
+        bytes += static_cast<double>(r * c2 + r2 * c2) * sizeof(Vec3); // columns pass
+        r = r2;
+        c = c2;
+    }
+    return bytes;
 }
 
-// 257 x 257 -> 2049 x 2049, three levels, rows then columns.
+void setVertexCounters(benchmark::State& state, const Grid& out, double bytes = 0) {
+    state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(out.points.size()));
+    state.counters["out_vertices"] = static_cast<double>(out.points.size());
+    if (bytes > 0) state.SetBytesProcessed(static_cast<int64_t>(bytes * static_cast<double>(state.iterations())));
+}
+
+// STREAM-style copy of a buffer the size of the refined grid: the machine's
+// memory bandwidth, measured in the same binary and run.
+void BM_StreamCopy(benchmark::State& state) {
+    const size_t n = static_cast<size_t>(2049) * 2049 * 3;
+    std::vector<double, BigBufferAllocator<double>> a(n, 1.0), b(n, 0.0);
+    for (auto _ : state) {
+        std::copy(a.begin(), a.end(), b.begin());
+        benchmark::DoNotOptimize(b.data());
+        benchmark::ClobberMemory();
+    }
+    state.SetBytesProcessed(static_cast<int64_t>(state.iterations()) * static_cast<int64_t>(2 * n * sizeof(double)));
+}
+BENCHMARK(BM_StreamCopy)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// Binary: 257 x 257 -> 2049 x 2049 (three levels); ternary: -> 2305 x 2305
+// (two levels, 5.3 M vertices; a third would be 48 M). Rows then columns.
 void BM_RefineTable(benchmark::State& state, subdiv::Scheme scheme) {
     const int threads = static_cast<int>(state.range(0));
+    const int levels = scheme.arity == 2 ? 3 : 2;
     Grid out;
     for (auto _ : state) {
-        out = subdiv::refineGrid(scheme, net257(), 3, threads);
+        out = subdiv::refineGrid(scheme, net257(), levels, threads);
         benchmark::DoNotOptimize(out.points.data());
     }
-    setVertexCounters(state, out);
+    setVertexCounters(state, out, bytesMoved(scheme, 257, 257, levels));
 }
 BENCHMARK_CAPTURE(BM_RefineTable, dlg4, subdiv::dlgFourPoint(1.0 / 16))
     ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(BM_RefineTable, four_point_4p, subdiv::fourPoint4p(7.0 / 32, 7.0 / 32, 0.5, 3.0 / 64))
     ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(BM_RefineTable, binary_3p, subdiv::binary3p(0, 3.0 / 16, 1.0 / 32))
+    ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// Ternary schemes (paper 004): 257 x 257 -> 2305 x 2305, two levels.
+BENCHMARK_CAPTURE(BM_RefineTable, ternary_4point, subdiv::ternaryFourPoint(19.0 / 30))
+    ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(BM_RefineTable, ternary_blend, subdiv::ternaryBlend(-2.0 / 27, 1.0 / 81, 2.0 / 81))
     ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // Baseline: the naive per-point 4-point loop (tests/reference), same net and depth.

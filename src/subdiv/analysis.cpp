@@ -251,12 +251,15 @@ std::vector<std::string> explainReport(const SchemeReport& rep, const std::strin
                                        const std::map<std::string, double>& p) {
     std::vector<std::string> notes;
     auto P = [&](const char* k) { return p.at(k); };
+    // The papers' theorems pair each equality (sigma^(k+1) divides the symbol)
+    // with a one-step norm inequality; the equalities are reported here, the
+    // norm tests in the report's difference tests.
     if (family == "four-point-4p") {
         const double l = P("lambda"), mu = P("mu"), nu = P("nu"), w = P("omega");
         const bool c1 = near(mu - l + 4 * w - 8 * w * nu, 0);
         const bool c2 = c1 && near(l, 1.0 / 8 - 4 * w * nu);
-        notes.push_back(fmt::format("paper 001, Theorem 2 (C1) needs mu - lambda + 4 omega - 8 omega nu "
-                                    "= 0: {}; Theorem 3 (C2) needs also lambda = 1/8 - 4 omega nu: {}",
+        notes.push_back(fmt::format("paper 001, Theorem 2 (C1) equality mu - lambda + 4 omega - 8 omega nu "
+                                    "= 0: {}; Theorem 3 (C2) equality lambda = 1/8 - 4 omega nu: {}",
                                     holds(c1), holds(c2)));
         if (near(l, 1.0 / 80) && near(mu, 1.0 / 16) && near(nu, 0.5) && near(w, 1.0 / 32))
             notes.push_back(fmt::format("paper 001 Fig. 2(b)'s caption says C2, but its printed "
@@ -284,8 +287,8 @@ std::vector<std::string> explainReport(const SchemeReport& rep, const std::strin
         const double a = P("alpha"), b = P("beta"), g = P("gamma");
         const bool c2 = near(g, a - b + 1.0 / 9);
         const bool c3 = c2 && near(b, 5.0 / 81 + 2 * a / 3) && a > -7.0 / 27 && a < -4.0 / 27;
-        notes.push_back(fmt::format("paper 004: C2 needs gamma = alpha - beta + 1/9: {}; C3 needs "
-                                    "also beta = 5/81 + 2 alpha/3 with -7/27 < alpha < -4/27: {}",
+        notes.push_back(fmt::format("paper 004: C2 equality gamma = alpha - beta + 1/9: {}; C3 "
+                                    "equalities, also beta = 5/81 + 2 alpha/3 with -7/27 < alpha < -4/27: {}",
                                     holds(c2), holds(c3)));
     } else if (family == "ternary-4point") {
         const double t = P("theta");

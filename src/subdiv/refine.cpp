@@ -73,6 +73,30 @@ std::vector<Vec3> refineCurve(const Scheme& scheme, std::span<const Vec3> points
     return out;
 }
 
+std::vector<Vec3> refineClosedCurve(const Scheme& scheme, std::span<const Vec3> points) {
+    const long n = static_cast<long>(points.size());
+    const int m = scheme.arity;
+    std::vector<Vec3> out(static_cast<size_t>(m * n));
+    for (long i = 0; i < n; ++i)
+        for (int r = 0; r < m; ++r) {
+            const Rule& rule = scheme.rules[r];
+            Vec3 v;
+            for (size_t j = 0; j < rule.weights.size(); ++j) {
+                const long k = ((i + rule.offset + static_cast<long>(j)) % n + n) % n;
+                v = v + rule.weights[j] * points[static_cast<size_t>(k)];
+            }
+            out[static_cast<size_t>(m * i + r)] = v;
+        }
+    return out;
+}
+
+std::vector<Vec3> refineCurveLevels(const Scheme& scheme, std::vector<Vec3> points, bool closed,
+                                    int levels) {
+    for (int l = 0; l < levels; ++l)
+        points = closed ? refineClosedCurve(scheme, points) : refineCurve(scheme, points);
+    return points;
+}
+
 Grid refinePass(const Scheme& scheme, const Grid& in, Axis axis, int threads) {
     static_assert(sizeof(Vec3) == 3 * sizeof(double));
     const int nThreads = resolveThreads(threads);

@@ -13,6 +13,13 @@ namespace relief::subdiv {
 /// Refines an open curve once. Needs at least max(ghosts) + 1 points.
 std::vector<Vec3> refineCurve(const Scheme& scheme, std::span<const Vec3> points);
 
+/// Refines a closed curve once: indices wrap around, n points -> m n points.
+std::vector<Vec3> refineClosedCurve(const Scheme& scheme, std::span<const Vec3> points);
+
+/// `levels` steps on an open (point reflection at the ends) or closed curve.
+std::vector<Vec3> refineCurveLevels(const Scheme& scheme, std::vector<Vec3> points, bool closed,
+                                    int levels);
+
 /// Which axis a single pass refines.
 enum class Axis { AlongRows, AlongColumns };
 

@@ -1,0 +1,99 @@
+#include "curves/curve_file.h"
+
+#include <cmath>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "core/atomic_file.h"
+#include "core/number_format.h"
+
+namespace relief::curves {
+
+std::optional<CurveFile> readCurveFile(const std::filesystem::path& path, Diagnostics& diags) {
+    const std::string file = path.string();
+    std::string text;
+    try {
+        text = readFile(path);
+    } catch (const std::exception&) {
+        diags.error({file, 0, 0}, "cannot read the curve file");
+        return std::nullopt;
+    }
+    nlohmann::json j;
+    try {
+        j = nlohmann::json::parse(text);
+    } catch (const nlohmann::json::parse_error& e) {
+        // nlohmann reports a byte offset: turn it into line and column.
+        int line = 1, col = 1;
+        for (size_t i = 0; i + 1 < e.byte && i < text.size(); ++i) {
+            if (text[i] == '\n') ++line, col = 1;
+            else ++col;
+        }
+        diags.error({file, line, col}, "invalid JSON; expected {\"type\": \"polyline\", "
+                                       "\"closed\": false, \"points\": [[x, y], ...]}");
+        return std::nullopt;
+    }
+    CurveFile c;
+    if (!j.is_object()) {
+        diags.error({file, 1, 1}, "a curve file is a JSON object with \"points\"");
+        return std::nullopt;
+    }
+    if (j.contains("type")) {
+        if (!j["type"].is_string()) {
+            diags.error({file, 0, 0}, "\"type\" must be \"polyline\", \"bezier\" or \"bspline3\"");
+            return std::nullopt;
+        }
+        c.type = j["type"].get<std::string>();
+        if (c.type != "polyline" && c.type != "bezier" && c.type != "bspline3") {
+            diags.error({file, 0, 0}, fmt::format("unknown curve type \"{}\"; use \"polyline\", "
+                                                  "\"bezier\" or \"bspline3\"",
+                                                  c.type));
+            return std::nullopt;
+        }
+    }
+    if (j.contains("closed")) {
+        if (!j["closed"].is_boolean()) {
+            diags.error({file, 0, 0}, "\"closed\" must be true or false");
+            return std::nullopt;
+        }
+        c.closed = j["closed"].get<bool>();
+    }
+    if (!j.contains("points") || !j["points"].is_array()) {
+        diags.error({file, 0, 0}, "missing \"points\": [[x, y], ...]");
+        return std::nullopt;
+    }
+    size_t index = 0;
+    for (const auto& p : j["points"]) {
+        if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number()) {
+            diags.error({file, 0, 0}, fmt::format("points[{}] must be [x, y] with two numbers", index));
+            return std::nullopt;
+        }
+        const Point2 q{p[0].get<double>(), p[1].get<double>()};
+        if (!std::isfinite(q.x) || !std::isfinite(q.y)) {
+            diags.error({file, 0, 0}, fmt::format("points[{}] is not finite", index));
+            return std::nullopt;
+        }
+        c.points.push_back(q);
+        ++index;
+    }
+    const size_t need = c.type == "bspline3" ? (c.closed ? 3 : 4) : c.type == "bezier" ? 1 : 1;
+    if (c.points.size() < need) {
+        diags.error({file, 0, 0}, fmt::format("a {}{} curve needs at least {} points, found {}",
+                                              c.closed ? "closed " : "", c.type, need,
+                                              c.points.size()));
+        return std::nullopt;
+    }
+    return c;
+}
+
+std::string curveFileJson(const CurveFile& c) {
+    std::string out = fmt::format("{{\"type\": \"{}\", \"closed\": {}, \"points\": [", c.type,
+                                  c.closed ? "true" : "false");
+    for (size_t i = 0; i < c.points.size(); ++i)
+        out += fmt::format("{}\n  [{}, {}]", i ? "," : "", formatShortest(c.points[i].x),
+                           formatShortest(c.points[i].y));
+    out += "\n]}\n";
+    return out;
+}
+
+}  // namespace relief::curves

@@ -1,0 +1,83 @@
+#include "emit/svg.h"
+
+#include <algorithm>
+
+#include <fmt/format.h>
+
+namespace relief::emit {
+
+namespace {
+
+constexpr const char* kColors[] = {"#d62728", "#1f77b4", "#2ca02c", "#9467bd",
+                                   "#ff7f0e", "#8c564b", "#e377c2", "#17becf"};
+
+std::string escape(const std::string& s) {
+    std::string out;
+    for (char c : s) {
+        if (c == '&') out += "&amp;";
+        else if (c == '<') out += "&lt;";
+        else if (c == '>') out += "&gt;";
+        else out += c;
+    }
+    return out;
+}
+
+}  // namespace
+
+std::string curvesSvg(const std::string& title, const SvgCurve& control,
+                      const std::vector<SvgCurve>& curves) {
+    double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300;
+    auto grow = [&](const SvgCurve& c) {
+        for (const auto& p : c.points) {
+            xmin = std::min(xmin, p.x), xmax = std::max(xmax, p.x);
+            ymin = std::min(ymin, p.y), ymax = std::max(ymax, p.y);
+        }
+    };
+    grow(control);
+    for (const auto& c : curves) grow(c);
+    const double span = std::max({xmax - xmin, ymax - ymin, 1e-12});
+    const double plotW = 760, margin = 20, titleH = 30;
+    const double scale = plotW / span;  // one scale for x and y: equal axes
+    const double plotH = (ymax - ymin) * scale;
+    const double legendH = 20.0 * static_cast<double>(curves.size() + 1) + 10;
+    const double width = plotW + 2 * margin, height = titleH + plotH + 2 * margin + legendH;
+    auto X = [&](double x) { return margin + (x - xmin) * scale; };
+    auto Y = [&](double y) { return titleH + margin + (ymax - y) * scale; };
+    auto path = [&](const SvgCurve& c) {
+        std::string d;
+        for (size_t i = 0; i < c.points.size(); ++i)
+            d += fmt::format("{}{:.3f},{:.3f}", i ? " L" : "M", X(c.points[i].x), Y(c.points[i].y));
+        if (c.closed) d += " Z";
+        return d;
+    };
+
+    std::string s = fmt::format(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{:.0f}\" height=\"{:.0f}\" "
+        "viewBox=\"0 0 {:.0f} {:.0f}\" font-family=\"sans-serif\" font-size=\"14\">\n"
+        "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
+        "<text x=\"{}\" y=\"20\" font-size=\"16\">{}</text>\n",
+        width, height, width, height, margin, escape(title));
+    s += fmt::format("<path d=\"{}\" fill=\"none\" stroke=\"#888\" stroke-width=\"1.2\" "
+                     "stroke-dasharray=\"5,4\"/>\n",
+                     path(control));
+    for (const auto& p : control.points)
+        s += fmt::format("<circle cx=\"{:.3f}\" cy=\"{:.3f}\" r=\"3.5\" fill=\"#444\"/>\n", X(p.x), Y(p.y));
+    for (size_t i = 0; i < curves.size(); ++i)
+        s += fmt::format("<path d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"2\"/>\n",
+                         path(curves[i]), kColors[i % 8]);
+    double ly = titleH + plotH + 2 * margin + 10;
+    s += fmt::format("<line x1=\"{0}\" y1=\"{1}\" x2=\"{2}\" y2=\"{1}\" stroke=\"#888\" "
+                     "stroke-dasharray=\"5,4\"/><text x=\"{3}\" y=\"{4}\">{5}</text>\n",
+                     margin, ly, margin + 30, margin + 40, ly + 5, escape(control.label));
+    for (size_t i = 0; i < curves.size(); ++i) {
+        ly += 20;
+        s += fmt::format("<line x1=\"{0}\" y1=\"{1}\" x2=\"{2}\" y2=\"{1}\" stroke=\"{3}\" "
+                         "stroke-width=\"2\"/><text x=\"{4}\" y=\"{5}\">{6}</text>\n",
+                         margin, ly, margin + 30, kColors[i % 8], margin + 40, ly + 5,
+                         escape(curves[i].label));
+    }
+    s += "</svg>\n";
+    return s;
+}
+
+}  // namespace relief::emit
