@@ -137,3 +137,29 @@ TEST(Budget, RefusesOversizedOutputNamingTheLimit) {
 
 }  // namespace
 }  // namespace relief::subdiv
+
+namespace relief::subdiv {
+namespace {
+
+// A closed curve wraps around: interpolating schemes keep every vertex, and
+// the ternary linear B-spline puts the new points at thirds of each edge.
+TEST(Refine, ClosedCurves) {
+    std::vector<Vec3> hexagon;
+    for (int k = 0; k < 6; ++k)
+        hexagon.push_back({std::cos(k * M_PI / 3), std::sin(k * M_PI / 3), 0});
+    const auto dd = refineCurveLevels(ternaryFourPoint(5.0 / 9), hexagon, true, 3);
+    ASSERT_EQ(dd.size(), 6u * 27);
+    for (int k = 0; k < 6; ++k) EXPECT_LT(length(dd[27 * k] - hexagon[k]), 1e-14);
+    const auto linear = refineClosedCurve(ternaryBlend(0, 0, 0), hexagon);
+    for (int k = 0; k < 6; ++k) {
+        const Vec3 a = hexagon[k], b = hexagon[(k + 1) % 6];
+        EXPECT_LT(length(linear[3 * k + 1] - ((2.0 / 3) * a + (1.0 / 3) * b)), 1e-14);
+        EXPECT_LT(length(linear[3 * k + 2] - ((1.0 / 3) * a + (2.0 / 3) * b)), 1e-14);
+    }
+    // Approximating schemes shrink a convex closed polygon: every point stays inside.
+    for (const Vec3& p : refineCurveLevels(ternaryBSpline(1.0 / 27), hexagon, true, 4))
+        EXPECT_LE(length(p), 1.0 + 1e-12);
+}
+
+}  // namespace
+}  // namespace relief::subdiv
