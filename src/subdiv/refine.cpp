@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <limits>
 
 #include <omp.h>
 
@@ -13,9 +14,17 @@ namespace {
 // point's x, y, z, or a whole row of points when refining across rows), using
 // only doubles [eBegin, eEnd) of every element so that threads can split a
 // wide element. Ghost elements are made by point reflection into `ghosts`.
+// kWidth > 0 fixes the element width at compile time (3: one point), so the
+// inner loops unroll; 0 takes `width` at run time (a whole row).
+template <size_t kWidth = 0>
 void refineLine(const Scheme& scheme, const double* src, long n, size_t width, size_t eBegin,
                 size_t eEnd, double* dst, std::vector<double>& ghosts,
                 std::vector<const double*>& rows) {
+    if constexpr (kWidth > 0) {
+        width = kWidth;
+        eBegin = 0;
+        eEnd = kWidth;
+    }
     const int before = scheme.ghostsBefore(), after = scheme.ghostsAfter();
     const int m = scheme.arity;
     ghosts.resize(static_cast<size_t>(before + after) * width);
@@ -43,6 +52,13 @@ void refineLine(const Scheme& scheme, const double* src, long n, size_t width, s
             double* out = dst + static_cast<size_t>(m * i + r) * width;
             const double* const* in = rows.data() + before + i + rule.offset;
             const size_t nw = rule.weights.size();
+            if constexpr (kWidth > 0) {
+                double acc[kWidth] = {};
+                for (size_t j = 0; j < nw; ++j)
+                    for (size_t e = 0; e < kWidth; ++e) acc[e] += rule.weights[j] * in[j][e];
+                for (size_t e = 0; e < kWidth; ++e) out[e] = acc[e];
+                continue;
+            }
             const double w0 = rule.weights[0];
             const double* p0 = in[0];
             for (size_t e = eBegin; e < eEnd; ++e) out[e] = w0 * p0[e];
@@ -52,6 +68,35 @@ void refineLine(const Scheme& scheme, const double* src, long n, size_t width, s
                 for (size_t e = eBegin; e < eEnd; ++e) out[e] += wj * pj[e];
             }
         }
+    }
+}
+
+// out[e] = sum_j w[j] * in[j][e] for e in [0, n), one sweep over `out` for
+// the common stencil lengths (the row stays in cache between the rules).
+// Compiled twice, for AVX2+FMA and for any x86-64, chosen at load time.
+__attribute__((target_clones("avx2,fma", "default")))
+void combineRows(double* out, const double* const* in, const std::vector<double>& w, size_t n) {
+    switch (w.size()) {
+        case 1:
+            for (size_t e = 0; e < n; ++e) out[e] = w[0] * in[0][e];
+            return;
+        case 3:
+            for (size_t e = 0; e < n; ++e)
+                out[e] = w[0] * in[0][e] + w[1] * in[1][e] + w[2] * in[2][e];
+            return;
+        case 4:
+            for (size_t e = 0; e < n; ++e)
+                out[e] = w[0] * in[0][e] + w[1] * in[1][e] + w[2] * in[2][e] + w[3] * in[3][e];
+            return;
+        case 5:
+            for (size_t e = 0; e < n; ++e)
+                out[e] = w[0] * in[0][e] + w[1] * in[1][e] + w[2] * in[2][e] + w[3] * in[3][e] +
+                         w[4] * in[4][e];
+            return;
+        default:
+            for (size_t e = 0; e < n; ++e) out[e] = w[0] * in[0][e];
+            for (size_t j = 1; j < w.size(); ++j)
+                for (size_t e = 0; e < n; ++e) out[e] += w[j] * in[j][e];
     }
 }
 
@@ -135,13 +180,89 @@ Grid refinePass(const Scheme& scheme, const Grid& in, Axis axis, int threads) {
     return out;
 }
 
-Grid refineGrid(const Scheme& scheme, const Grid& net, int levels, int threads) {
-    Grid g = net;
-    for (int level = 0; level < levels; ++level) {
-        g = refinePass(scheme, g, Axis::AlongRows, threads);
-        g = refinePass(scheme, g, Axis::AlongColumns, threads);
+void refineLevel(const Scheme& scheme, const Grid& in, Grid& out, int threads) {
+    const int m = scheme.arity;
+    const long rows = in.rows, cols = in.cols;
+    out.rows = static_cast<int>(scheme.refinedCount(rows));
+    out.cols = static_cast<int>(scheme.refinedCount(cols));
+    out.points.resize(static_cast<size_t>(out.rows) * static_cast<size_t>(out.cols));
+    const size_t width = static_cast<size_t>(out.cols) * 3;  // doubles per refined row
+
+    // Coarse rows that output rows m i + r read: i + lowest .. i + highest.
+    int lowest = 0, highest = 0;
+    for (const Rule& rule : scheme.rules) {
+        lowest = std::min(lowest, rule.offset);
+        highest = std::max(highest, rule.offset + static_cast<int>(rule.weights.size()) - 1);
     }
-    return g;
+    const long ringSize = highest - lowest + 1;
+
+#pragma omp parallel num_threads(resolveThreads(threads))
+    {
+        const long t = omp_get_thread_num(), nt = omp_get_num_threads();
+        const long iBegin = rows * t / nt, iEnd = rows * (t + 1) / nt;
+        std::vector<double> ring(static_cast<size_t>(ringSize) * width);
+        std::vector<long> ringKey(static_cast<size_t>(ringSize), std::numeric_limits<long>::min());
+        std::vector<Vec3> reflected(static_cast<size_t>(cols));
+        std::vector<double> ghosts;
+        std::vector<const double*> pointers;
+        std::vector<const double*> inputs(8);
+
+        // The row-refined coarse row k; beyond the edges, the row-refined
+        // point reflection of the coarse rows (linear, so the same as
+        // reflecting refined rows).
+        auto refinedRow = [&](long k) -> const double* {
+            const size_t slot = static_cast<size_t>(((k % ringSize) + ringSize) % ringSize);
+            double* row = ring.data() + slot * width;
+            if (ringKey[slot] == k) return row;
+            const Vec3* src = &in.points[0] + static_cast<size_t>(std::clamp(k, 0L, rows - 1)) * cols;
+            if (k < 0 || k >= rows) {
+                const long edge = k < 0 ? 0 : rows - 1;
+                const long mirror = k < 0 ? -k : 2 * (rows - 1) - k;
+                const Vec3* e = &in.points[0] + static_cast<size_t>(edge) * cols;
+                const Vec3* q = &in.points[0] + static_cast<size_t>(mirror) * cols;
+                for (long c = 0; c < cols; ++c) reflected[c] = 2.0 * e[c] - q[c];
+                src = reflected.data();
+            }
+            refineLine<3>(scheme, &src->x, cols, 3, 0, 3, row, ghosts, pointers);
+            ringKey[slot] = k;
+            return row;
+        };
+
+        for (long i = iBegin; i < iEnd; ++i) {
+            for (int r = 0; r < m; ++r) {
+                if (r > 0 && i == rows - 1) break;
+                const Rule& rule = scheme.rules[r];
+                const size_t nw = rule.weights.size();
+                if (inputs.size() < nw) inputs.resize(nw);
+                for (size_t j = 0; j < nw; ++j) inputs[j] = refinedRow(i + rule.offset + static_cast<long>(j));
+                combineRows(&out.points[0].x + static_cast<size_t>(m * i + r) * width,
+                            inputs.data(), rule.weights, width);
+            }
+        }
+    }
+}
+
+const Grid& Refiner::refine(const Scheme& scheme, const Grid& net, int levels, int threads) {
+    if (levels == 0) {
+        buffers_[0] = net;
+        latest_ = 0;
+        return buffers_[0];
+    }
+    const Grid* src = &net;
+    for (int level = 0; level < levels; ++level) {
+        latest_ = level % 2;
+        refineLevel(scheme, *src, buffers_[latest_], threads);
+        src = &buffers_[latest_];
+    }
+    return *src;
+}
+
+Grid Refiner::release() { return std::move(buffers_[latest_]); }
+
+Grid refineGrid(const Scheme& scheme, const Grid& net, int levels, int threads) {
+    Refiner refiner;
+    refiner.refine(scheme, net, levels, threads);
+    return refiner.release();
 }
 
 }  // namespace relief::subdiv

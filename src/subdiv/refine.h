@@ -27,6 +27,28 @@ enum class Axis { AlongRows, AlongColumns };
 /// column (AlongColumns: rows -> m(rows-1)+1). `threads` <= 0: all cores.
 Grid refinePass(const Scheme& scheme, const Grid& in, Axis axis, int threads = 0);
 
+/// One level, rows and columns fused (equal to refinePass along rows, then
+/// along columns): each output row combines row-refined input rows, which are
+/// made once each into a small ring buffer that stays in cache, so the grid is
+/// read once and written once. `out` is resized (its storage reused).
+void refineLevel(const Scheme& scheme, const Grid& in, Grid& out, int threads = 0);
+
+/// Repeated refinement with reusable storage: calling refine() again with
+/// grids of the same sizes allocates nothing (a new 100 MB grid costs the
+/// kernel as much time as refining into it).
+class Refiner {
+public:
+    /// `levels` steps. Preconditions: rows and cols >= minPoints(scheme).
+    /// The result lives until the next call.
+    const Grid& refine(const Scheme& scheme, const Grid& net, int levels, int threads = 0);
+    /// Moves the latest result out (its storage is then no longer reused).
+    Grid release();
+
+private:
+    Grid buffers_[2];
+    int latest_ = 0;
+};
+
 /// `levels` steps of rows-then-columns. Preconditions: rows and cols are at
 /// least minPoints(scheme). `threads` <= 0: all cores.
 Grid refineGrid(const Scheme& scheme, const Grid& net, int levels, int threads = 0);

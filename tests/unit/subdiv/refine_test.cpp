@@ -95,6 +95,32 @@ TEST(Refine, RegularLatticeStaysRegularAndKeepsExtent) {
     }
 }
 
+// The fused level (rows and columns in one sweep) equals the two passes.
+TEST(Refine, FusedLevelEqualsTwoPasses) {
+    const Grid net = randomNet(11, 8, 9);
+    for (const Scheme& s : allSchemes())
+        for (int threads : {1, 2}) {
+            Grid fused;
+            refineLevel(s, net, fused, threads);
+            const Grid twoPass = refinePass(s, refinePass(s, net, Axis::AlongRows), Axis::AlongColumns);
+            ASSERT_EQ(fused.rows, twoPass.rows);
+            ASSERT_EQ(fused.cols, twoPass.cols);
+            for (size_t i = 0; i < fused.points.size(); ++i)
+                ASSERT_LT(length(fused.points[i] - twoPass.points[i]), 1e-11) << s.name << " " << i;
+        }
+}
+
+TEST(Refine, RefinerReusesStorageAndGivesTheSameResult) {
+    const Grid net = randomNet(9, 10, 10);
+    Refiner refiner;
+    const Scheme s = ternaryFourPoint(19.0 / 30);
+    const Grid first = refiner.refine(s, net, 2);
+    const Vec3* storage = refiner.refine(s, net, 2).points.data();
+    EXPECT_EQ(refiner.refine(s, net, 2).points.data(), storage);
+    EXPECT_EQ(refiner.refine(s, net, 2).points, first.points);
+    EXPECT_EQ(refineGrid(s, net, 2).points, first.points);
+}
+
 TEST(Refine, TableRefinerMatchesNaiveFourPointLoop) {
     const Grid net = randomNet(9, 12, 4);
     const Grid fast = refineGrid(dlgFourPoint(1.0 / 16), net, 3, 2);
