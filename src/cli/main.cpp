@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <tuple>
 #include <cstdlib>
@@ -19,6 +20,7 @@
 #include "subdiv/analysis.h"
 #include "subdiv/refine.h"
 #include "curves/curve_file.h"
+#include "compare/compare_images.h"
 #include "emit/svg.h"
 #include <nlohmann/json.hpp>
 #include "relief/version.h"
@@ -37,7 +39,9 @@ enum class Exit : int {
 
 constexpr const char* kExitCodes =
     "Exit codes: 0 success; 1 internal error; 2 bad input (arguments, scene file, samples,\n"
-    "template, output budget) or an output that cannot be written; 3 POV-Ray missing or failed.";
+    "template, output budget) or an output that cannot be written; 3 POV-Ray missing or failed.\n"
+    "relief diff keeps idiff's: 0 pass, 1 warning, 2 failure, 3 images not comparable,\n"
+    "4 file error or bad arguments. relief test: 0 all cases pass, 1 a case failed.";
 
 int code(Exit e) { return static_cast<int>(e); }
 
@@ -458,6 +462,89 @@ int runCurve(const CurveOptions& o) {
     return code(Exit::Ok);
 }
 
+struct DiffOptions {
+    std::string a, b;
+    relief::compare::Thresholds t;
+    std::string diffImage;
+    bool json = false;
+};
+
+nlohmann::ordered_json differenceJson(const relief::compare::ImageDifference& d,
+                                      const relief::compare::Thresholds& t) {
+    nlohmann::ordered_json j;
+    j["verdict"] = relief::compare::verdictName(d.verdict);
+    if (!d.error.empty()) j["error"] = d.error;
+    j["width"] = d.width;
+    j["height"] = d.height;
+    j["channels"] = d.channels;
+    j["max_error"] = d.maxError;
+    j["max_error_at"] = {d.maxX, d.maxY};
+    j["max_error_channel"] = d.maxChannel;
+    j["mean_error"] = d.meanError;
+    j["rms_error"] = d.rmsError;
+    j["psnr"] = std::isfinite(d.psnr) ? nlohmann::ordered_json(d.psnr) : nlohmann::ordered_json("inf");
+    j["failing_pixels"] = d.failingPixels;
+    j["failing_percent"] = d.failingPercent;
+    j["warning_pixels"] = d.warningPixels;
+    j["warning_percent"] = d.warningPercent;
+    j["constant_a"] = d.constantA;
+    j["constant_b"] = d.constantB;
+    nlohmann::ordered_json ch = nlohmann::ordered_json::array();
+    for (const auto& c : d.perChannel)
+        ch.push_back({{"name", c.name}, {"max_error", c.maxError}, {"max_error_at", {c.maxX, c.maxY}},
+                      {"mean_error", c.meanError}, {"rms_error", c.rmsError},
+                      {"psnr", std::isfinite(c.psnr) ? nlohmann::ordered_json(c.psnr) : nlohmann::ordered_json("inf")}});
+    j["per_channel"] = ch;
+    j["thresholds"] = {{"fail", t.fail}, {"failpercent", t.failPercent},
+                       {"hardfail", t.hardFail < 1e300 ? nlohmann::ordered_json(t.hardFail) : nlohmann::ordered_json("inf")},
+                       {"warn", t.warn}, {"warnpercent", t.warnPercent},
+                       {"hardwarn", t.hardWarn < 1e300 ? nlohmann::ordered_json(t.hardWarn) : nlohmann::ordered_json("inf")},
+                       {"allowfailures", t.allowFailures}};
+    return j;
+}
+
+// `relief diff`: idiff's metrics, thresholds, verdict and exit codes.
+int runDiff(const DiffOptions& o) {
+    using relief::compare::Verdict;
+    const auto d = relief::compare::compareImages(o.a, o.b, o.t);
+    if (!o.diffImage.empty() && (d.verdict != Verdict::FileError && d.verdict != Verdict::NotComparable)) {
+        ensureParent(o.diffImage);
+        const std::string err = relief::compare::writeDifferenceImage(o.a, o.b, o.diffImage);
+        if (!err.empty()) {
+            std::cerr << "relief: error: " << err << '\n';
+            return 4;
+        }
+    }
+    if (o.json) {
+        std::cout << differenceJson(d, o.t).dump(2) << '\n';
+        return static_cast<int>(d.verdict);
+    }
+    if (d.verdict == Verdict::FileError || d.verdict == Verdict::NotComparable) {
+        std::cerr << "relief: error: " << d.error << '\n';
+        std::cout << relief::compare::verdictName(d.verdict) << '\n';
+        return static_cast<int>(d.verdict);
+    }
+    std::cout << fmt::format("Comparing {} and {} ({} x {}, {} channels)\n", o.a, o.b, d.width,
+                             d.height, d.channels);
+    std::cout << fmt::format("  {:<9} {:>10} {:>14} {:>11} {:>11} {:>8}\n", "channel", "max error",
+                             "at (x, y)", "mean", "RMS", "PSNR");
+    for (const auto& c : d.perChannel)
+        std::cout << fmt::format("  {:<9} {:>10.6f} {:>14} {:>11.3e} {:>11.3e} {:>8.2f}\n", c.name,
+                                 c.maxError, fmt::format("({}, {})", c.maxX, c.maxY), c.meanError,
+                                 c.rmsError, c.psnr);
+    std::cout << fmt::format("  {:<9} {:>10.6f} {:>14} {:>11.3e} {:>11.3e} {:>8.2f}\n", "all",
+                             d.maxError, fmt::format("({}, {})", d.maxX, d.maxY), d.meanError,
+                             d.rmsError, d.psnr);
+    std::cout << fmt::format("  {} pixels ({:.4f} %) over fail {}; {} pixels ({:.4f} %) over warn {}\n",
+                             d.failingPixels, d.failingPercent, relief::formatShortest(o.t.fail),
+                             d.warningPixels, d.warningPercent, relief::formatShortest(o.t.warn));
+    if (d.constantA) std::cout << "  note: " << o.a << " is a constant image (every pixel one colour)\n";
+    if (d.constantB) std::cout << "  note: " << o.b << " is a constant image (every pixel one colour)\n";
+    if (!o.diffImage.empty()) std::cout << "  difference image: " << o.diffImage << '\n';
+    std::cout << relief::compare::verdictName(d.verdict) << '\n';
+    return static_cast<int>(d.verdict);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -520,17 +607,35 @@ int main(int argc, char** argv) {
     curveCmd->add_option("--points", curve.points, "also write the refined points as curve files");
     curveCmd->add_option("--title", curve.title, "figure title");
 
+    DiffOptions diff;
+    CLI::App* diffCmd = app.add_subcommand(
+        "diff", "compare two images (OpenImageIO), with idiff's thresholds and exit codes: "
+                "0 PASS, 1 WARNING, 2 FAILURE, 3 not comparable (different sizes or channel "
+                "counts), 4 file error or bad arguments");
+    diffCmd->add_option("a", diff.a, "first image")->required();
+    diffCmd->add_option("b", diff.b, "second image")->required();
+    diffCmd->add_option("--fail", diff.t.fail, "a pixel fails when a channel differs by more (default 1e-6)");
+    diffCmd->add_option("--failpercent", diff.t.failPercent, "allow this % of pixels to fail (default 0)");
+    diffCmd->add_option("--hardfail", diff.t.hardFail, "fail if any pixel differs by more (default inf)");
+    diffCmd->add_option("--warn", diff.t.warn, "a pixel warns when a channel differs by more (default 1e-6)");
+    diffCmd->add_option("--warnpercent", diff.t.warnPercent, "allow this % of pixels to warn (default 0)");
+    diffCmd->add_option("--hardwarn", diff.t.hardWarn, "warn if any pixel differs by more (default inf)");
+    diffCmd->add_option("--allowfailures", diff.t.allowFailures, "this many pixels may fail by any amount (default 0)");
+    diffCmd->add_option("--diff-image", diff.diffImage, "write a heat map of the difference (black: identical)");
+    diffCmd->add_flag("--json", diff.json, "print the metrics and the verdict as one JSON object");
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::Success& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
         app.exit(e);
-        return code(Exit::BadInput);
+        return diffCmd->parsed() ? 4 : code(Exit::BadInput);  // diff keeps idiff's codes
     }
     try {
         if (checkCmd->parsed()) return runCheck(check);
         if (curveCmd->parsed()) return runCurve(curve);
+        if (diffCmd->parsed()) return runDiff(diff);
         return runPipeline(common, dumpNet, render->parsed());
     } catch (const std::runtime_error& e) {  // I/O: cannot write an output
         std::cerr << "relief: error: " << e.what() << '\n';

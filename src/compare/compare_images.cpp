@@ -1,44 +1,142 @@
 #include "compare/compare_images.h"
 
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 #include <fmt/format.h>
 
 namespace relief::compare {
 
+const char* verdictName(Verdict v) {
+    switch (v) {
+        case Verdict::Pass: return "PASS";
+        case Verdict::Warning: return "WARNING";
+        case Verdict::Failure: return "FAILURE";
+        case Verdict::NotComparable: return "NOT COMPARABLE";
+        case Verdict::FileError: return "FILE ERROR";
+    }
+    return "?";
+}
+
+namespace {
+
+bool readImage(const std::filesystem::path& path, OIIO::ImageBuf& buf, std::string& error) {
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) {
+        error = fmt::format("{}: no such file", path.string());
+        return false;
+    }
+    buf.reset(path.string());
+    if (!buf.read(0, 0, true, OIIO::TypeDesc::FLOAT)) {
+        error = fmt::format("{}: cannot read as an image ({})", path.string(), buf.geterror());
+        return false;
+    }
+    return true;
+}
+
+}  // namespace
+
 ImageDifference compareImages(const std::filesystem::path& a, const std::filesystem::path& b,
                               const Thresholds& t) {
     ImageDifference d;
-    OIIO::ImageBuf A(a.string()), B(b.string());
-    if (!A.read(0, 0, true, OIIO::TypeDesc::FLOAT)) {
-        d.error = fmt::format("cannot read {}: {}", a.string(), A.geterror());
-        return d;
-    }
-    if (!B.read(0, 0, true, OIIO::TypeDesc::FLOAT)) {
-        d.error = fmt::format("cannot read {}: {}", b.string(), B.geterror());
+    OIIO::ImageBuf A, B;
+    if (!readImage(a, A, d.error) || !readImage(b, B, d.error)) {
+        d.verdict = Verdict::FileError;
         return d;
     }
     const auto& sa = A.spec();
     const auto& sb = B.spec();
     if (sa.width != sb.width || sa.height != sb.height || sa.nchannels != sb.nchannels) {
-        d.error = fmt::format("{} is {}x{}x{} but {} is {}x{}x{}", a.string(), sa.width,
-                              sa.height, sa.nchannels, b.string(), sb.width, sb.height,
-                              sb.nchannels);
+        d.verdict = Verdict::NotComparable;
+        d.error = fmt::format("not comparable: {} is {} x {} with {} channels, {} is {} x {} with "
+                              "{} channels",
+                              a.string(), sa.width, sa.height, sa.nchannels, b.string(), sb.width,
+                              sb.height, sb.nchannels);
         return d;
     }
-    const auto r = OIIO::ImageBufAlgo::compare(A, B, t.fail, t.fail);
-    d.comparable = true;
-    d.maxError = r.maxerror;
-    d.maxX = r.maxx;
-    d.maxY = r.maxy;
-    d.meanError = r.meanerror;
-    d.rmsError = r.rms_error;
-    d.psnr = r.PSNR;
-    d.failingPixels = static_cast<long long>(r.nfail);
-    d.failingPercent = 100.0 * static_cast<double>(r.nfail) /
-                       (static_cast<double>(sa.width) * sa.height);
-    d.pass = d.failingPercent <= t.failPercent && d.maxError <= t.hardFail;
+    d.width = sa.width;
+    d.height = sa.height;
+    d.channels = sa.nchannels;
+    const double pixels = static_cast<double>(sa.width) * sa.height;
+
+    const auto all = OIIO::ImageBufAlgo::compare(A, B, static_cast<float>(t.fail),
+                                                 static_cast<float>(t.warn));
+    d.maxError = all.maxerror;
+    d.maxX = all.maxx;
+    d.maxY = all.maxy;
+    d.maxChannel = all.maxc;
+    d.meanError = all.meanerror;
+    d.rmsError = all.rms_error;
+    d.psnr = all.PSNR;
+    d.failingPixels = static_cast<long long>(all.nfail);
+    d.warningPixels = static_cast<long long>(all.nwarn);
+    d.failingPercent = 100.0 * static_cast<double>(d.failingPixels) / pixels;
+    d.warningPercent = 100.0 * static_cast<double>(d.warningPixels) / pixels;
+    if (t.hardFail < 1e300) {
+        const auto hard = OIIO::ImageBufAlgo::compare(A, B, static_cast<float>(t.hardFail),
+                                                      static_cast<float>(t.hardFail));
+        d.hardFailingPixels = static_cast<long long>(hard.nfail);
+    }
+    for (int c = 0; c < sa.nchannels; ++c) {
+        OIIO::ROI roi = A.roi();
+        roi.chbegin = c;
+        roi.chend = c + 1;
+        const auto r = OIIO::ImageBufAlgo::compare(A, B, static_cast<float>(t.fail),
+                                                   static_cast<float>(t.warn), roi);
+        const std::string name = c < static_cast<int>(sa.channelnames.size())
+                                     ? sa.channelnames[c]
+                                     : fmt::format("channel {}", c);
+        d.perChannel.push_back({name, r.maxerror, r.maxx, r.maxy, r.meanerror, r.rms_error, r.PSNR});
+    }
+    d.constantA = OIIO::ImageBufAlgo::isConstantColor(A);
+    d.constantB = OIIO::ImageBufAlgo::isConstantColor(B);
+
+    // idiff's rules; --allowfailures lets that many pixels fail by any amount.
+    const double failLimit = std::max(t.failPercent / 100.0 * pixels, static_cast<double>(t.allowFailures));
+    const bool hardFail = d.maxError > t.hardFail && d.hardFailingPixels > t.allowFailures;
+    if (static_cast<double>(d.failingPixels) > failLimit || hardFail)
+        d.verdict = Verdict::Failure;
+    else if (static_cast<double>(d.warningPixels) >
+                 std::max(t.warnPercent / 100.0 * pixels, static_cast<double>(t.allowFailures)) ||
+             (d.maxError > t.hardWarn && d.warningPixels > t.allowFailures))
+        d.verdict = Verdict::Warning;
+    else
+        d.verdict = Verdict::Pass;
     return d;
+}
+
+std::string writeDifferenceImage(const std::filesystem::path& a, const std::filesystem::path& b,
+                                 const std::filesystem::path& out) {
+    OIIO::ImageBuf A, B;
+    std::string error;
+    if (!readImage(a, A, error) || !readImage(b, B, error)) return error;
+    if (A.spec().width != B.spec().width || A.spec().height != B.spec().height ||
+        A.spec().nchannels != B.spec().nchannels)
+        return "images of different sizes have no difference image";
+    OIIO::ImageBuf diff = OIIO::ImageBufAlgo::absdiff(A, B);
+    OIIO::ImageBuf largest = OIIO::ImageBufAlgo::maxchan(diff);
+    float maxValue = 0;
+    {
+        const auto stats = OIIO::ImageBufAlgo::computePixelStats(largest);
+        maxValue = stats.max.empty() ? 0.f : stats.max[0];
+    }
+    if (maxValue > 0) largest = OIIO::ImageBufAlgo::mul(largest, 1.0f / maxValue);
+    OIIO::ImageBuf heat = OIIO::ImageBufAlgo::color_map(largest, 0, "inferno");
+    std::filesystem::path temp = out;
+    temp += fmt::format(".tmp-{}{}", ::getpid(), out.extension().string());
+    if (!heat.write(temp.string(), OIIO::TypeDesc::UINT8)) {
+        std::error_code ec;
+        std::filesystem::remove(temp, ec);
+        return fmt::format("cannot write {}: {}", out.string(), heat.geterror());
+    }
+    std::error_code ec;
+    std::filesystem::rename(temp, out, ec);
+    return ec ? fmt::format("cannot rename into {}: {}", out.string(), ec.message()) : "";
 }
 
 }  // namespace relief::compare
