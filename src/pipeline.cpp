@@ -48,6 +48,7 @@ emit::ParameterList describe(const scene::SceneDesc& s, const geo::ControlNet& n
     add("relief", kVersion);
     add("scene", s.sceneFile.string());
     add("scene_sha1", s.sceneSha1);
+    for (const auto& [k, v] : s.overrides) add("override " + k, v);
     add("samples.path", s.samplesPathAsWritten);
     add("samples.count", std::to_string(net.sampleCount));
     add("frame", net.frame.describe());
@@ -108,9 +109,9 @@ OutputPaths outputPathsFor(const std::filesystem::path& png) {
 }
 
 std::optional<LoadedScene> loadScene(const std::filesystem::path& scenePath,
-                                     Diagnostics& diags) {
+                                     Diagnostics& diags, const scene::SceneOverrides& overrides) {
     const auto t0 = Clock::now();
-    auto desc = scene::readScene(scenePath, diags);
+    auto desc = scene::readScene(scenePath, diags, overrides);
     if (!desc) return std::nullopt;
     LoadedScene loaded;
     loaded.schemeFamily = desc->scheme;
@@ -221,6 +222,51 @@ std::optional<CompileResult> compileScene(const LoadedScene& loaded,
     result.scene = desc;
     result.net = std::move(*net);
     return result;
+}
+
+RenderOutcome renderSceneFile(const RenderJob& job, Diagnostics& diags,
+                              const render::ProgressFn& progress) {
+    RenderOutcome outcome;
+    auto say = [&](const std::string& line) {
+        if (progress) progress(line);
+    };
+    say("reading " + job.scenePath.string());
+    auto loaded = loadScene(job.scenePath, diags, job.overrides);
+    if (!loaded) return outcome;
+    outcome.schemeFamily = loaded->schemeFamily;
+    outcome.certified = certifiedClass(loaded->report);
+    outcome.paths = outputPathsFor(job.png.empty()
+                                       ? defaultPngPath(job.scenePath, loaded->scene.output)
+                                       : job.png);
+    CompileOptions copts;
+    copts.povPath = outcome.paths.pov;
+    copts.templatesDir = job.templatesDir;
+    copts.dumpNetPath = job.dumpNetPath;
+    copts.threads = job.threads;
+    for (const auto& p : {outcome.paths.pov, job.dumpNetPath})
+        if (!p.empty() && p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
+    say(fmt::format("compiling {} ({}, depth {})", job.scenePath.string(), loaded->schemeFamily,
+                    loaded->scene.depth));
+    outcome.compiled = compileScene(*loaded, copts, diags);
+    if (!outcome.compiled) return outcome;
+
+    render::RenderRequest req;
+    req.pov = outcome.paths.pov;
+    req.png = outcome.paths.png;
+    req.width = loaded->scene.width;
+    req.height = loaded->scene.height;
+    req.antialias = loaded->scene.antialias;
+    req.includeDirs = {job.templatesDir};
+    req.threads = job.threads;
+    outcome.render = render::renderPov(req, [&](const std::string& line) { say("povray: " + line); });
+    if (!outcome.render.ok) {
+        outcome.status = JobStatus::ToolFailed;
+        return outcome;
+    }
+    writeFileAtomically(outcome.paths.sidecar,
+                        sidecarJson(*outcome.compiled, outcome.paths, &outcome.render));
+    outcome.status = JobStatus::Ok;
+    return outcome;
 }
 
 std::string sidecarJson(const CompileResult& c, const OutputPaths& paths,

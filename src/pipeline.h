@@ -33,7 +33,8 @@ struct LoadedScene {
 /// parameters), reporting every problem at once, then certifies the scheme's
 /// smoothness; a scheme not proven to converge is a warning unless
 /// subdivision.allow_nonconvergent is set. Nothing is written.
-std::optional<LoadedScene> loadScene(const std::filesystem::path& scenePath, Diagnostics& diags);
+std::optional<LoadedScene> loadScene(const std::filesystem::path& scenePath, Diagnostics& diags,
+                                     const scene::SceneOverrides& overrides = {});
 
 /// "C1 (Hölder ~1.68)" or "convergence not proven (...)".
 std::string certifiedClass(const subdiv::SchemeReport& report);
@@ -74,6 +75,34 @@ struct OutputPaths {
 OutputPaths outputPathsFor(const std::filesystem::path& png);
 std::filesystem::path defaultPngPath(const std::filesystem::path& scenePath,
                                      const std::string& sceneOutput);
+
+/// One scene file all the way to a PNG: what `relief render`, `relief test`
+/// and `relief sweep` do for each still.
+struct RenderJob {
+    std::filesystem::path scenePath;
+    scene::SceneOverrides overrides;
+    std::filesystem::path png;  ///< "" = the scene's [render] output, else out/<scene>.png
+    std::filesystem::path templatesDir;
+    std::filesystem::path dumpNetPath;
+    int threads = 0;            ///< refiner and POV-Ray threads; 0 = all cores
+};
+
+enum class JobStatus { Ok, BadInput, ToolFailed };
+
+struct RenderOutcome {
+    JobStatus status = JobStatus::BadInput;
+    std::string schemeFamily;
+    std::string certified;           ///< e.g. "C1 (Hölder ~1.68)"
+    OutputPaths paths;
+    std::optional<CompileResult> compiled;
+    render::RenderResult render;     ///< POV-Ray's timings and error text
+};
+
+/// Loads, compiles and renders; writes the PNG, the .pov and the JSON sidecar
+/// (atomically; nothing when a stage fails). Diagnostics go to `diags`,
+/// progress lines to `progress` (may be empty).
+RenderOutcome renderSceneFile(const RenderJob& job, Diagnostics& diags,
+                              const render::ProgressFn& progress);
 
 /// The JSON sidecar: inputs, parameters, net size, vertex and triangle
 /// counts, time per stage (and POV-Ray's, when `render` is given).

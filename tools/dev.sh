@@ -16,7 +16,7 @@ esac
 
 packages=(cmake make g++ pkg-config
           libgeographiclib-dev libgdal-dev libopenimageio-dev libtomlplusplus-dev
-          libcli11-dev libfmt-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev povray)
+          libcli11-dev libfmt-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev povray chromium fonts-dejavu-core)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -21,6 +21,8 @@
 #include "subdiv/refine.h"
 #include "curves/curve_file.h"
 #include "compare/compare_images.h"
+#include "regress/regress.h"
+#include <chrono>
 #include "emit/svg.h"
 #include <nlohmann/json.hpp>
 #include "relief/version.h"
@@ -108,45 +110,54 @@ private:
 
 struct CommonOptions {
     std::string scene;
+    std::vector<std::string> sets;  ///< section.key=value overrides
     std::string output;
     std::string templates;
     int threads = 0;
     bool quiet = false;
 };
 
-// `relief compile` and `relief render`: stages 1-4, then (render) POV-Ray.
-int runPipeline(const CommonOptions& o, const std::string& dumpNet, bool render) {
+// KEY=VALUE strings -> scene overrides (`section.key=value`).
+bool parseOverrides(const std::vector<std::string>& list, relief::scene::SceneOverrides& out) {
+    for (const auto& kv : list) {
+        const auto eq = kv.find('=');
+        if (eq == std::string::npos || eq == 0) {
+            std::cerr << "relief: error: " << kv << ": write section.key=value, e.g. subdivision.omega=1/32\n";
+            return false;
+        }
+        out.emplace_back(kv.substr(0, eq), kv.substr(eq + 1));
+    }
+    return true;
+}
+
+// `relief compile`: stages 1-4.
+int runCompile(const CommonOptions& o, const std::string& dumpNet) {
     relief::Diagnostics diags;
     Progress progress(o.quiet);
+    relief::scene::SceneOverrides overrides;
+    if (!parseOverrides(o.sets, overrides)) return code(Exit::BadInput);
     progress.show("reading " + o.scene);
-    auto loaded = relief::loadScene(o.scene, diags);
+    auto loaded = relief::loadScene(o.scene, diags, overrides);
     if (!loaded) {
         progress.done();
         printDiagnostics(diags, false);
         return code(Exit::BadInput);
     }
-    const auto& desc = loaded->scene;
     relief::OutputPaths paths;
-    if (render) {
-        paths = relief::outputPathsFor(
-            o.output.empty() ? relief::defaultPngPath(o.scene, desc.output) : fs::path(o.output));
-    } else {
-        paths.pov = o.output.empty()
-                        ? fs::path("out") / (fs::path(o.scene).stem().string() + ".pov")
-                        : fs::path(o.output);
-        paths.sidecar = paths.pov;
-        paths.sidecar.replace_extension(".json");
-    }
+    paths.pov = o.output.empty() ? fs::path("out") / (fs::path(o.scene).stem().string() + ".pov")
+                                 : fs::path(o.output);
+    paths.sidecar = paths.pov;
+    paths.sidecar.replace_extension(".json");
     relief::CompileOptions copts;
     copts.povPath = paths.pov;
     copts.templatesDir = findTemplates(o.templates);
     copts.dumpNetPath = dumpNet;
     copts.threads = o.threads;
-
     if (!o.quiet)
         std::cerr << fmt::format("scheme {}: {}\n", loaded->schemeFamily,
                                  relief::certifiedClass(loaded->report));
-    progress.show(fmt::format("compiling {} ({}, depth {})", o.scene, loaded->schemeFamily, desc.depth));
+    progress.show(fmt::format("compiling {} ({}, depth {})", o.scene, loaded->schemeFamily,
+                              loaded->scene.depth));
     ensureParent(paths.pov);
     if (!dumpNet.empty()) ensureParent(dumpNet);
     auto compiled = relief::compileScene(*loaded, copts, diags);
@@ -162,35 +173,49 @@ int runPipeline(const CommonOptions& o, const std::string& dumpNet, bool render)
                                  compiled->refinedCols,
                                  2LL * (compiled->refinedRows - 1) * (compiled->refinedCols - 1),
                                  compiled->povBytes / 1e6);
-    if (!render) {
-        relief::writeFileAtomically(paths.sidecar,
-                                    relief::sidecarJson(*compiled, paths, nullptr));
-        return code(Exit::Ok);
-    }
+    relief::writeFileAtomically(paths.sidecar, relief::sidecarJson(*compiled, paths, nullptr));
+    return code(Exit::Ok);
+}
 
-    relief::render::RenderRequest req;
-    req.pov = paths.pov;
-    req.png = paths.png;
-    req.width = desc.width;
-    req.height = desc.height;
-    req.antialias = desc.antialias;
-    req.includeDirs = {copts.templatesDir};
-    req.threads = o.threads;
-    ensureParent(paths.png);
-    auto result = relief::render::renderPov(req, [&](const std::string& line) {
-        progress.show("povray: " + line);
+// `relief render`: compile, then POV-Ray.
+int runRender(const CommonOptions& o, const std::string& dumpNet) {
+    relief::Diagnostics diags;
+    Progress progress(o.quiet);
+    relief::RenderJob job;
+    job.scenePath = o.scene;
+    if (!parseOverrides(o.sets, job.overrides)) return code(Exit::BadInput);
+    job.png = o.output;
+    job.templatesDir = findTemplates(o.templates);
+    job.dumpNetPath = dumpNet;
+    job.threads = o.threads;
+    if (!job.png.empty()) ensureParent(job.png);
+    auto outcome = relief::renderSceneFile(job, diags, [&](const std::string& line) {
+        if (line.rfind("compiling ", 0) == 0 && !o.quiet) {
+            progress.done();
+        }
+        progress.show(line);
     });
     progress.done();
-    if (!result.ok) {
-        std::cerr << "relief: POV-Ray failed on " << paths.pov.string() << ":\n"
-                  << result.error << '\n';
+    if (outcome.status == relief::JobStatus::BadInput) {
+        printDiagnostics(diags, false);
+        return code(Exit::BadInput);
+    }
+    printDiagnostics(diags, true);  // warnings
+    if (outcome.status == relief::JobStatus::ToolFailed) {
+        std::cerr << "relief: POV-Ray failed on " << outcome.paths.pov.string() << ":\n"
+                  << outcome.render.error << '\n';
         return code(Exit::ToolFailed);
     }
-    relief::writeFileAtomically(paths.sidecar, relief::sidecarJson(*compiled, paths, &result));
-    if (!o.quiet)
+    if (!o.quiet) {
+        const auto& c = *outcome.compiled;
+        std::cerr << fmt::format("scheme {}: {}\n", outcome.schemeFamily, outcome.certified);
+        std::cerr << fmt::format("wrote {} ({} x {} vertices, {} triangles, {:.1f} MB)\n",
+                                 outcome.paths.pov.string(), c.refinedRows, c.refinedCols,
+                                 2LL * (c.refinedRows - 1) * (c.refinedCols - 1), c.povBytes / 1e6);
         std::cerr << fmt::format("wrote {} ({} x {}; POV-Ray parse {:.2f} s, trace {:.2f} s)\n",
-                                 paths.png.string(), desc.width, desc.height,
-                                 result.parseSeconds, result.traceSeconds);
+                                 outcome.paths.png.string(), c.scene.width, c.scene.height,
+                                 outcome.render.parseSeconds, outcome.render.traceSeconds);
+    }
     return code(Exit::Ok);
 }
 
@@ -545,6 +570,52 @@ int runDiff(const DiffOptions& o) {
     return static_cast<int>(d.verdict);
 }
 
+struct TestOptions {
+    std::string manifest;
+    std::string report = "out/test-report";
+    std::string templates;
+    int jobs = 2;
+    bool update = false;
+};
+
+// `relief test`: render every case of a manifest, compare, report.
+int runTest(const TestOptions& o) {
+    relief::Diagnostics diags;
+    auto manifest = relief::regress::readManifest(o.manifest, diags);
+    if (!manifest) {
+        printDiagnostics(diags, false);
+        return code(Exit::BadInput);
+    }
+    relief::regress::RunOptions ro;
+    ro.reportDir = o.report;
+    ro.templatesDir = findTemplates(o.templates);
+    ro.jobs = o.jobs;
+    ro.update = o.update;
+    ro.manifestArgument = o.manifest;
+    const auto t0 = std::chrono::steady_clock::now();
+    std::cout << fmt::format("relief test: {} cases from {}, {} render{} at a time\n",
+                             manifest->cases.size(), o.manifest, o.jobs, o.jobs == 1 ? "" : "s");
+    auto results = relief::regress::runCases(
+        *manifest, ro, [](const relief::regress::CaseResult& r, size_t done, size_t total) {
+            std::cout << fmt::format("[{}/{}] {:<7} {} ({:.1f} s): {}\n", done, total,
+                                     relief::regress::statusName(r.status), r.testCase->name,
+                                     r.seconds, r.message)
+                      << std::flush;
+        });
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    relief::regress::writeReport(*manifest, results, ro, wall);
+    size_t failed = 0;
+    for (const auto& r : results)
+        failed += r.status == relief::regress::CaseStatus::Fail ||
+                  r.status == relief::regress::CaseStatus::Error ||
+                  r.status == relief::regress::CaseStatus::New;
+    std::cout << fmt::format("report: {}/index.html (also summary.json, junit.xml)\n", o.report);
+    if (failed && !o.update)
+        std::cout << fmt::format("to accept the new images: relief test {} --update\n", o.manifest);
+    std::cout << fmt::format("{} passed, {} failed\n", results.size() - failed, failed);
+    return failed && !o.update ? 1 : 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -568,6 +639,9 @@ int main(int argc, char** argv) {
         sub->add_option("--threads", common.threads, "refiner and POV-Ray threads (0: all cores)")
             ->check(CLI::Range(0, 256));
         sub->add_flag("-q,--quiet", common.quiet, "print errors only");
+        sub->add_option("--set", common.sets,
+                        "override a scene key: section.key=value (e.g. render.width=320, "
+                        "subdivision.omega=1/32); repeatable");
     };
     CLI::App* compile = app.add_subcommand(
         "compile", "write the POV-Ray scene (.pov) and a JSON sidecar; no rendering");
@@ -624,6 +698,17 @@ int main(int argc, char** argv) {
     diffCmd->add_option("--diff-image", diff.diffImage, "write a heat map of the difference (black: identical)");
     diffCmd->add_flag("--json", diff.json, "print the metrics and the verdict as one JSON object");
 
+    TestOptions test;
+    CLI::App* testCmd = app.add_subcommand(
+        "test", "render every case of a manifest, compare with its reference images, write an "
+                "HTML report (and summary.json, junit.xml); exit 1 when a case fails");
+    testCmd->add_option("manifest", test.manifest, "manifest (TOML): [defaults] and [[case]] entries")->required();
+    testCmd->add_option("--report", test.report, "report folder (default out/test-report)");
+    testCmd->add_option("--jobs,-j", test.jobs, "renders at a time (default 2: measured faster on 2 cores)")
+        ->check(CLI::Range(1, 64));
+    testCmd->add_flag("--update", test.update, "bless the new images of failing or new cases as their references");
+    testCmd->add_option("--templates", test.templates, "folder with scene.pov.in");
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::Success& e) {
@@ -636,7 +721,8 @@ int main(int argc, char** argv) {
         if (checkCmd->parsed()) return runCheck(check);
         if (curveCmd->parsed()) return runCurve(curve);
         if (diffCmd->parsed()) return runDiff(diff);
-        return runPipeline(common, dumpNet, render->parsed());
+        if (testCmd->parsed()) return runTest(test);
+        return render->parsed() ? runRender(common, dumpNet) : runCompile(common, dumpNet);
     } catch (const std::runtime_error& e) {  // I/O: cannot write an output
         std::cerr << "relief: error: " << e.what() << '\n';
         return code(Exit::BadInput);

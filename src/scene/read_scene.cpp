@@ -190,7 +190,46 @@ std::optional<double> parseFraction(std::string_view text) {
     return num / den;
 }
 
-std::optional<SceneDesc> readScene(const std::filesystem::path& path, Diagnostics& diags) {
+namespace {
+
+// Applies `section.key = value` overrides to the parsed document.
+bool applyOverrides(toml::table& root, const SceneOverrides& overrides, Diagnostics& diags) {
+    bool ok = true;
+    for (const auto& [dotted, text] : overrides) {
+        const auto dot = dotted.find('.');
+        if (dot == std::string::npos || dot == 0 || dot + 1 == dotted.size()) {
+            diags.error({}, fmt::format("override \"{}\" must name section.key (e.g. "
+                                        "subdivision.omega)",
+                                        dotted));
+            ok = false;
+            continue;
+        }
+        const std::string section = dotted.substr(0, dot), key = dotted.substr(dot + 1);
+        if (!root.contains(section)) root.insert(section, toml::table{});
+        toml::table* t = root.get_as<toml::table>(section);
+        if (!t) {
+            diags.error({}, fmt::format("override {}: \"{}\" is not a section", dotted, section));
+            ok = false;
+            continue;
+        }
+        char* end = nullptr;
+        const long long i = std::strtoll(text.c_str(), &end, 10);
+        if (!text.empty() && *end == '\0') {
+            t->insert_or_assign(key, static_cast<int64_t>(i));
+            continue;
+        }
+        const double d = std::strtod(text.c_str(), &end);
+        if (!text.empty() && *end == '\0') t->insert_or_assign(key, d);
+        else if (text == "true" || text == "false") t->insert_or_assign(key, text == "true");
+        else t->insert_or_assign(key, text);
+    }
+    return ok;
+}
+
+}  // namespace
+
+std::optional<SceneDesc> readScene(const std::filesystem::path& path, Diagnostics& diags,
+                                   const SceneOverrides& overrides) {
     const std::string file = path.string();
     std::string text;
     try {
@@ -209,8 +248,11 @@ std::optional<SceneDesc> readScene(const std::filesystem::path& path, Diagnostic
         return std::nullopt;
     }
 
+    if (!applyOverrides(root, overrides, diags)) return std::nullopt;
+
     SceneDesc scene;
     scene.sceneFile = path;
+    scene.overrides = overrides;
     {
         OIIO::SHA1 sha(text.data(), text.size());
         scene.sceneSha1 = sha.digest();

@@ -1,6 +1,9 @@
 #pragma once
 #include <filesystem>
 #include <optional>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "core/diagnostics.h"
 #include "scene/scene_desc.h"
@@ -14,7 +17,10 @@ namespace relief::scene {
 /// which callers must not use when `diags.hasErrors()` (they may add their own
 /// checks first, such as the scheme's parameters, so that every problem is
 /// reported at once).
-std::optional<SceneDesc> readScene(const std::filesystem::path& path, Diagnostics& diags);
+/// `overrides` (section.key = value, see SceneOverrides) are applied on top
+/// of the file before validation.
+std::optional<SceneDesc> readScene(const std::filesystem::path& path, Diagnostics& diags,
+                                   const SceneOverrides& overrides = {});
 
 /// Parses a number written as a TOML float/integer or as a string fraction
 /// such as "7/32" or "-1/16". Returns nullopt if it is neither.

@@ -6,6 +6,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/source_loc.h"
@@ -26,9 +27,16 @@ struct ColorRamp {
     std::vector<ColorStop> stops;  ///< custom stops (sorted by elevM), empty for presets
 };
 
+/// `section.key` = value pairs applied on top of a scene file (relief sweep's
+/// --vary, relief test's resolution, --set). Values are typed as TOML would:
+/// an integer, a float, true/false, else a string (fractions such as "7/32"
+/// stay strings, which every numeric key accepts).
+using SceneOverrides = std::vector<std::pair<std::string, std::string>>;
+
 struct SceneDesc {
     std::filesystem::path sceneFile;  ///< as given
     std::string sceneSha1;            ///< hash of the scene file's bytes
+    SceneOverrides overrides;         ///< applied on top of the file
 
     // [samples]
     std::filesystem::path samplesPath;  ///< resolved against the scene file's folder

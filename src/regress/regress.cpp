@@ -1,0 +1,278 @@
+#include "regress/regress.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <mutex>
+#include <set>
+#include <thread>
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include "core/atomic_file.h"
+#include "core/text_distance.h"
+#include "pipeline.h"
+
+namespace relief::regress {
+
+namespace fs = std::filesystem;
+
+const char* statusName(CaseStatus s) {
+    switch (s) {
+        case CaseStatus::Pass: return "PASS";
+        case CaseStatus::Warning: return "WARNING";
+        case CaseStatus::Fail: return "FAIL";
+        case CaseStatus::New: return "NEW";
+        case CaseStatus::Error: return "ERROR";
+    }
+    return "?";
+}
+
+namespace {
+
+SourceLoc locOf(const std::string& file, const toml::source_region& r) {
+    return {file, static_cast<int>(r.begin.line), static_cast<int>(r.begin.column)};
+}
+
+const std::vector<std::string> kCaseKeys{"name",  "scene", "references", "width", "height",
+                                         "fail",  "failpercent", "hardfail", "warn",
+                                         "warnpercent", "hardwarn", "allowfailures"};
+
+// Reads the threshold and size keys of a [defaults] table or a [[case]].
+void readSettings(const toml::table& t, const std::string& file, TestCase& c, Diagnostics& diags) {
+    auto number = [&](const char* key, double& out) {
+        if (const toml::node* n = t.get(key)) {
+            if (auto v = n->value<double>(); v && *v >= 0) out = *v;
+            else diags.error(locOf(file, n->source()), fmt::format("{} must be a number >= 0", key));
+        }
+    };
+    number("fail", c.thresholds.fail);
+    number("failpercent", c.thresholds.failPercent);
+    number("hardfail", c.thresholds.hardFail);
+    number("warn", c.thresholds.warn);
+    number("warnpercent", c.thresholds.warnPercent);
+    number("hardwarn", c.thresholds.hardWarn);
+    double allow = static_cast<double>(c.thresholds.allowFailures);
+    number("allowfailures", allow);
+    c.thresholds.allowFailures = static_cast<long long>(allow);
+    for (auto [key, out] : {std::pair{"width", &c.width}, std::pair{"height", &c.height}})
+        if (const toml::node* n = t.get(key)) {
+            if (auto v = n->value_exact<int64_t>(); v && *v >= 16 && *v <= 4096) *out = static_cast<int>(*v);
+            else diags.error(locOf(file, n->source()), fmt::format("{} must be an integer in [16, 4096] pixels", key));
+        }
+}
+
+void unknownKeys(const toml::table& t, const std::string& file, const std::vector<std::string>& known,
+                 Diagnostics& diags) {
+    for (auto&& [k, v] : t) {
+        const std::string key(k.str());
+        if (std::find(known.begin(), known.end(), key) != known.end()) continue;
+        const std::string best = closestMatch(key, known);
+        diags.error(locOf(file, k.source()),
+                    fmt::format("unknown key \"{}\"{}", key,
+                                best.empty() ? "" : " (did you mean \"" + best + "\"?)"));
+    }
+}
+
+}  // namespace
+
+std::optional<Manifest> readManifest(const fs::path& path, Diagnostics& diags) {
+    const std::string file = path.string();
+    toml::table root;
+    try {
+        root = toml::parse(readFile(path), file);
+    } catch (const toml::parse_error& e) {
+        diags.error(locOf(file, e.source()), fmt::format("invalid TOML: {}", e.description()));
+        return std::nullopt;
+    } catch (const std::exception& e) {
+        diags.error({file, 0, 0}, "cannot read the manifest");
+        return std::nullopt;
+    }
+    Manifest m;
+    m.file = path;
+    TestCase defaults;
+    // Test thresholds: one 8-bit step per channel, 0.02 % of pixels, three steps at most.
+    defaults.thresholds.fail = defaults.thresholds.warn = 0.004;
+    defaults.thresholds.failPercent = 0.02;
+    defaults.thresholds.hardFail = 0.012;
+    unknownKeys(root, file, {"defaults", "case"}, diags);
+    if (const toml::table* d = root.get_as<toml::table>("defaults")) {
+        unknownKeys(*d, file, {"width", "height", "fail", "failpercent", "hardfail", "warn",
+                               "warnpercent", "hardwarn", "allowfailures"}, diags);
+        readSettings(*d, file, defaults, diags);
+    }
+    const toml::array* cases = root.get_as<toml::array>("case");
+    if (!cases || cases->empty()) {
+        diags.error({file, 0, 0}, "no [[case]] entries; add [[case]] name = ..., scene = ..., "
+                                  "references = \"folder/\"");
+        return std::nullopt;
+    }
+    std::set<std::string> names;
+    const fs::path base = path.parent_path();
+    for (const toml::node& node : *cases) {
+        const toml::table* t = node.as_table();
+        if (!t) continue;
+        unknownKeys(*t, file, kCaseKeys, diags);
+        TestCase c = defaults;
+        const auto name = t->get("name") ? t->get("name")->value_exact<std::string>() : std::nullopt;
+        const auto scene = t->get("scene") ? t->get("scene")->value_exact<std::string>() : std::nullopt;
+        const auto refs = t->get("references") ? t->get("references")->value_exact<std::string>() : std::nullopt;
+        if (!name || !scene || !refs) {
+            diags.error(locOf(file, t->source()), "each [[case]] needs name, scene (a scene file) "
+                                                  "and references (a folder of accepted PNGs)");
+            continue;
+        }
+        if (!names.insert(*name).second)
+            diags.error(locOf(file, t->get("name")->source()), fmt::format("case name \"{}\" is used twice", *name));
+        c.name = *name;
+        c.scene = (base / *scene).lexically_normal();
+        c.referenceDir = (base / *refs).lexically_normal();
+        if (!fs::is_regular_file(c.scene))
+            diags.error(locOf(file, t->get("scene")->source()),
+                        fmt::format("scene \"{}\" not found (relative to the manifest)", *scene));
+        readSettings(*t, file, c, diags);
+        m.cases.push_back(std::move(c));
+    }
+    if (diags.hasErrors()) return std::nullopt;
+    return m;
+}
+
+namespace {
+
+std::vector<fs::path> referencesOf(const TestCase& c) {
+    std::vector<fs::path> refs;
+    std::error_code ec;
+    if (fs::is_directory(c.referenceDir, ec))
+        for (const auto& e : fs::directory_iterator(c.referenceDir))
+            if (e.path().extension() == ".png") refs.push_back(e.path());
+    std::sort(refs.begin(), refs.end());
+    return refs;
+}
+
+CaseResult runCase(const TestCase& c, const RunOptions& o, int povThreads) {
+    CaseResult r;
+    r.testCase = &c;
+    const auto t0 = std::chrono::steady_clock::now();
+    const fs::path images = o.reportDir / "images";
+    r.newImage = images / (c.name + ".new.png");
+    RenderJob job;
+    job.scenePath = c.scene;
+    job.overrides = {{"render.width", std::to_string(c.width)}, {"render.height", std::to_string(c.height)}};
+    job.png = r.newImage;
+    job.templatesDir = o.templatesDir;
+    job.threads = povThreads;
+    Diagnostics diags;
+    const RenderOutcome outcome = renderSceneFile(job, diags, nullptr);
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (outcome.status != JobStatus::Ok) {
+        r.status = CaseStatus::Error;
+        for (const auto& d : diags.all())
+            if (d.severity == Severity::Error) r.message += (r.message.empty() ? "" : "; ") + formatDiagnostic(d);
+        if (outcome.status == JobStatus::ToolFailed) r.message = "POV-Ray failed: " + outcome.render.error;
+        return r;
+    }
+    // The .pov and sidecar of a test render are not part of the report.
+    std::error_code ec;
+    fs::remove(outcome.paths.pov, ec);
+    fs::remove(outcome.paths.sidecar, ec);
+
+    const auto refs = referencesOf(c);
+    if (refs.empty()) {
+        r.status = CaseStatus::New;
+        r.message = fmt::format("no reference image in {}", c.referenceDir.string());
+        return r;
+    }
+    bool first = true;
+    for (const auto& ref : refs) {
+        auto d = compare::compareImages(r.newImage, ref, c.thresholds);
+        const bool better = first || (d.pass() && !r.difference.pass()) ||
+                            (d.pass() == r.difference.pass() && d.failingPixels < r.difference.failingPixels);
+        if (better) {
+            r.difference = d;
+            r.referenceName = ref.filename().string();
+            r.referenceImage = ref;
+        }
+        first = false;
+        if (d.verdict == compare::Verdict::Pass) break;
+    }
+    const auto& d = r.difference;
+    r.status = d.verdict == compare::Verdict::Pass      ? CaseStatus::Pass
+               : d.verdict == compare::Verdict::Warning ? CaseStatus::Warning
+                                                        : CaseStatus::Fail;
+    r.message = d.verdict == compare::Verdict::NotComparable || d.verdict == compare::Verdict::FileError
+                    ? d.error
+                    : fmt::format("{}: max error {:.4f} at ({}, {}), {} pixels ({:.3f} %) over {}",
+                                  r.referenceName, d.maxError, d.maxX, d.maxY, d.failingPixels,
+                                  d.failingPercent, c.thresholds.fail);
+    // Copies for the self-contained report, and the difference image.
+    const fs::path refCopy = images / (c.name + ".ref.png");
+    fs::copy_file(r.referenceImage, refCopy, fs::copy_options::overwrite_existing, ec);
+    r.referenceImage = refCopy;
+    if (d.verdict != compare::Verdict::NotComparable && d.verdict != compare::Verdict::FileError) {
+        r.diffImage = images / (c.name + ".diff.png");
+        if (!compare::writeDifferenceImage(r.newImage, refCopy, r.diffImage).empty()) r.diffImage.clear();
+    }
+    return r;
+}
+
+}  // namespace
+
+std::vector<CaseResult> runCases(const Manifest& m, const RunOptions& o, const CaseDoneFn& done) {
+    fs::create_directories(o.reportDir / "images");
+    std::vector<CaseResult> results(m.cases.size());
+    const int jobs = std::max(1, std::min<int>(o.jobs, static_cast<int>(m.cases.size())));
+    const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    const int povThreads = std::max(1, cores / jobs);  // no oversubscription
+    std::atomic<size_t> next{0};
+    std::mutex mutex;
+    std::vector<size_t> finished;
+    auto worker = [&] {
+        for (size_t i = next++; i < m.cases.size(); i = next++) {
+            CaseResult r = runCase(m.cases[i], o, povThreads);
+            std::lock_guard lock(mutex);
+            results[i] = std::move(r);
+            finished.push_back(i);
+        }
+    };
+    std::vector<std::thread> threads;
+    for (int j = 1; j < jobs; ++j) threads.emplace_back(worker);
+    // The calling thread works too, and reports what has finished in between.
+    size_t reported = 0;
+    auto report = [&] {
+        std::vector<size_t> now;
+        {
+            std::lock_guard lock(mutex);
+            now.assign(finished.begin() + static_cast<long>(reported), finished.end());
+        }
+        for (size_t i : now) {
+            ++reported;
+            if (done) done(results[i], reported, m.cases.size());
+        }
+    };
+    for (size_t i = next++; i < m.cases.size(); i = next++) {
+        CaseResult r = runCase(m.cases[i], o, povThreads);
+        {
+            std::lock_guard lock(mutex);
+            results[i] = std::move(r);
+            finished.push_back(i);
+        }
+        report();
+    }
+    for (auto& t : threads) t.join();
+    report();
+
+    if (o.update)
+        for (auto& r : results) {
+            if (r.status != CaseStatus::Fail && r.status != CaseStatus::New) continue;
+            // Bless: the new image replaces the case's references (git shows the change).
+            const fs::path dir = r.testCase->referenceDir;
+            fs::create_directories(dir);
+            for (const auto& old : referencesOf(*r.testCase)) fs::remove(old);
+            fs::copy_file(r.newImage, dir / "ref.png", fs::copy_options::overwrite_existing);
+            r.message += fmt::format("; blessed as {}", (dir / "ref.png").string());
+        }
+    return results;
+}
+
+}  // namespace relief::regress

@@ -1,0 +1,70 @@
+#pragma once
+// `relief test`: the regression suite users run. A manifest (TOML) lists
+// cases (scene, accepted reference images, thresholds, test resolution); each
+// case is rendered, compared with OpenImageIO against every reference (it
+// passes when any one matches), and reported as text, HTML, JSON and JUnit XML.
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "compare/compare_images.h"
+#include "core/diagnostics.h"
+
+namespace relief::regress {
+
+struct TestCase {
+    std::string name;
+    std::filesystem::path scene;                    ///< resolved against the manifest's folder
+    std::filesystem::path referenceDir;             ///< every *.png in it is an accepted reference
+    compare::Thresholds thresholds;
+    int width = 160, height = 120;                  ///< the test resolution
+};
+
+struct Manifest {
+    std::filesystem::path file;
+    std::vector<TestCase> cases;
+};
+
+/// Reads a manifest; reports every problem (unknown keys, missing scenes,
+/// duplicate names) with file:line:col.
+std::optional<Manifest> readManifest(const std::filesystem::path& path, Diagnostics& diags);
+
+enum class CaseStatus { Pass, Warning, Fail, New, Error };
+const char* statusName(CaseStatus s);
+
+struct CaseResult {
+    const TestCase* testCase = nullptr;
+    CaseStatus status = CaseStatus::Error;
+    std::string message;                    ///< one line: why
+    std::filesystem::path newImage;         ///< in the report folder
+    std::filesystem::path referenceImage;   ///< the closest reference (copied into the report)
+    std::filesystem::path diffImage;
+    std::string referenceName;              ///< its file name in the reference folder
+    compare::ImageDifference difference;    ///< against the closest reference
+    double seconds = 0;
+};
+
+struct RunOptions {
+    std::filesystem::path reportDir;        ///< self-contained output folder
+    std::filesystem::path templatesDir;
+    int jobs = 1;                           ///< renders in parallel
+    bool update = false;                    ///< bless new images of failing or new cases
+    std::string manifestArgument;           ///< as typed, for the bless command line
+};
+
+using CaseDoneFn = std::function<void(const CaseResult&, size_t done, size_t total)>;
+
+/// Renders and compares every case; calls `done` as each finishes (from the
+/// calling thread). Results are in manifest order.
+std::vector<CaseResult> runCases(const Manifest& manifest, const RunOptions& options,
+                                 const CaseDoneFn& done);
+
+/// Writes index.html (failed cases first; new, reference and difference images
+/// side by side; hover the new image to see the reference), summary.json and
+/// junit.xml into the report folder.
+void writeReport(const Manifest& manifest, const std::vector<CaseResult>& results,
+                 const RunOptions& options, double wallSeconds);
+
+}  // namespace relief::regress

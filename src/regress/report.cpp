@@ -1,0 +1,160 @@
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "core/atomic_file.h"
+#include "regress/regress.h"
+
+namespace relief::regress {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string escape(const std::string& s) {
+    std::string out;
+    for (char c : s) {
+        switch (c) {
+            case '&': out += "&amp;"; break;
+            case '<': out += "&lt;"; break;
+            case '>': out += "&gt;"; break;
+            case '"': out += "&quot;"; break;
+            default: out += c;
+        }
+    }
+    return out;
+}
+
+std::string rel(const fs::path& p, const fs::path& base) {
+    return p.empty() ? "" : fs::relative(p, base).generic_string();
+}
+
+bool failed(CaseStatus s) { return s == CaseStatus::Fail || s == CaseStatus::Error || s == CaseStatus::New; }
+
+std::string number(double v) { return std::isfinite(v) ? fmt::format("{:.6g}", v) : "inf"; }
+
+}  // namespace
+
+void writeReport(const Manifest& m, const std::vector<CaseResult>& results, const RunOptions& o,
+                 double wallSeconds) {
+    // Failed cases first, then the rest in manifest order.
+    std::vector<const CaseResult*> order;
+    for (const auto& r : results) order.push_back(&r);
+    std::stable_sort(order.begin(), order.end(), [](const CaseResult* a, const CaseResult* b) {
+        return failed(a->status) && !failed(b->status);
+    });
+    size_t nFailed = 0;
+    for (const auto& r : results) nFailed += failed(r.status);
+    const std::string bless = fmt::format("relief test {} --update", o.manifestArgument);
+
+    std::string h;
+    h += "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n";
+    h += fmt::format("<title>relief test: {} passed, {} failed</title>\n", results.size() - nFailed, nFailed);
+    h += R"(<style>
+body { font-family: sans-serif; margin: 1.5em; color: #222; }
+h1 { font-size: 1.3em; } .summary { font-size: 1.1em; margin-bottom: 1em; }
+.case { border: 1px solid #ccc; border-radius: 6px; padding: 0.8em; margin: 1em 0; }
+.case.fail, .case.error, .case.new { border-color: #c62828; background: #fff5f5; }
+.status { font-weight: bold; } .fail .status, .error .status, .new .status { color: #c62828; }
+.pass .status { color: #2e7d32; } .warning .status { color: #ef6c00; }
+.images { display: flex; gap: 1em; flex-wrap: wrap; }
+figure { margin: 0; } figcaption { font-size: 0.85em; color: #555; }
+.blink { position: relative; display: inline-block; }
+.blink img.reference-under { position: absolute; left: 0; top: 0; opacity: 0; }
+.blink:hover img.reference-under { opacity: 1; }
+table.metrics { border-collapse: collapse; font-size: 0.9em; margin-top: 0.5em; }
+table.metrics td, table.metrics th { border: 1px solid #ddd; padding: 2px 8px; text-align: right; }
+code { background: #f2f2f2; padding: 2px 4px; }
+</style></head><body>
+)";
+    h += fmt::format("<h1>relief test — {}</h1>\n", escape(m.file.string()));
+    h += fmt::format("<p class=\"summary\" id=\"summary\">{} passed, {} failed, {} cases in {:.1f} s</p>\n",
+                     results.size() - nFailed, nFailed, results.size(), wallSeconds);
+    if (nFailed)
+        h += fmt::format("<p>To accept the new images of the failing cases as references: "
+                         "<code id=\"bless\">{}</code></p>\n",
+                         escape(bless));
+    for (const CaseResult* r : order) {
+        const TestCase& c = *r->testCase;
+        std::string cls = statusName(r->status);
+        std::transform(cls.begin(), cls.end(), cls.begin(), [](unsigned char ch) { return std::tolower(ch); });
+        h += fmt::format("<div class=\"case {}\" data-case=\"{}\">\n<h2><span class=\"status\">{}</span> {}</h2>\n",
+                         cls, escape(c.name), statusName(r->status), escape(c.name));
+        h += fmt::format("<p>{} — scene <code>{}</code>, {} x {}, {:.1f} s</p>\n", escape(r->message),
+                         escape(c.scene.string()), c.width, c.height, r->seconds);
+        h += "<div class=\"images\">\n";
+        const std::string newImg = rel(r->newImage, o.reportDir), refImg = rel(r->referenceImage, o.reportDir),
+                          diffImg = rel(r->diffImage, o.reportDir);
+        if (!newImg.empty() && fs::exists(r->newImage)) {
+            h += "<figure><div class=\"blink\">";
+            h += fmt::format("<img class=\"new\" src=\"{}\" alt=\"new\">", newImg);
+            if (!refImg.empty())
+                h += fmt::format("<img class=\"reference-under\" src=\"{}\" alt=\"reference (hover)\">", refImg);
+            h += "</div><figcaption>new (hover: reference)</figcaption></figure>\n";
+        }
+        if (!refImg.empty())
+            h += fmt::format("<figure><img class=\"reference\" src=\"{}\" alt=\"reference\"><figcaption>"
+                             "reference {}</figcaption></figure>\n",
+                             refImg, escape(r->referenceName));
+        if (!diffImg.empty())
+            h += fmt::format("<figure><img class=\"difference\" src=\"{}\" alt=\"difference\"><figcaption>"
+                             "difference (black: identical; scaled to the largest)</figcaption></figure>\n",
+                             diffImg);
+        h += "</div>\n";
+        if (r->difference.width > 0) {
+            const auto& d = r->difference;
+            const auto& t = c.thresholds;
+            h += "<table class=\"metrics\"><tr><th>max error</th><th>at</th><th>mean</th><th>RMS</th><th>PSNR</th>"
+                 "<th>pixels over fail</th><th>fail</th><th>failpercent</th><th>hardfail</th></tr>\n";
+            h += fmt::format("<tr><td>{}</td><td>({}, {})</td><td>{}</td><td>{}</td><td>{}</td><td>{} ({:.3f} %)</td>"
+                             "<td>{}</td><td>{}</td><td>{}</td></tr></table>\n",
+                             number(d.maxError), d.maxX, d.maxY, number(d.meanError), number(d.rmsError),
+                             number(d.psnr), d.failingPixels, d.failingPercent, number(t.fail),
+                             number(t.failPercent), number(t.hardFail));
+        }
+        h += "</div>\n";
+    }
+    h += "</body></html>\n";
+    writeFileAtomically(o.reportDir / "index.html", h);
+
+    nlohmann::ordered_json j;
+    j["manifest"] = m.file.string();
+    j["passed"] = results.size() - nFailed;
+    j["failed"] = nFailed;
+    j["seconds"] = wallSeconds;
+    j["jobs"] = o.jobs;
+    nlohmann::ordered_json cases = nlohmann::ordered_json::array();
+    for (const auto& r : results) {
+        nlohmann::ordered_json cj{{"name", r.testCase->name}, {"status", statusName(r.status)},
+                                  {"message", r.message}, {"seconds", r.seconds},
+                                  {"new", rel(r.newImage, o.reportDir)}, {"reference", r.referenceName}};
+        if (r.difference.width > 0)
+            cj["metrics"] = {{"max_error", r.difference.maxError},
+                             {"failing_pixels", r.difference.failingPixels},
+                             {"failing_percent", r.difference.failingPercent},
+                             {"mean_error", r.difference.meanError}};
+        cases.push_back(cj);
+    }
+    j["cases"] = cases;
+    if (nFailed) j["bless"] = bless;
+    writeFileAtomically(o.reportDir / "summary.json", j.dump(2) + "\n");
+
+    std::string x = fmt::format("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuite name=\"relief\" "
+                                "tests=\"{}\" failures=\"{}\" time=\"{:.3f}\">\n",
+                                results.size(), nFailed, wallSeconds);
+    for (const auto& r : results) {
+        x += fmt::format("  <testcase classname=\"relief.{}\" name=\"{}\" time=\"{:.3f}\"",
+                         escape(m.file.stem().string()), escape(r.testCase->name), r.seconds);
+        if (failed(r.status))
+            x += fmt::format(">\n    <failure message=\"{}\">{}</failure>\n  </testcase>\n",
+                             escape(statusName(r.status)), escape(r.message));
+        else
+            x += "/>\n";
+    }
+    x += "</testsuite>\n";
+    writeFileAtomically(o.reportDir / "junit.xml", x);
+}
+
+}  // namespace relief::regress
