@@ -22,6 +22,7 @@
 #include "curves/curve_file.h"
 #include "compare/compare_images.h"
 #include "regress/regress.h"
+#include "figures/sweep.h"
 #include <chrono>
 #include "emit/svg.h"
 #include <nlohmann/json.hpp>
@@ -616,6 +617,75 @@ int runTest(const TestOptions& o) {
     return failed && !o.update ? 1 : 0;
 }
 
+struct SweepOptions {
+    CommonOptions common;
+    std::vector<std::string> vary;
+    int columns = 0;
+};
+
+// `relief sweep`: one still per parameter combination, then a contact sheet.
+int runSweep(const SweepOptions& o) {
+    std::vector<relief::figures::Variation> variations;
+    for (const auto& v : o.vary) {
+        const auto eq = v.find('=');
+        if (eq == std::string::npos || eq == 0 || eq + 1 == v.size()) {
+            std::cerr << "relief: error: --vary " << v << ": write section.key=V1,V2,...\n";
+            return code(Exit::BadInput);
+        }
+        variations.push_back({v.substr(0, eq), split(v.substr(eq + 1), ',')});
+    }
+    relief::scene::SceneOverrides base;
+    if (!parseOverrides(o.common.sets, base)) return code(Exit::BadInput);
+    const auto combos = relief::figures::combinations(variations);
+    const std::string stem = fs::path(o.common.scene).stem().string();
+    const fs::path sheet = o.common.output.empty() ? fs::path("out") / (stem + "-sweep.png")
+                                                   : fs::path(o.common.output);
+    const fs::path stills = sheet.parent_path() / (sheet.stem().string() + "-stills");
+    fs::create_directories(stills);
+    std::vector<relief::figures::Tile> tiles;
+    for (size_t i = 0; i < combos.size(); ++i) {
+        std::string label;
+        for (const auto& [k, v] : combos[i])
+            label += fmt::format("{}{} = {}", label.empty() ? "" : ", ", k.substr(k.find('.') + 1), v);
+        relief::RenderJob job;
+        job.scenePath = o.common.scene;
+        job.overrides = base;
+        job.overrides.insert(job.overrides.end(), combos[i].begin(), combos[i].end());
+        job.png = stills / fmt::format("{:03}.png", i + 1);
+        job.templatesDir = findTemplates(o.common.templates);
+        job.threads = o.common.threads;
+        Progress progress(o.common.quiet);
+        progress.show(fmt::format("[{}/{}] {}", i + 1, combos.size(), label));
+        relief::Diagnostics diags;
+        const auto outcome = relief::renderSceneFile(job, diags, [&](const std::string& line) {
+            if (line.rfind("povray: Rendered", 0) == 0)
+                progress.show(fmt::format("[{}/{}] {}: {}", i + 1, combos.size(), label, line.substr(8)));
+        });
+        progress.done();
+        if (outcome.status != relief::JobStatus::Ok) {
+            printDiagnostics(diags, false);
+            if (outcome.status == relief::JobStatus::ToolFailed)
+                std::cerr << "relief: POV-Ray failed:\n" << outcome.render.error << '\n';
+            return code(outcome.status == relief::JobStatus::ToolFailed ? Exit::ToolFailed : Exit::BadInput);
+        }
+        printDiagnostics(diags, true);
+        if (!o.common.quiet)
+            std::cerr << fmt::format("[{}/{}] {} -> {} ({})\n", i + 1, combos.size(), label,
+                                     outcome.paths.png.string(), outcome.certified);
+        tiles.push_back({outcome.paths.png, fmt::format("{}\n{}", label, outcome.certified)});
+    }
+    const int columns = o.columns > 0 ? o.columns
+                                      : (variations.empty() ? 1 : static_cast<int>(variations[0].values.size()));
+    const std::string err = relief::figures::writeContactSheet(tiles, columns, fs::path(o.common.scene).filename().string(), sheet);
+    if (!err.empty() && err.rfind("warning", 0) != 0) {
+        std::cerr << "relief: error: " << err << '\n';
+        return code(Exit::BadInput);
+    }
+    if (!err.empty()) std::cerr << "relief: " << err << '\n';
+    std::cerr << "wrote " << sheet.string() << " (" << tiles.size() << " stills)\n";
+    return code(Exit::Ok);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -709,6 +779,19 @@ int main(int argc, char** argv) {
     testCmd->add_flag("--update", test.update, "bless the new images of failing or new cases as their references");
     testCmd->add_option("--templates", test.templates, "folder with scene.pov.in");
 
+    SweepOptions sweep;
+    CLI::App* sweepCmd = app.add_subcommand(
+        "sweep", "render one still per combination of --vary values and assemble a labelled "
+                 "contact sheet (one PNG)");
+    sweepCmd->add_option("scene", sweep.common.scene, "scene file (TOML)")->required();
+    sweepCmd->add_option("--vary", sweep.vary, "section.key=V1,V2,... (fractions allowed); repeatable")->required();
+    sweepCmd->add_option("--set", sweep.common.sets, "fixed override section.key=value; repeatable");
+    sweepCmd->add_option("-o,--output", sweep.common.output, "contact sheet (default out/<scene>-sweep.png)");
+    sweepCmd->add_option("--columns", sweep.columns, "tiles per row (default: the first --vary's count)");
+    sweepCmd->add_option("--templates", sweep.common.templates, "folder with scene.pov.in");
+    sweepCmd->add_option("--threads", sweep.common.threads, "threads (0: all cores)");
+    sweepCmd->add_flag("-q,--quiet", sweep.common.quiet, "print errors only");
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::Success& e) {
@@ -722,6 +805,7 @@ int main(int argc, char** argv) {
         if (curveCmd->parsed()) return runCurve(curve);
         if (diffCmd->parsed()) return runDiff(diff);
         if (testCmd->parsed()) return runTest(test);
+        if (sweepCmd->parsed()) return runSweep(sweep);
         return render->parsed() ? runRender(common, dumpNet) : runCompile(common, dumpNet);
     } catch (const std::runtime_error& e) {  // I/O: cannot write an output
         std::cerr << "relief: error: " << e.what() << '\n';

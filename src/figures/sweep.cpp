@@ -1,0 +1,101 @@
+#include "figures/sweep.h"
+
+#include <unistd.h>
+
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+#include <fmt/format.h>
+
+namespace relief::figures {
+
+namespace fs = std::filesystem;
+
+namespace {
+constexpr const char* kFonts[] = {"/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf",
+                                  "/usr/share/fonts/dejavu/DejaVuSans.ttf"};
+std::string findFont() {
+    for (const char* f : kFonts)
+        if (fs::exists(f)) return f;
+    return "";
+}
+}  // namespace
+
+std::vector<std::vector<std::pair<std::string, std::string>>> combinations(
+    const std::vector<Variation>& variations) {
+    std::vector<std::vector<std::pair<std::string, std::string>>> out;
+    std::vector<size_t> index(variations.size(), 0);  // an odometer, first digit fastest
+    for (const auto& v : variations)
+        if (v.values.empty()) return out;
+    while (true) {
+        std::vector<std::pair<std::string, std::string>> combo;
+        for (size_t k = 0; k < variations.size(); ++k)
+            combo.emplace_back(variations[k].key, variations[k].values[index[k]]);
+        out.push_back(std::move(combo));
+        size_t k = 0;
+        while (k < variations.size() && ++index[k] == variations[k].values.size()) index[k++] = 0;
+        if (k == variations.size()) break;
+    }
+    return out;
+}
+
+std::string writeContactSheet(const std::vector<Tile>& tiles, int columns, const std::string& title,
+                              const fs::path& out) {
+    if (tiles.empty()) return "no stills to assemble";
+    std::vector<OIIO::ImageBuf> images;
+    int tileW = 0, tileH = 0;
+    for (const auto& t : tiles) {
+        OIIO::ImageBuf b(t.image.string());
+        if (!b.read(0, 0, true, OIIO::TypeDesc::FLOAT)) return fmt::format("cannot read {}", t.image.string());
+        tileW = std::max(tileW, b.spec().width);
+        tileH = std::max(tileH, b.spec().height);
+        images.push_back(std::move(b));
+    }
+    const int cols = columns > 0 ? columns : static_cast<int>(tiles.size());
+    const int rows = (static_cast<int>(tiles.size()) + cols - 1) / cols;
+    const int pad = 12, labelH = 46, titleH = title.empty() ? 0 : 44;
+    const int W = cols * tileW + (cols + 1) * pad;
+    const int H = titleH + rows * (tileH + labelH) + (rows + 1) * pad;
+    OIIO::ImageBuf sheet(OIIO::ImageSpec(W, H, 3, OIIO::TypeDesc::FLOAT));
+    const float white[3] = {1, 1, 1}, black[3] = {0.1f, 0.1f, 0.1f};
+    OIIO::ImageBufAlgo::fill(sheet, white);
+    const std::string font = findFont();
+    if (!title.empty() && !font.empty())
+        OIIO::ImageBufAlgo::render_text(sheet, pad, pad + 26, title, 22, font, black);
+    for (size_t i = 0; i < images.size(); ++i) {
+        const int c = static_cast<int>(i) % cols, r = static_cast<int>(i) / cols;
+        const int x = pad + c * (tileW + pad), y = titleH + pad + r * (tileH + labelH + pad);
+        OIIO::ImageBuf rgb = OIIO::ImageBufAlgo::channels(images[i], 3, {0, 1, 2});
+        OIIO::ImageBufAlgo::paste(sheet, x, y, 0, 0, rgb);
+        if (!font.empty()) {
+            // Drawn into a label strip of the tile's width, so long text is
+            // clipped there instead of running into the next tile.
+            OIIO::ImageBuf strip(OIIO::ImageSpec(tileW, labelH, 3, OIIO::TypeDesc::FLOAT));
+            OIIO::ImageBufAlgo::fill(strip, white);
+            // OIIO 2.4's render_text takes bytes, not UTF-8: spell o-umlaut plainly.
+            std::string label;
+            for (size_t k = 0; k < tiles[i].label.size(); ++k) {
+                if (tiles[i].label.compare(k, 2, "\xc3\xb6") == 0) {
+                    label.push_back('o');
+                    ++k;
+                } else {
+                    label.push_back(tiles[i].label[k]);
+                }
+            }
+            OIIO::ImageBufAlgo::render_text(strip, 2, 18, label, 15, font, black);
+            OIIO::ImageBufAlgo::paste(sheet, x, y + tileH, 0, 0, strip);
+        }
+    }
+    fs::path temp = out;
+    temp += fmt::format(".tmp-{}.png", ::getpid());
+    if (!sheet.write(temp.string(), OIIO::TypeDesc::UINT8)) {
+        std::error_code ec;
+        fs::remove(temp, ec);
+        return fmt::format("cannot write {}: {}", out.string(), sheet.geterror());
+    }
+    std::error_code ec;
+    fs::rename(temp, out, ec);
+    if (ec) return fmt::format("cannot rename into {}: {}", out.string(), ec.message());
+    return font.empty() ? "warning: no DejaVu Sans font (apt-get install fonts-dejavu-core): labels left out" : "";
+}
+
+}  // namespace relief::figures
