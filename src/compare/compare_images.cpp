@@ -32,7 +32,7 @@ bool readImage(const std::filesystem::path& path, OIIO::ImageBuf& buf, std::stri
         return false;
     }
     buf.reset(path.string());
-    if (!buf.read(0, 0, true, OIIO::TypeDesc::FLOAT)) {
+    if (!buf.read(0, 0, true)) {  // native pixel type: no float copy of the image
         error = fmt::format("{}: cannot read as an image ({})", path.string(), buf.geterror());
         return false;
     }
