@@ -147,3 +147,122 @@ void BM_Mesh2Fprintf(benchmark::State& state) {
 BENCHMARK(BM_Mesh2Fprintf)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
+
+// ---- Hausdorff distance (paper 003): exact method against dense sampling ----
+#include <cmath>
+#include <random>
+
+#include <fmt/format.h>
+
+#include "curves/hausdorff.h"
+
+namespace {
+
+using relief::curves::Point2;
+using relief::curves::PiecewiseBezier;
+
+PiecewiseBezier randomClosedBSpline(unsigned seed, double radius) {
+    std::mt19937 rng(seed);
+    std::normal_distribution<double> n(0, 1);
+    std::vector<Point2> p;
+    for (int i = 0; i < 90; ++i) {
+        const double a = 2 * M_PI * i / 90, r = radius * (1 + 0.15 * n(rng));
+        p.push_back({r * std::cos(a), r * std::sin(a)});
+    }
+    return relief::curves::toBezier({"bspline3", true, p});
+}
+
+PiecewiseBezier randomOpenBezier(unsigned seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(-8, 8);
+    std::vector<Point2> p;
+    for (int i = 0; i < 8; ++i) p.push_back({u(rng), u(rng)});
+    return relief::curves::toBezier({"bezier", false, p});
+}
+
+std::vector<Point2> sample(const PiecewiseBezier& c, int total) {
+    std::vector<Point2> out;
+    const int per = std::max(1, total / static_cast<int>(c.segments.size()));
+    for (const auto& s : c.segments)
+        for (int k = 0; k < per; ++k) out.push_back(relief::curves::evaluate(s, double(k) / per));
+    return out;
+}
+
+// The sampled answer: max over A's samples of the distance to the nearest of
+// B's samples, with a 2-d tree for the nearest-point search (built once per
+// call, as a sampling approach must).
+struct KdTree {
+    std::vector<Point2> pts;  // reordered: each subtree is a contiguous range, its median in the middle
+    explicit KdTree(std::vector<Point2> p) : pts(std::move(p)) { build(0, pts.size(), 0); }
+    void build(size_t lo, size_t hi, int axis) {
+        if (hi - lo <= 1) return;
+        const size_t mid = (lo + hi) / 2;
+        std::nth_element(pts.begin() + long(lo), pts.begin() + long(mid), pts.begin() + long(hi),
+                         [axis](const Point2& u, const Point2& v) { return axis ? u.y < v.y : u.x < v.x; });
+        build(lo, mid, 1 - axis);
+        build(mid + 1, hi, 1 - axis);
+    }
+    void nearest(Point2 q, size_t lo, size_t hi, int axis, double& best) const {
+        if (lo >= hi) return;
+        const size_t mid = (lo + hi) / 2;
+        const Point2& m = pts[mid];
+        best = std::min(best, std::hypot(q.x - m.x, q.y - m.y));
+        const double d = axis ? q.y - m.y : q.x - m.x;
+        if (d < 0) {
+            nearest(q, lo, mid, 1 - axis, best);
+            if (-d < best) nearest(q, mid + 1, hi, 1 - axis, best);
+        } else {
+            nearest(q, mid + 1, hi, 1 - axis, best);
+            if (d < best) nearest(q, lo, mid, 1 - axis, best);
+        }
+    }
+};
+
+double sampledOneSided(const std::vector<Point2>& A, const std::vector<Point2>& B) {
+    const KdTree tree(B);
+    double h = 0;
+    for (const auto& a : A) {
+        double best = 1e300;
+        tree.nearest(a, 0, tree.pts.size(), 0, best);
+        h = std::max(h, best);
+    }
+    return h;
+}
+
+struct CurvePair {
+    PiecewiseBezier a, b;
+};
+const CurvePair& pairFor(int which) {
+    static const CurvePair openVsClosed{randomOpenBezier(7), randomClosedBSpline(11, 6)};
+    static const CurvePair closedVsClosed{randomClosedBSpline(5, 10), randomClosedBSpline(6, 10.5)};
+    return which == 0 ? openVsClosed : closedVsClosed;
+}
+
+void BM_HausdorffExact(benchmark::State& state) {
+    const auto& p = pairFor(static_cast<int>(state.range(0)));
+    for (auto _ : state) {
+        const auto r = relief::curves::hausdorff(p.a, p.b);
+        benchmark::DoNotOptimize(r.H);
+    }
+    state.SetLabel(fmt::format("H={:.12f}", relief::curves::hausdorff(p.a, p.b).H));
+}
+BENCHMARK(BM_HausdorffExact)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
+// Dense sampling with range(1) points per curve; the counter "error" is the
+// sampled H minus the exact H (the sampled answer is never above it).
+void BM_HausdorffSampled(benchmark::State& state) {
+    const auto& p = pairFor(static_cast<int>(state.range(0)));
+    const int n = static_cast<int>(state.range(1));
+    const double exact = relief::curves::hausdorff(p.a, p.b).H;
+    double H = 0;
+    for (auto _ : state) {
+        const auto sa = sample(p.a, n), sb = sample(p.b, n);
+        H = std::max(sampledOneSided(sa, sb), sampledOneSided(sb, sa));
+        benchmark::DoNotOptimize(H);
+    }
+    state.SetLabel(fmt::format("H={:.12f} error={:+.3e}", H, H - exact));
+}
+BENCHMARK(BM_HausdorffSampled)->Args({0, 10000})->Args({0, 100000})->Args({1, 10000})->Args({1, 100000})
+    ->Unit(benchmark::kMillisecond);
+
+}  // namespace

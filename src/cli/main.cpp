@@ -20,6 +20,7 @@
 #include "subdiv/analysis.h"
 #include "subdiv/refine.h"
 #include "curves/curve_file.h"
+#include "curves/hausdorff.h"
 #include "compare/compare_images.h"
 #include "regress/regress.h"
 #include "figures/sweep.h"
@@ -686,6 +687,59 @@ int runSweep(const SweepOptions& o) {
     return code(Exit::Ok);
 }
 
+struct HausdorffOptions {
+    std::string a, b;
+    bool json = false;
+};
+
+// `relief hausdorff`: exact h(A, B), h(B, A) and H with witnesses.
+int runHausdorff(const HausdorffOptions& o) {
+    relief::Diagnostics diags;
+    auto fa = relief::curves::readCurveFile(o.a, diags);
+    auto fb = relief::curves::readCurveFile(o.b, diags);
+    if (!fa || !fb) {
+        printDiagnostics(diags, false);
+        return code(Exit::BadInput);
+    }
+    const auto A = relief::curves::toBezier(*fa), B = relief::curves::toBezier(*fb);
+    const auto r = relief::curves::hausdorff(A, B);
+    auto side = [](const relief::curves::OneSided& s) {
+        nlohmann::ordered_json j{{"value", s.value},
+                                 {"case", relief::curves::caseName(s.kind)},
+                                 {"point", {s.a.x, s.a.y}},
+                                 {"param", s.paramA},
+                                 {"foot", {s.foot.point.x, s.foot.point.y}},
+                                 {"foot_param", s.foot.param}};
+        if (s.kind == relief::curves::WitnessCase::OneToTwo)
+            j["second_foot"] = {{"point", {s.secondFoot.point.x, s.secondFoot.point.y}},
+                                {"param", s.secondFoot.param}};
+        return j;
+    };
+    if (o.json) {
+        nlohmann::ordered_json j;
+        j["h_ab"] = r.ab.value;
+        j["h_ba"] = r.ba.value;
+        j["H"] = r.H;
+        j["witness_ab"] = side(r.ab);
+        j["witness_ba"] = side(r.ba);
+        std::cout << j.dump(2) << '\n';
+        return code(Exit::Ok);
+    }
+    auto print = [](const char* name, const relief::curves::OneSided& s, const char* from, const char* to) {
+        std::cout << fmt::format("{} = {:.12g}  ({})\n", name, s.value, relief::curves::caseName(s.kind));
+        std::cout << fmt::format("    on {}: ({:.12g}, {:.12g}) at parameter {:.12g}\n", from, s.a.x, s.a.y, s.paramA);
+        std::cout << fmt::format("    on {}: ({:.12g}, {:.12g}) at parameter {:.12g}\n", to, s.foot.point.x,
+                                 s.foot.point.y, s.foot.param);
+        if (s.kind == relief::curves::WitnessCase::OneToTwo)
+            std::cout << fmt::format("    and    ({:.12g}, {:.12g}) at parameter {:.12g}\n",
+                                     s.secondFoot.point.x, s.secondFoot.point.y, s.secondFoot.param);
+    };
+    print("h(A, B)", r.ab, "A", "B");
+    print("h(B, A)", r.ba, "B", "A");
+    std::cout << fmt::format("H = {:.12g}\n", r.H);
+    return code(Exit::Ok);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -792,6 +846,14 @@ int main(int argc, char** argv) {
     sweepCmd->add_option("--threads", sweep.common.threads, "threads (0: all cores)");
     sweepCmd->add_flag("-q,--quiet", sweep.common.quiet, "print errors only");
 
+    HausdorffOptions hd;
+    CLI::App* hdCmd = app.add_subcommand(
+        "hausdorff", "exact Hausdorff distance between two planar curves (paper 003): h(A,B), "
+                     "h(B,A), H, the witness points and which of the four cases each is");
+    hdCmd->add_option("a", hd.a, "curve file A (docs/curve-format.md)")->required();
+    hdCmd->add_option("b", hd.b, "curve file B")->required();
+    hdCmd->add_flag("--json", hd.json, "one JSON object with h_ab, h_ba, H and the witnesses");
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::Success& e) {
@@ -806,6 +868,7 @@ int main(int argc, char** argv) {
         if (diffCmd->parsed()) return runDiff(diff);
         if (testCmd->parsed()) return runTest(test);
         if (sweepCmd->parsed()) return runSweep(sweep);
+        if (hdCmd->parsed()) return runHausdorff(hd);
         return render->parsed() ? runRender(common, dumpNet) : runCompile(common, dumpNet);
     } catch (const std::runtime_error& e) {  // I/O: cannot write an output
         std::cerr << "relief: error: " << e.what() << '\n';
