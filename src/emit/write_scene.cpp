@@ -84,32 +84,19 @@ Vec3 direction(double azimuthDeg, double altitudeDeg) {
 
 size_t writeMesh2(const Mesh& mesh, std::FILE* out) {
     auto w = std::make_unique<BlockWriter>(out);
-    const size_t n = mesh.positions.size();
-    w->put("mesh2 {\n  vertex_vectors {\n    ");
-    {
-        char* p = w->reserve(24);
-        p = writeUnsigned(p, n);
-        w->commit(p);
-    }
-    for (size_t i = 0; i < n; ++i) {
-        char* p = w->reserve(128);
-        *p++ = ',';
-        *p++ = '\n';
-        p = writeVector(p, mesh.positions[i], kPositionDecimals);
-        w->commit(p);
-    }
-    w->put("\n  }\n  normal_vectors {\n    ");
-    {
-        char* p = w->reserve(24);
-        w->commit(writeUnsigned(p, n));
-    }
-    for (size_t i = 0; i < n; ++i) {
-        char* p = w->reserve(128);
-        *p++ = ',';
-        *p++ = '\n';
-        p = writeVector(p, mesh.normals[i], kNormalDecimals);
-        w->commit(p);
-    }
+    // `name { count, <x,y,z>, ... }` for the vertex and the normal arrays.
+    auto vectorSection = [&](const char* open, const std::vector<Vec3>& vectors, int decimals) {
+        w->put(open);
+        w->commit(writeUnsigned(w->reserve(24), vectors.size()));
+        for (const Vec3& v : vectors) {
+            char* p = w->reserve(128);
+            *p++ = ',';
+            *p++ = '\n';
+            w->commit(writeVector(p, v, decimals));
+        }
+    };
+    vectorSection("mesh2 {\n  vertex_vectors {\n    ", mesh.positions, kPositionDecimals);
+    vectorSection("\n  }\n  normal_vectors {\n    ", mesh.normals, kNormalDecimals);
     w->put("\n  }\n  texture_list {\n    ");
     {
         char* p = w->reserve(24);
