@@ -299,7 +299,9 @@ std::optional<Scheme> makeScheme(const std::string& name, const SourceLoc& nameL
             list += (list.empty() ? "" : ", ") + ("\"" + f.name + "\"");
         }
         const std::string best = closestMatch(name, names);
-        diags.error(nameLoc, fmt::format("unknown subdivision scheme \"{}\"{}; known: {}", name,
+        diags.error(nameLoc, fmt::format("unknown subdivision scheme \"{}\"{}; known: {}, or "
+                                         "\"mask\" with arity and mask (or a preset)",
+                                         name,
                                          best.empty() ? "" : " (did you mean \"" + best + "\"?)",
                                          list));
         return std::nullopt;
