@@ -1,6 +1,7 @@
 #include "pipeline.h"
 
 #include <chrono>
+#include <cmath>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -222,6 +223,25 @@ std::optional<CompileResult> compileScene(const LoadedScene& loaded,
     result.scene = desc;
     result.net = std::move(*net);
     return result;
+}
+
+std::optional<Surface> buildSurface(const LoadedScene& loaded, Diagnostics& diags) {
+    const auto& desc = loaded.scene;
+    const auto samples = geo::readSamples(desc.samplesPath, desc.samplesPathAsWritten, diags);
+    if (diags.hasErrors()) return std::nullopt;
+    auto net = geo::normalize(desc, samples, diags);
+    if (!net) return std::nullopt;
+    const auto est = subdiv::estimateOutput(loaded.scheme, net->grid.rows, net->grid.cols, desc.depth);
+    if (!subdiv::checkBudget(est, {desc.maxTriangles, desc.maxSdlMB, desc.maxParseS}, desc.schemeLoc,
+                             desc.depth, diags))
+        return std::nullopt;
+    Surface s;
+    s.refined = subdiv::refineGrid(loaded.scheme, net->grid, desc.depth);
+    const double factor = std::pow(loaded.scheme.arity, desc.depth);
+    s.refinedDx = net->dx / factor;
+    s.refinedDy = net->dy / factor;
+    s.net = std::move(*net);
+    return s;
 }
 
 RenderOutcome renderSceneFile(const RenderJob& job, Diagnostics& diags,

@@ -21,6 +21,7 @@
 #include "subdiv/refine.h"
 #include "curves/curve_file.h"
 #include "curves/hausdorff.h"
+#include "geo/profile.h"
 #include "compare/compare_images.h"
 #include "regress/regress.h"
 #include "figures/sweep.h"
@@ -740,6 +741,91 @@ int runHausdorff(const HausdorffOptions& o) {
     return code(Exit::Ok);
 }
 
+struct ProfileOptions {
+    CommonOptions common;
+    std::string from, to;
+    int samples = 1001;
+    double exaggeration = 0;  ///< plot only; 0 = choose
+};
+
+bool parseLonLat(const std::string& text, double& lon, double& lat) {
+    const auto parts = split(text, ',');
+    if (parts.size() != 2) return false;
+    char* end = nullptr;
+    lon = std::strtod(parts[0].c_str(), &end);
+    if (end == parts[0].c_str() || *end) return false;
+    lat = std::strtod(parts[1].c_str(), &end);
+    if (end == parts[1].c_str() || *end) return false;
+    return std::fabs(lat) <= 90 && std::fabs(lon) <= 180;
+}
+
+// `relief profile`: the refined and the control-net surface cut along a geodesic.
+int runProfile(const ProfileOptions& o) {
+    double lon1, lat1, lon2, lat2;
+    if (!parseLonLat(o.from, lon1, lat1) || !parseLonLat(o.to, lon2, lat2)) {
+        std::cerr << "relief: error: --from and --to take LON,LAT in WGS84 degrees (e.g. "
+                     "174.7640,-36.8770), |lat| <= 90, |lon| <= 180\n";
+        return code(Exit::BadInput);
+    }
+    relief::Diagnostics diags;
+    relief::scene::SceneOverrides overrides;
+    if (!parseOverrides(o.common.sets, overrides)) return code(Exit::BadInput);
+    auto loaded = relief::loadScene(o.common.scene, diags, overrides);
+    auto surface = loaded ? relief::buildSurface(*loaded, diags) : std::nullopt;
+    if (!surface) {
+        printDiagnostics(diags, false);
+        return code(Exit::BadInput);
+    }
+    const auto& net = surface->net;
+    const auto line = relief::geo::geodesicProfile(net.frame, lat1, lon1, lat2, lon2, o.samples);
+    relief::curves::CurveFile refined{"polyline", false, {}}, control{"polyline", false, {}};
+    for (const auto& p : line) {
+        const auto zr = relief::geo::sampleLattice(surface->refined, net.x0, net.y0, surface->refinedDx,
+                                                   surface->refinedDy, p.x, p.y);
+        const auto zc = relief::geo::sampleLattice(net.grid, net.x0, net.y0, net.dx, net.dy, p.x, p.y);
+        if (!zr || !zc) {
+            std::cerr << fmt::format("relief: error: the profile leaves the net {:.0f} m from the start "
+                                     "(lat {:.6f}, lon {:.6f}); the net covers x {:.0f}..{:.0f} m, y "
+                                     "{:.0f}..{:.0f} m in {}: choose points inside it\n",
+                                     p.distanceM, p.latDeg, p.lonDeg, net.x0,
+                                     net.x0 + (net.grid.cols - 1) * net.dx, net.y0,
+                                     net.y0 + (net.grid.rows - 1) * net.dy, net.frame.describe());
+            return code(Exit::BadInput);
+        }
+        refined.points.push_back({p.distanceM, *zr});
+        control.points.push_back({p.distanceM, *zc});
+    }
+    const std::string stem = fs::path(o.common.scene).stem().string();
+    const fs::path svg = o.common.output.empty() ? fs::path("out") / (stem + "-profile.svg") : fs::path(o.common.output);
+    fs::path curveRefined = svg, curveNet = svg;
+    curveRefined.replace_extension(".json");
+    curveNet.replace_filename(svg.stem().string() + "-net.json");
+    ensureParent(svg);
+    double zmin = 1e300, zmax = -1e300;
+    for (const auto& p : refined.points) zmin = std::min(zmin, p.y), zmax = std::max(zmax, p.y);
+    const double length = line.back().distanceM;
+    // Plot: relief about a third of the length unless asked otherwise.
+    const double ve = o.exaggeration > 0 ? o.exaggeration
+                                         : std::max(1.0, std::round(0.3 * length / std::max(zmax - zmin, 1e-9)));
+    relief::emit::SvgAxes axes{true, ve, "distance along the geodesic (m)", "elevation (m)"};
+    const auto report = relief::subdiv::analyzeScheme(loaded->scheme);
+    const std::string title = fmt::format("{}: profile, {:.0f} m, vertical exaggeration {:g}",
+                                          fs::path(o.common.scene).filename().string(), length, ve);
+    relief::writeFileAtomically(
+        svg, relief::emit::curvesSvg(title, {"control net (bilinear)", control.points, false},
+                                     {{fmt::format("refined: {} depth {} ({})", loaded->schemeFamily,
+                                                   loaded->scene.depth, relief::certifiedClass(report)),
+                                       refined.points, false}},
+                                     axes));
+    relief::writeFileAtomically(curveRefined, relief::curves::curveFileJson(refined));
+    relief::writeFileAtomically(curveNet, relief::curves::curveFileJson(control));
+    std::cerr << fmt::format("wrote {}, {} (refined) and {} (control net): {} points over {:.1f} m, "
+                             "elevation {:.1f}..{:.1f} m\n",
+                             svg.string(), curveRefined.string(), curveNet.string(), line.size(), length,
+                             zmin, zmax);
+    return code(Exit::Ok);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -854,6 +940,20 @@ int main(int argc, char** argv) {
     hdCmd->add_option("b", hd.b, "curve file B")->required();
     hdCmd->add_flag("--json", hd.json, "one JSON object with h_ab, h_ba, H and the witnesses");
 
+    ProfileOptions profile;
+    CLI::App* profileCmd = app.add_subcommand(
+        "profile", "cut the refined surface (and the control net) along the geodesic between two "
+                   "points: a curve file (distance, elevation in metres) and an SVG plot");
+    profileCmd->add_option("scene", profile.common.scene, "scene file (TOML)")->required();
+    profileCmd->add_option("--from", profile.from, "start: LON,LAT (WGS84 degrees)")->required();
+    profileCmd->add_option("--to", profile.to, "end: LON,LAT")->required();
+    profileCmd->add_option("--samples", profile.samples, "points along the line (default 1001)")
+        ->check(CLI::Range(2, 1000000));
+    profileCmd->add_option("--exaggeration", profile.exaggeration, "vertical exaggeration of the plot (default: chosen)");
+    profileCmd->add_option("-o,--output", profile.common.output,
+                           "SVG (default out/<scene>-profile.svg); curve files beside it");
+    profileCmd->add_option("--set", profile.common.sets, "override a scene key: section.key=value");
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::Success& e) {
@@ -869,6 +969,7 @@ int main(int argc, char** argv) {
         if (testCmd->parsed()) return runTest(test);
         if (sweepCmd->parsed()) return runSweep(sweep);
         if (hdCmd->parsed()) return runHausdorff(hd);
+        if (profileCmd->parsed()) return runProfile(profile);
         return render->parsed() ? runRender(common, dumpNet) : runCompile(common, dumpNet);
     } catch (const std::runtime_error& e) {  // I/O: cannot write an output
         std::cerr << "relief: error: " << e.what() << '\n';

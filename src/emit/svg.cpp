@@ -1,6 +1,7 @@
 #include "emit/svg.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include <fmt/format.h>
 
@@ -25,7 +26,7 @@ std::string escape(const std::string& s) {
 }  // namespace
 
 std::string curvesSvg(const std::string& title, const SvgCurve& control,
-                      const std::vector<SvgCurve>& curves) {
+                      const std::vector<SvgCurve>& curves, const SvgAxes& axes) {
     double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300;
     auto grow = [&](const SvgCurve& c) {
         for (const auto& p : c.points) {
@@ -35,14 +36,15 @@ std::string curvesSvg(const std::string& title, const SvgCurve& control,
     };
     grow(control);
     for (const auto& c : curves) grow(c);
-    const double span = std::max({xmax - xmin, ymax - ymin, 1e-12});
-    const double plotW = 760, margin = 20, titleH = 30;
-    const double scale = plotW / span;  // one scale for x and y: equal axes
-    const double plotH = (ymax - ymin) * scale;
+    const double ve = axes.verticalExaggeration;
+    const double span = std::max({xmax - xmin, (ymax - ymin) * ve, 1e-12});
+    const double margin = axes.show ? 70 : 20, plotW = axes.show ? 700 : 760, titleH = 30;
+    const double scale = plotW / span;  // one scale for x and y (times ve): equal axes
+    const double plotH = std::max((ymax - ymin) * ve * scale, axes.show ? 60.0 : 0.0);
     const double legendH = 20.0 * static_cast<double>(curves.size() + 1) + 10;
     const double width = plotW + 2 * margin, height = titleH + plotH + 2 * margin + legendH;
     auto X = [&](double x) { return margin + (x - xmin) * scale; };
-    auto Y = [&](double y) { return titleH + margin + (ymax - y) * scale; };
+    auto Y = [&](double y) { return titleH + margin + (ymax - y) * ve * scale; };
     auto path = [&](const SvgCurve& c) {
         std::string d;
         for (size_t i = 0; i < c.points.size(); ++i)
@@ -57,15 +59,39 @@ std::string curvesSvg(const std::string& title, const SvgCurve& control,
         "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
         "<text x=\"{}\" y=\"20\" font-size=\"16\">{}</text>\n",
         width, height, width, height, margin, escape(title));
+    if (axes.show) {
+        // Ticks at 1, 2 or 5 times a power of ten, about five per axis.
+        auto step = [](double range) {
+            const double raw = range / 5, p = std::pow(10.0, std::floor(std::log10(raw)));
+            return raw / p < 2 ? p : raw / p < 5 ? 2 * p : 5 * p;
+        };
+        const double x0 = X(xmin), x1 = X(xmax), y0 = Y(ymin), y1 = Y(ymax);
+        s += fmt::format("<path d=\"M{0:.1f},{1:.1f} L{2:.1f},{1:.1f} M{0:.1f},{1:.1f} L{0:.1f},{3:.1f}\" "
+                         "stroke=\"#000\" fill=\"none\"/>\n", x0, y0 + 5, x1, y1 - 5);
+        const double sx = step(std::max(xmax - xmin, 1e-12)), sy = step(std::max(ymax - ymin, 1e-12));
+        for (double v = std::ceil(xmin / sx) * sx; v <= xmax + 1e-9 * sx; v += sx)
+            s += fmt::format("<line x1=\"{0:.1f}\" y1=\"{1:.1f}\" x2=\"{0:.1f}\" y2=\"{2:.1f}\" stroke=\"#000\"/>"
+                             "<text x=\"{0:.1f}\" y=\"{3:.1f}\" text-anchor=\"middle\" font-size=\"11\">{4:g}</text>\n",
+                             X(v), y0 + 5, y0 + 10, y0 + 24, v);
+        for (double v = std::ceil(ymin / sy) * sy; v <= ymax + 1e-9 * sy; v += sy)
+            s += fmt::format("<line x1=\"{0:.1f}\" y1=\"{1:.1f}\" x2=\"{2:.1f}\" y2=\"{1:.1f}\" stroke=\"#000\"/>"
+                             "<text x=\"{3:.1f}\" y=\"{4:.1f}\" text-anchor=\"end\" font-size=\"11\">{5:g}</text>\n",
+                             x0 - 5, Y(v), x0, x0 - 8, Y(v) + 4, v);
+        s += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"middle\">{}</text>\n", 0.5 * (x0 + x1),
+                         y0 + 42, escape(axes.xLabel));
+        s += fmt::format("<text x=\"14\" y=\"{:.1f}\" transform=\"rotate(-90 14 {:.1f})\" "
+                         "text-anchor=\"middle\">{}</text>\n",
+                         0.5 * (y0 + y1), 0.5 * (y0 + y1), escape(axes.yLabel));
+    }
     s += fmt::format("<path d=\"{}\" fill=\"none\" stroke=\"#888\" stroke-width=\"1.2\" "
                      "stroke-dasharray=\"5,4\"/>\n",
                      path(control));
     for (const auto& p : control.points)
-        s += fmt::format("<circle cx=\"{:.3f}\" cy=\"{:.3f}\" r=\"3.5\" fill=\"#444\"/>\n", X(p.x), Y(p.y));
+        if (!axes.show) s += fmt::format("<circle cx=\"{:.3f}\" cy=\"{:.3f}\" r=\"3.5\" fill=\"#444\"/>\n", X(p.x), Y(p.y));
     for (size_t i = 0; i < curves.size(); ++i)
         s += fmt::format("<path d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"2\"/>\n",
                          path(curves[i]), kColors[i % 8]);
-    double ly = titleH + plotH + 2 * margin + 10;
+    double ly = titleH + plotH + 2 * margin + (axes.show ? 0 : 10);
     s += fmt::format("<line x1=\"{0}\" y1=\"{1}\" x2=\"{2}\" y2=\"{1}\" stroke=\"#888\" "
                      "stroke-dasharray=\"5,4\"/><text x=\"{3}\" y=\"{4}\">{5}</text>\n",
                      margin, ly, margin + 30, margin + 40, ly + 5, escape(control.label));

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <GeographicLib/Geodesic.hpp>
 #include <GeographicLib/LocalCartesian.hpp>
 #include <GeographicLib/UTMUPS.hpp>
 #include <cmath>
@@ -162,6 +163,40 @@ TEST(Normalize, ScatteredVolcanoSamplesMatchTheFullGrid) {
     std::cout << "held-out check: RMS " << rms << " m, max " << maxAbs << " m\n";
     EXPECT_LT(rms, 1.5);
     EXPECT_LT(maxAbs, 10.0);
+}
+
+}  // namespace
+}  // namespace relief::geo
+
+#include "geo/profile.h"
+
+namespace relief::geo {
+namespace {
+
+// The geodesic's points are equally spaced (GeographicLib's own distance) and
+// bilinear sampling reproduces a plane exactly.
+TEST(Profile, GeodesicSpacingAndBilinearPlane) {
+    Frame frame;
+    frame.utmZone = 60;
+    frame.northp = false;
+    const auto line = geodesicProfile(frame, -36.8795, 174.7625, -36.8725, 174.7670, 11);
+    ASSERT_EQ(line.size(), 11u);
+    const auto& g = GeographicLib::Geodesic::WGS84();
+    double s12;
+    g.Inverse(-36.8795, 174.7625, -36.8725, 174.7670, s12);
+    EXPECT_NEAR(line.back().distanceM, s12, 1e-6);
+    for (size_t i = 1; i < line.size(); ++i) {
+        double d;
+        g.Inverse(line[i - 1].latDeg, line[i - 1].lonDeg, line[i].latDeg, line[i].lonDeg, d);
+        EXPECT_NEAR(d, s12 / 10, 1e-6);
+    }
+    Grid plane;
+    plane.rows = 4;
+    plane.cols = 5;
+    for (int r = 0; r < 4; ++r)
+        for (int c = 0; c < 5; ++c) plane.points.push_back({10.0 * c, 20.0 * r, 3 + 0.5 * c - 0.25 * r});
+    EXPECT_NEAR(*sampleLattice(plane, 0, 0, 10, 20, 17.5, 31), 3 + 0.5 * 1.75 - 0.25 * 1.55, 1e-12);
+    EXPECT_FALSE(sampleLattice(plane, 0, 0, 10, 20, 41, 10));
 }
 
 }  // namespace
