@@ -169,32 +169,19 @@ std::optional<CompileResult> compileScene(const LoadedScene& loaded,
                                           const CompileOptions& options, Diagnostics& diags) {
     CompileResult result;
     const scene::SceneDesc& desc = loaded.scene;
-    const subdiv::Scheme& scheme = loaded.scheme;
     result.times.readScene = loaded.seconds;
-
-    auto t0 = Clock::now();
-    const auto samples =
-        geo::readSamples(desc.samplesPath, desc.samplesPathAsWritten, diags);
-    if (diags.hasErrors()) return std::nullopt;
-    auto net = geo::normalize(desc, samples, diags);
-    if (!net) return std::nullopt;
-    result.times.normalize = secondsSince(t0);
-
-    result.estimate = subdiv::estimateOutput(scheme, net->grid.rows, net->grid.cols,
-                                             desc.depth);
-    if (!subdiv::checkBudget(result.estimate,
-                             {desc.maxTriangles, desc.maxSdlMB, desc.maxParseS},
-                             desc.schemeLoc, desc.depth, diags))
-        return std::nullopt;
 
     auto tmpl = emit::loadSceneTemplate(options.templatesDir, diags);
     if (!tmpl) return std::nullopt;
+    auto surface = buildSurface(loaded, diags, options.threads);
+    if (!surface) return std::nullopt;
+    result.estimate = surface->estimate;
+    result.times.normalize = surface->normalizeSeconds;
+    result.times.subdivide = surface->subdivideSeconds;
+    const geo::ControlNet* net = &surface->net;
+    const Grid& refined = surface->refined;
 
-    t0 = Clock::now();
-    const Grid refined = subdiv::refineGrid(scheme, net->grid, desc.depth, options.threads);
-    result.times.subdivide = secondsSince(t0);
-
-    t0 = Clock::now();
+    const auto t0 = Clock::now();
     const emit::Mesh mesh = emit::buildMesh(refined, desc);
     result.refinedRows = refined.rows;
     result.refinedCols = refined.cols;
@@ -221,22 +208,26 @@ std::optional<CompileResult> compileScene(const LoadedScene& loaded,
     std::error_code ec;
     result.povBytes = std::filesystem::file_size(options.povPath, ec);
     result.scene = desc;
-    result.net = std::move(*net);
+    result.net = std::move(surface->net);
     return result;
 }
 
-std::optional<Surface> buildSurface(const LoadedScene& loaded, Diagnostics& diags) {
+std::optional<Surface> buildSurface(const LoadedScene& loaded, Diagnostics& diags, int threads) {
     const auto& desc = loaded.scene;
+    auto t0 = Clock::now();
     const auto samples = geo::readSamples(desc.samplesPath, desc.samplesPathAsWritten, diags);
     if (diags.hasErrors()) return std::nullopt;
     auto net = geo::normalize(desc, samples, diags);
     if (!net) return std::nullopt;
-    const auto est = subdiv::estimateOutput(loaded.scheme, net->grid.rows, net->grid.cols, desc.depth);
-    if (!subdiv::checkBudget(est, {desc.maxTriangles, desc.maxSdlMB, desc.maxParseS}, desc.schemeLoc,
-                             desc.depth, diags))
-        return std::nullopt;
     Surface s;
-    s.refined = subdiv::refineGrid(loaded.scheme, net->grid, desc.depth);
+    s.normalizeSeconds = secondsSince(t0);
+    s.estimate = subdiv::estimateOutput(loaded.scheme, net->grid.rows, net->grid.cols, desc.depth);
+    if (!subdiv::checkBudget(s.estimate, {desc.maxTriangles, desc.maxSdlMB, desc.maxParseS},
+                             desc.schemeLoc, desc.depth, diags))
+        return std::nullopt;
+    t0 = Clock::now();
+    s.refined = subdiv::refineGrid(loaded.scheme, net->grid, desc.depth, threads);
+    s.subdivideSeconds = secondsSince(t0);
     const double factor = std::pow(loaded.scheme.arity, desc.depth);
     s.refinedDx = net->dx / factor;
     s.refinedDy = net->dy / factor;

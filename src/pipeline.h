@@ -39,14 +39,17 @@ std::optional<LoadedScene> loadScene(const std::filesystem::path& scenePath, Dia
 /// "C1 (Hölder ~1.68)" or "convergence not proven (...)".
 std::string certifiedClass(const subdiv::SchemeReport& report);
 
-/// Stages 2 and 3 only: the control net and the refined surface (metres, in
-/// the net's frame), for measurements such as profiles.
+/// Stages 2 and 3: the control net and the refined surface (metres, in the
+/// net's frame), refused with a diagnostic when over the output budget. Used
+/// by compileScene and by measurements such as profiles.
 struct Surface {
     geo::ControlNet net;
     Grid refined;
     double refinedDx = 0, refinedDy = 0;  ///< spacing of the refined lattice (metres)
+    subdiv::OutputEstimate estimate;
+    double normalizeSeconds = 0, subdivideSeconds = 0;
 };
-std::optional<Surface> buildSurface(const LoadedScene& loaded, Diagnostics& diags);
+std::optional<Surface> buildSurface(const LoadedScene& loaded, Diagnostics& diags, int threads = 0);
 
 struct CompileOptions {
     std::filesystem::path povPath;       ///< where the .pov goes

@@ -808,13 +808,12 @@ int runProfile(const ProfileOptions& o) {
     const double ve = o.exaggeration > 0 ? o.exaggeration
                                          : std::max(1.0, std::round(0.3 * length / std::max(zmax - zmin, 1e-9)));
     relief::emit::SvgAxes axes{true, ve, "distance along the geodesic (m)", "elevation (m)"};
-    const auto report = relief::subdiv::analyzeScheme(loaded->scheme);
     const std::string title = fmt::format("{}: profile, {:.0f} m, vertical exaggeration {:g}",
                                           fs::path(o.common.scene).filename().string(), length, ve);
     relief::writeFileAtomically(
         svg, relief::emit::curvesSvg(title, {"control net (bilinear)", control.points, false},
                                      {{fmt::format("refined: {} depth {} ({})", loaded->schemeFamily,
-                                                   loaded->scene.depth, relief::certifiedClass(report)),
+                                                   loaded->scene.depth, relief::certifiedClass(loaded->report)),
                                        refined.points, false}},
                                      axes));
     relief::writeFileAtomically(curveRefined, relief::curves::curveFileJson(refined));
