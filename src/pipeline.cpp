@@ -10,6 +10,7 @@
 #include "core/number_format.h"
 #include "emit/mesh.h"
 #include "geo/samples.h"
+#include "measure/auto_depth.h"
 #include "relief/version.h"
 #include "scene/read_scene.h"
 #include "subdiv/refine.h"
@@ -24,6 +25,27 @@ double secondsSince(Clock::time_point t0) {
 }
 
 }  // namespace
+
+std::string depthLabel(const scene::SceneDesc& scene) {
+    return scene.depthAuto ? fmt::format("depth auto (tolerance_m = {})", formatShortest(scene.toleranceM))
+                           : fmt::format("depth {}", scene.depth);
+}
+
+namespace {
+std::string levelSeries(const measure::DepthChoice& choice) {
+    std::string steps;
+    for (const auto& l : choice.levels)
+        steps += fmt::format("{}{}: {:.3g} m", steps.empty() ? "" : ", ", l.level, l.distanceM);
+    return steps;
+}
+}  // namespace
+
+std::string autoDepthSummary(const measure::DepthChoice& choice, double toleranceM) {
+    const std::string steps = levelSeries(choice);
+    return fmt::format("depth {} chosen: the largest change per level (Hausdorff, net rows and "
+                       "columns) was {}; tolerance {} m",
+                       choice.depth, steps, formatShortest(toleranceM));
+}
 
 std::string certifiedClass(const subdiv::SchemeReport& r) {
     return r.smoothness < 0 ? fmt::format("convergence not proven (Hölder ~{:.2f})", r.holder)
@@ -42,7 +64,7 @@ const char* name(scene::Gridding g) {
 }
 
 emit::ParameterList describe(const scene::SceneDesc& s, const geo::ControlNet& net,
-                             const LoadedScene& loaded,
+                             const LoadedScene& loaded, int depth,
                              const subdiv::OutputEstimate& est, double metresPerUnit) {
     emit::ParameterList p;
     auto add = [&](std::string k, std::string v) { p.emplace_back(std::move(k), std::move(v)); };
@@ -69,7 +91,9 @@ emit::ParameterList describe(const scene::SceneDesc& s, const geo::ControlNet& n
     add("subdivision.params", params);
     add("subdivision.certified", certifiedClass(loaded.report));
     add("subdivision.boundary", "point reflection");
-    add("subdivision.depth", std::to_string(s.depth));
+    add("subdivision.depth", s.depthAuto ? fmt::format("{} (auto, tolerance_m = {})", depth,
+                                                       formatShortest(s.toleranceM))
+                                         : std::to_string(depth));
     add("refined.size", fmt::format("{} rows x {} cols", est.rows, est.cols));
     add("refined.vertices", fmt::format("{:.0f}", est.vertices));
     add("refined.triangles", fmt::format("{:.0f}", est.triangles));
@@ -184,9 +208,13 @@ std::optional<CompileResult> compileScene(const LoadedScene& loaded,
     const auto t0 = Clock::now();
     const emit::Mesh mesh = emit::buildMesh(refined, desc);
     result.refinedRows = refined.rows;
+    result.arity = loaded.scheme.arity;
+    result.holder = loaded.report.holder;
     result.refinedCols = refined.cols;
     result.metresPerUnit = mesh.metresPerUnit;
-    result.parameters = describe(desc, *net, loaded, result.estimate, mesh.metresPerUnit);
+    result.depth = surface->depth;
+    result.autoDepth = surface->autoDepth;
+    result.parameters = describe(desc, *net, loaded, surface->depth, result.estimate, mesh.metresPerUnit);
 
     if (!options.dumpNetPath.empty()) {
         const bool asc = options.dumpNetPath.extension() == ".asc";
@@ -221,14 +249,44 @@ std::optional<Surface> buildSurface(const LoadedScene& loaded, Diagnostics& diag
     if (!net) return std::nullopt;
     Surface s;
     s.normalizeSeconds = secondsSince(t0);
-    s.estimate = subdiv::estimateOutput(loaded.scheme, net->grid.rows, net->grid.cols, desc.depth);
-    if (!subdiv::checkBudget(s.estimate, {desc.maxTriangles, desc.maxSdlMB, desc.maxParseS},
-                             desc.schemeLoc, desc.depth, diags))
-        return std::nullopt;
+    const subdiv::Budget budget{desc.maxTriangles, desc.maxSdlMB, desc.maxParseS};
+    s.depth = desc.depth;
     t0 = Clock::now();
-    s.refined = subdiv::refineGrid(loaded.scheme, net->grid, desc.depth, threads);
+    if (desc.depthAuto) {
+        // The deepest level the budget allows bounds the search.
+        int maxDepth = 0;
+        while (maxDepth < 8) {
+            const auto e = subdiv::estimateOutput(loaded.scheme, net->grid.rows, net->grid.cols, maxDepth + 1);
+            if (e.triangles > budget.maxTriangles || e.sdlBytes > budget.maxSdlMB * 1e6 ||
+                e.parseSeconds > budget.maxParseS)
+                break;
+            ++maxDepth;
+        }
+        if (maxDepth == 0) {
+            s.estimate = subdiv::estimateOutput(loaded.scheme, net->grid.rows, net->grid.cols, 1);
+            subdiv::checkBudget(s.estimate, budget, desc.depthLoc, 1, diags);
+            return std::nullopt;
+        }
+        s.autoDepth = measure::chooseDepth(loaded.scheme, *net, desc.toleranceM, maxDepth, threads);
+        const auto& last = s.autoDepth->levels.back();
+        if (!s.autoDepth->reached) {
+            diags.error(desc.toleranceLoc,
+                        fmt::format("subdivision.tolerance_m = {} m is not reached within the output "
+                                    "budget: level {} (the deepest [limits] allow) still moves {} by "
+                                    "{:.3g} m (per level: {}); raise tolerance_m or [limits], or set "
+                                    "a fixed depth",
+                                    formatShortest(desc.toleranceM), last.level, last.curve,
+                                    last.distanceM, levelSeries(*s.autoDepth)));
+            return std::nullopt;
+        }
+        s.depth = s.autoDepth->depth;
+    }
+    s.estimate = subdiv::estimateOutput(loaded.scheme, net->grid.rows, net->grid.cols, s.depth);
+    if (!subdiv::checkBudget(s.estimate, budget, desc.schemeLoc, s.depth, diags))
+        return std::nullopt;
+    s.refined = subdiv::refineGrid(loaded.scheme, net->grid, s.depth, threads);
     s.subdivideSeconds = secondsSince(t0);
-    const double factor = std::pow(loaded.scheme.arity, desc.depth);
+    const double factor = std::pow(loaded.scheme.arity, s.depth);
     s.refinedDx = net->dx / factor;
     s.refinedDy = net->dy / factor;
     s.net = std::move(*net);
@@ -256,8 +314,8 @@ RenderOutcome renderSceneFile(const RenderJob& job, Diagnostics& diags,
     copts.threads = job.threads;
     for (const auto& p : {outcome.paths.pov, job.dumpNetPath})
         if (!p.empty() && p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
-    say(fmt::format("compiling {} ({}, depth {})", job.scenePath.string(), loaded->schemeFamily,
-                    loaded->scene.depth));
+    say(fmt::format("compiling {} ({}, {})", job.scenePath.string(), loaded->schemeFamily,
+                    depthLabel(loaded->scene)));
     outcome.compiled = compileScene(*loaded, copts, diags);
     if (!outcome.compiled) return outcome;
 
@@ -312,6 +370,25 @@ std::string sidecarJson(const CompileResult& c, const OutputPaths& paths,
         times["povray_trace"] = render->traceSeconds;
         times["povray_wall"] = render->wallSeconds;
         j["povray_command"] = render->command;
+    }
+    if (c.autoDepth) {
+        ordered_json levels = ordered_json::array();
+        const int arity = c.arity;
+        for (size_t i = 0; i < c.autoDepth->levels.size(); ++i) {
+            const auto& l = c.autoDepth->levels[i];
+            ordered_json level = {{"level", l.level},
+                                  {"hausdorff_m", l.distanceM},
+                                  {"curve", l.curve},
+                                  {"where_m", {l.x, l.y, l.z}},
+                                  {"seconds", l.seconds}};
+            const double rate = measure::observedRate(*c.autoDepth, i, arity);
+            if (std::isfinite(rate)) level["rate"] = rate;
+            levels.push_back(level);
+        }
+        j["auto_depth"] = {{"tolerance_m", c.scene.toleranceM},
+                           {"depth", c.depth},
+                           {"holder_estimate", c.holder},
+                           {"levels", levels}};
     }
     j["seconds"] = times;
     j["outputs"] = {{"pov", paths.pov.string()}};

@@ -11,6 +11,7 @@
 #include "core/diagnostics.h"
 #include "emit/write_scene.h"
 #include "geo/normalize.h"
+#include "measure/auto_depth.h"
 #include "render/povray.h"
 #include "scene/scene_desc.h"
 #include "subdiv/analysis.h"
@@ -36,6 +37,12 @@ struct LoadedScene {
 std::optional<LoadedScene> loadScene(const std::filesystem::path& scenePath, Diagnostics& diags,
                                      const scene::SceneOverrides& overrides = {});
 
+/// "depth 3" or "depth auto (tolerance_m = 5)".
+std::string depthLabel(const scene::SceneDesc& scene);
+
+/// For depth = "auto": "depth 4 chosen: level 1 moved the terrain 220 m, ..., 4: 4.1 m <= 5 m".
+std::string autoDepthSummary(const measure::DepthChoice& choice, double toleranceM);
+
 /// "C1 (Hölder ~1.68)" or "convergence not proven (...)".
 std::string certifiedClass(const subdiv::SchemeReport& report);
 
@@ -47,7 +54,9 @@ struct Surface {
     Grid refined;
     double refinedDx = 0, refinedDy = 0;  ///< spacing of the refined lattice (metres)
     subdiv::OutputEstimate estimate;
-    double normalizeSeconds = 0, subdivideSeconds = 0;
+    int depth = 0;  ///< the scene's, or the one depth = "auto" chose
+    std::optional<measure::DepthChoice> autoDepth;  ///< the change per level, for depth = "auto"
+    double normalizeSeconds = 0, subdivideSeconds = 0;  ///< subdivide includes choosing the depth
 };
 std::optional<Surface> buildSurface(const LoadedScene& loaded, Diagnostics& diags, int threads = 0);
 
@@ -67,6 +76,10 @@ struct CompileResult {
     geo::ControlNet net;  ///< the control net (its grid is kept; it is small)
     subdiv::OutputEstimate estimate;
     int refinedRows = 0, refinedCols = 0;
+    int depth = 0;  ///< the scene's, or the one depth = "auto" chose
+    std::optional<measure::DepthChoice> autoDepth;
+    int arity = 2;
+    double holder = 0;  ///< the scheme's Hölder estimate, next to the observed rates
     double metresPerUnit = 1;
     emit::ParameterList parameters;  ///< as recorded in the .pov header
     StageTimes times;

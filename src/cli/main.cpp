@@ -159,8 +159,8 @@ int runCompile(const CommonOptions& o, const std::string& dumpNet) {
     if (!o.quiet)
         std::cerr << fmt::format("scheme {}: {}\n", loaded->schemeFamily,
                                  relief::certifiedClass(loaded->report));
-    progress.show(fmt::format("compiling {} ({}, depth {})", o.scene, loaded->schemeFamily,
-                              loaded->scene.depth));
+    progress.show(fmt::format("compiling {} ({}, {})", o.scene, loaded->schemeFamily,
+                              relief::depthLabel(loaded->scene)));
     ensureParent(paths.pov);
     if (!dumpNet.empty()) ensureParent(dumpNet);
     auto compiled = relief::compileScene(*loaded, copts, diags);
@@ -170,6 +170,8 @@ int runCompile(const CommonOptions& o, const std::string& dumpNet) {
         return code(Exit::BadInput);
     }
     printDiagnostics(diags, true);  // warnings only
+    if (!o.quiet && compiled->autoDepth)
+        std::cerr << relief::autoDepthSummary(*compiled->autoDepth, compiled->scene.toleranceM) << '\n';
     if (!o.quiet)
         std::cerr << fmt::format("wrote {} ({} x {} vertices, {} triangles, {:.1f} MB)\n",
                                  paths.pov.string(), compiled->refinedRows,
@@ -212,6 +214,7 @@ int runRender(const CommonOptions& o, const std::string& dumpNet) {
     if (!o.quiet) {
         const auto& c = *outcome.compiled;
         std::cerr << fmt::format("scheme {}: {}\n", outcome.schemeFamily, outcome.certified);
+        if (c.autoDepth) std::cerr << relief::autoDepthSummary(*c.autoDepth, c.scene.toleranceM) << '\n';
         std::cerr << fmt::format("wrote {} ({} x {} vertices, {} triangles, {:.1f} MB)\n",
                                  outcome.paths.pov.string(), c.refinedRows, c.refinedCols,
                                  2LL * (c.refinedRows - 1) * (c.refinedCols - 1), c.povBytes / 1e6);
@@ -813,7 +816,7 @@ int runProfile(const ProfileOptions& o) {
     relief::writeFileAtomically(
         svg, relief::emit::curvesSvg(title, {"control net (bilinear)", control.points, false},
                                      {{fmt::format("refined: {} depth {} ({})", loaded->schemeFamily,
-                                                   loaded->scene.depth, relief::certifiedClass(loaded->report)),
+                                                   surface->depth, relief::certifiedClass(loaded->report)),
                                        refined.points, false}},
                                      axes));
     relief::writeFileAtomically(curveRefined, relief::curves::curveFileJson(refined));

@@ -38,6 +38,10 @@ PiecewiseBezier toBezier(const CurveFile& c) {
 }
 
 Point2 evaluate(const Segment& s, double t) {
+    if (s.control.size() == 2) {  // polylines: no copy
+        const Point2 p = s.control[0], q = s.control[1];
+        return {p.x + t * (q.x - p.x), p.y + t * (q.y - p.y)};
+    }
     std::vector<Point2> q = s.control;
     for (size_t r = 1; r < q.size(); ++r)
         for (size_t i = 0; i + r < q.size(); ++i)

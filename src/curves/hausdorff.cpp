@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <queue>
 
 namespace relief::curves {
@@ -19,25 +20,16 @@ const char* caseName(WitnessCase c) {
 
 namespace {
 
-double dist(Point2 p, Point2 q) { return std::hypot(p.x - q.x, p.y - q.y); }
+// sqrt, not hypot: 3x faster, and squares of coordinates up to 1e150 do not overflow.
+double dist(Point2 p, Point2 q) {
+    const double dx = p.x - q.x, dy = p.y - q.y;
+    return std::sqrt(dx * dx + dy * dy);
+}
 
 double binomial(int n, int k) {
     double r = 1;
     for (int i = 1; i <= k; ++i) r = r * (n - k + i) / i;
     return r;
-}
-
-// Distance from p to the control points' bounding box: a lower bound of the
-// distance to the segment (convex hull property).
-double boxDistance(const Segment& s, Point2 p) {
-    double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300;
-    for (const auto& q : s.control) {
-        xmin = std::min(xmin, q.x), xmax = std::max(xmax, q.x);
-        ymin = std::min(ymin, q.y), ymax = std::max(ymax, q.y);
-    }
-    const double dx = std::max({xmin - p.x, 0.0, p.x - xmax});
-    const double dy = std::max({ymin - p.y, 0.0, p.y - ymax});
-    return std::hypot(dx, dy);
 }
 
 // Roots in [lo, hi] of the polynomial with Bernstein coefficients c: intervals
@@ -66,10 +58,11 @@ void bernsteinRoots(const std::vector<double>& c, double lo, double hi, std::vec
     bernsteinRoots(right, mid, hi, out, budget);
 }
 
-void segmentFeet(const Segment& s, size_t index, Point2 a, std::vector<Foot>& out) {
+void segmentFeet(const Segment& s, size_t piece, size_t index, Point2 a, std::vector<Foot>& out) {
     const int d = static_cast<int>(s.control.size()) - 1;
     auto add = [&](double t) {
         Foot f;
+        f.piece = piece;
         f.segment = index;
         f.t = std::clamp(t, 0.0, 1.0);
         f.point = evaluate(s, f.t);
@@ -80,6 +73,13 @@ void segmentFeet(const Segment& s, size_t index, Point2 a, std::vector<Foot>& ou
     add(0.0);
     if (d == 0) return;
     add(1.0);
+    if (d == 1) {  // a straight piece: the foot of the perpendicular, if inside
+        const Point2 p0 = s.control[0], p1 = s.control[1];
+        const double ex = p1.x - p0.x, ey = p1.y - p0.y, len2 = ex * ex + ey * ey;
+        const double t = len2 > 0 ? ((a.x - p0.x) * ex + (a.y - p0.y) * ey) / len2 : 0.0;
+        if (t > 0 && t < 1) add(t);
+        return;
+    }
     // g(t) = (B(t) - a) . B'(t) in Bernstein form of degree 2d - 1.
     const int n = 2 * d - 1;
     std::vector<double> g(static_cast<size_t>(n + 1), 0.0);
@@ -107,8 +107,6 @@ void segmentFeet(const Segment& s, size_t index, Point2 a, std::vector<Foot>& ou
     }
 }
 
-Point2 pointOf(const PiecewiseBezier& c, size_t seg, double t) { return evaluate(c.segments[seg], t); }
-
 // Largest |A'(t)| on a segment: the hodograph's control points bound it.
 double speedBound(const Segment& s) {
     const size_t d = s.control.size() - 1;
@@ -124,129 +122,266 @@ bool isEndpoint(const PiecewiseBezier& c, size_t seg, double t) {
            (c.segments[seg].control.size() == 1);
 }
 
-}  // namespace
-
-std::vector<Foot> feet(const PiecewiseBezier& b, Point2 a, double slack) {
-    // Visit segments nearest-box first; stop once a box is beyond the best + slack.
-    std::vector<std::pair<double, size_t>> order;
-    order.reserve(b.segments.size());
-    for (size_t i = 0; i < b.segments.size(); ++i) order.emplace_back(boxDistance(b.segments[i], a), i);
-    std::sort(order.begin(), order.end());
-    std::vector<Foot> all;
-    double best = 1e300;
-    for (const auto& [lower, i] : order) {
-        if (lower > best + slack) break;
-        const size_t before = all.size();
-        segmentFeet(b.segments[i], i, a, all);
-        for (size_t k = before; k < all.size(); ++k) best = std::min(best, all[k].distance);
-    }
-    std::sort(all.begin(), all.end(), [](const Foot& x, const Foot& y) { return x.distance < y.distance; });
-    std::vector<Foot> out;
-    for (const auto& f : all) {
-        if (f.distance > best + slack) break;
-        out.push_back(f);
-    }
-    return out;
+double setSize(std::span<const PiecewiseBezier> curves) {
+    double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300;
+    for (const auto& c : curves)
+        for (const auto& s : c.segments)
+            for (const auto& p : s.control) {
+                xmin = std::min(xmin, p.x), xmax = std::max(xmax, p.x);
+                ymin = std::min(ymin, p.y), ymax = std::max(ymax, p.y);
+            }
+    return xmin > xmax ? 0.0 : std::hypot(xmax - xmin, ymax - ymin);
 }
 
-double distanceToCurve(const PiecewiseBezier& b, Point2 a) {
-    const auto f = feet(b, a, 0.0);
+constexpr unsigned kLeafSize = 4;
+
+}  // namespace
+
+double SegmentIndex::Box::distance(Point2 p) const {
+    const double dx = std::max({xmin - p.x, 0.0, p.x - xmax});
+    const double dy = std::max({ymin - p.y, 0.0, p.y - ymax});
+    return std::sqrt(dx * dx + dy * dy);
+}
+
+SegmentIndex::SegmentIndex(std::span<const PiecewiseBezier> curves) : curves_(curves) {
+    for (size_t c = 0; c < curves.size(); ++c)
+        for (size_t s = 0; s < curves[c].segments.size(); ++s) {
+            // The control points' box holds the segment (convex hull property).
+            Box b{1e300, 1e300, -1e300, -1e300};
+            for (const auto& q : curves[c].segments[s].control) {
+                b.xmin = std::min(b.xmin, q.x), b.xmax = std::max(b.xmax, q.x);
+                b.ymin = std::min(b.ymin, q.y), b.ymax = std::max(b.ymax, q.y);
+            }
+            entries_.push_back({static_cast<unsigned>(c), static_cast<unsigned>(s), b});
+        }
+    if (!entries_.empty()) {
+        nodes_.reserve(2 * entries_.size() / kLeafSize + 2);
+        build(0, static_cast<unsigned>(entries_.size()));
+    }
+}
+
+// Median split along the longer side of the node's box: a balanced tree whose
+// leaves hold neighbouring segments.
+unsigned SegmentIndex::build(unsigned first, unsigned count) {
+    Box box{1e300, 1e300, -1e300, -1e300};
+    for (unsigned i = first; i < first + count; ++i) {
+        const Box& b = entries_[i].box;
+        box.xmin = std::min(box.xmin, b.xmin), box.xmax = std::max(box.xmax, b.xmax);
+        box.ymin = std::min(box.ymin, b.ymin), box.ymax = std::max(box.ymax, b.ymax);
+    }
+    const unsigned id = static_cast<unsigned>(nodes_.size());
+    nodes_.push_back({box, first, count, 0, 0});
+    if (count <= kLeafSize) return id;
+    const bool alongX = box.xmax - box.xmin >= box.ymax - box.ymin;
+    const unsigned half = count / 2;
+    std::nth_element(entries_.begin() + first, entries_.begin() + first + half,
+                     entries_.begin() + first + count, [alongX](const Entry& p, const Entry& q) {
+                         return alongX ? p.box.xmin + p.box.xmax < q.box.xmin + q.box.xmax
+                                       : p.box.ymin + p.box.ymax < q.box.ymin + q.box.ymax;
+                     });
+    const unsigned left = build(first, half);
+    const unsigned right = build(first + half, count - half);
+    nodes_[id].count = 0;
+    nodes_[id].left = left;
+    nodes_[id].right = right;
+    return id;
+}
+
+std::vector<Foot> SegmentIndex::feet(Point2 a, double slack) const {
+    std::vector<Foot> all;
+    if (nodes_.empty()) return all;
+    // Depth first, nearer child first; a node is skipped once its box is
+    // beyond the best foot so far plus the slack.
+    double best = 1e300;
+    // The tree is balanced: its depth is below 64 for any curve that fits in memory.
+    std::pair<double, unsigned> stack[128];
+    int top = 0;
+    stack[top++] = {nodes_[0].box.distance(a), 0u};
+    while (top > 0) {
+        const auto [lower, id] = stack[--top];
+        if (lower > best + slack) continue;
+        const Node& n = nodes_[id];
+        if (n.count) {
+            for (unsigned i = n.first; i < n.first + n.count; ++i) {
+                const Entry& e = entries_[i];
+                if (e.box.distance(a) > best + slack) continue;
+                const size_t before = all.size();
+                segmentFeet(curves_[e.piece].segments[e.segment], e.piece, e.segment, a, all);
+                for (size_t k = before; k < all.size(); ++k) best = std::min(best, all[k].distance);
+            }
+            continue;
+        }
+        const double dl = nodes_[n.left].box.distance(a), dr = nodes_[n.right].box.distance(a);
+        if (dl <= dr) {
+            stack[top++] = {dr, n.right}, stack[top++] = {dl, n.left};
+        } else {
+            stack[top++] = {dl, n.left}, stack[top++] = {dr, n.right};
+        }
+    }
+    std::sort(all.begin(), all.end(), [](const Foot& x, const Foot& y) { return x.distance < y.distance; });
+    size_t keep = 0;
+    while (keep < all.size() && all[keep].distance <= best + slack) ++keep;
+    all.resize(keep);
+    return all;
+}
+
+double SegmentIndex::distance(Point2 a) const {
+    const auto f = feet(a, 0.0);
     return f.empty() ? 0.0 : f.front().distance;
 }
 
-OneSided oneSidedHausdorff(const PiecewiseBezier& A, const PiecewiseBezier& B) {
+std::vector<Foot> feet(const PiecewiseBezier& b, Point2 a, double slack) {
+    return SegmentIndex({&b, 1}).feet(a, slack);
+}
+
+double distanceToCurve(const PiecewiseBezier& b, Point2 a) { return SegmentIndex({&b, 1}).distance(a); }
+
+OneSided oneSidedHausdorff(std::span<const PiecewiseBezier> A, std::span<const PiecewiseBezier> B,
+                           const HausdorffOptions& options) {
     OneSided result;
-    if (A.segments.empty() || B.segments.empty()) return result;
-    const double size = std::max({curveSize(A), curveSize(B), 1e-300});
-    const double scaleRef = std::max(size, std::fabs(A.segments[0].control[0].x) + std::fabs(A.segments[0].control[0].y));
+    auto hasSegments = [](std::span<const PiecewiseBezier> set) {
+        return std::any_of(set.begin(), set.end(), [](const auto& c) { return !c.segments.empty(); });
+    };
+    if (!hasSegments(A)) return result;
+    if (!hasSegments(B)) {
+        result.value = std::numeric_limits<double>::infinity();
+        return result;
+    }
+    const SegmentIndex indexB(B);
+    const double size = std::max({setSize(A), setSize(B), 1e-300});
+    Point2 anyPoint{};
+    for (const auto& c : A)
+        if (!c.segments.empty()) anyPoint = c.segments[0].control[0];
+    const double scaleRef = std::max(size, std::fabs(anyPoint.x) + std::fabs(anyPoint.y));
     long long queries = 0;
-    auto f = [&](size_t seg, double t) {
+    // f(t) = dist(A(t), B) and the B segment the nearest foot is on.
+    struct Sample {
+        double t, f;
+        unsigned footPiece, footSeg;
+    };
+    auto sample = [&](size_t piece, size_t seg, double t) {
         ++queries;
-        return distanceToCurve(B, pointOf(A, seg, t));
+        const auto fs = indexB.feet(evaluate(A[piece].segments[seg], t), 0.0);
+        return Sample{t, fs.front().distance, static_cast<unsigned>(fs.front().piece),
+                      static_cast<unsigned>(fs.front().segment)};
+    };
+    auto f = [&](size_t piece, size_t seg, double t) { return sample(piece, seg, t).f; };
+
+    // An upper bound of f on [s0.t, s1.t]. Lipschitz: f changes no faster
+    // than A moves (M bounds |A'|). Convexity, where A's piece and a foot's B
+    // segment are both straight: the distance to a segment is convex along a
+    // line, so f <= max of that segment's distance at the two ends; where one
+    // B segment is nearest at both ends this is max(f0, f1), exact, and
+    // polylines need no splitting but around the kinks of f.
+    auto upperBound = [&](const Segment& a, double M, const Sample& s0, const Sample& s1) {
+        double u = 0.5 * (s0.f + s1.f + M * (s1.t - s0.t));
+        if (a.control.size() != 2) return u;
+        for (const Sample* s : {&s0, &s1}) {
+            const auto& b = B[s->footPiece].segments[s->footSeg].control;
+            if (b.size() > 2) continue;
+            const Sample* other = s == &s0 ? &s1 : &s0;
+            const Point2 q = evaluate(a, other->t);
+            double d;
+            if (b.size() == 1) {
+                d = dist(q, b[0]);
+            } else {
+                const double ex = b[1].x - b[0].x, ey = b[1].y - b[0].y, len2 = ex * ex + ey * ey;
+                const double t = len2 > 0 ? std::clamp(((q.x - b[0].x) * ex + (q.y - b[0].y) * ey) / len2, 0.0, 1.0) : 0.0;
+                d = dist(q, {b[0].x + t * ex, b[0].y + t * ey});
+            }
+            u = std::min(u, std::max(s->f, d));
+        }
+        return u;
     };
 
-    // Samples and the Lipschitz bound per interval.
     struct Interval {
         double upper;
-        size_t seg;
-        double t0, t1, f0, f1;
+        unsigned piece, seg;
+        Sample s0, s1;
         bool operator<(const Interval& o) const { return upper < o.upper; }
     };
     double best = -1;
-    size_t bestSeg = 0;
+    size_t bestPiece = 0, bestSeg = 0;
     double bestT = 0;
+    auto consider = [&](double v, size_t piece, size_t seg, double t) {
+        if (v > best) best = v, bestPiece = piece, bestSeg = seg, bestT = t;
+    };
     std::priority_queue<Interval> queue;
-    for (size_t s = 0; s < A.segments.size(); ++s) {
-        const Segment& seg = A.segments[s];
-        const double M = speedBound(seg);
-        const int n = seg.control.size() == 1 ? 1 : 8 * static_cast<int>(seg.control.size());
-        double tPrev = 0, fPrev = f(s, 0);
-        if (fPrev > best) best = fPrev, bestSeg = s, bestT = 0;
-        for (int k = 1; k <= n && seg.control.size() > 1; ++k) {
-            const double t = static_cast<double>(k) / n, v = f(s, t);
-            if (v > best) best = v, bestSeg = s, bestT = t;
-            queue.push({0.5 * (fPrev + v + M * (t - tPrev)), s, tPrev, t, fPrev, v});
-            tPrev = t, fPrev = v;
+    for (unsigned p = 0; p < A.size(); ++p)
+        for (unsigned s = 0; s < A[p].segments.size(); ++s) {
+            const Segment& seg = A[p].segments[s];
+            const double M = speedBound(seg);
+            // A straight piece needs only its ends to start: the bounds do the rest.
+            const int n = seg.control.size() <= 2 ? 1 : 8 * static_cast<int>(seg.control.size());
+            Sample prev = sample(p, s, 0);
+            consider(prev.f, p, s, 0);
+            for (int k = 1; k <= n && seg.control.size() > 1; ++k) {
+                const Sample next = sample(p, s, static_cast<double>(k) / n);
+                consider(next.f, p, s, next.t);
+                queue.push({upperBound(seg, M, prev, next), p, s, prev, next});
+                prev = next;
+            }
         }
-    }
-    // Branch and bound: split intervals whose Lipschitz bound could still beat
-    // the best value by more than the discovery tolerance (1e-6 of the curves'
-    // size), down to intervals of 1e-3 of the size. Where f is flat at its
-    // maximum (parallel or coincident pieces) every interval stays a candidate:
-    // the polish below takes the best candidates to full precision.
-    const double tolerance = 1e-6 * size;
-    const double shortest = 1e-3 * size;  // M * (t1 - t0) below this: left to the polish
+    // Branch and bound: split intervals whose bound could still beat the best
+    // value by more than the tolerance, down to intervals of `shortest`
+    // (M * (t1 - t0)); where f is flat at its maximum (parallel or coincident
+    // pieces) every interval would stay a candidate, and any is as good as
+    // another: the polish below takes the best candidates to full precision.
+    const double tolerance = options.tolerance > 0 ? options.tolerance : 1e-6 * size;
+    auto bar = [&] { return std::max(best, options.floor); };
+    const double shortest = std::min(1e-3 * size, 1e3 * tolerance);
     std::vector<Interval> finalists;
     while (!queue.empty()) {
         Interval iv = queue.top();
         queue.pop();
-        const double M = speedBound(A.segments[iv.seg]);
-        if (iv.upper <= best + tolerance || M * (iv.t1 - iv.t0) < shortest) {
-            if (iv.upper > best - tolerance) finalists.push_back(iv);
+        const Segment& seg = A[iv.piece].segments[iv.seg];
+        const double M = speedBound(seg);
+        if (iv.upper <= bar() + tolerance || M * (iv.s1.t - iv.s0.t) < shortest) {
+            if (iv.upper > bar() - tolerance) finalists.push_back(iv);
             continue;
         }
-        const double tm = 0.5 * (iv.t0 + iv.t1), fm = f(iv.seg, tm);
-        if (fm > best) best = fm, bestSeg = iv.seg, bestT = tm;
-        queue.push({0.5 * (iv.f0 + fm + M * (tm - iv.t0)), iv.seg, iv.t0, tm, iv.f0, fm});
-        queue.push({0.5 * (fm + iv.f1 + M * (iv.t1 - tm)), iv.seg, tm, iv.t1, fm, iv.f1});
+        const Sample mid = sample(iv.piece, iv.seg, 0.5 * (iv.s0.t + iv.s1.t));
+        consider(mid.f, iv.piece, iv.seg, mid.t);
+        queue.push({upperBound(seg, M, iv.s0, mid), iv.piece, iv.seg, iv.s0, mid});
+        queue.push({upperBound(seg, M, mid, iv.s1), iv.piece, iv.seg, mid, iv.s1});
     }
-    // Polish: golden section on f around the best candidates (a local maximum,
-    // or the kink where two feet are equally near, is unimodal there). Where f
-    // is flat, any candidate is as good: the 24 with the highest bounds are
-    // enough.
+    // Polish: golden section on f around the best candidates (a local
+    // maximum, or the kink where two feet are equally near, is unimodal
+    // there), highest bound first: this takes the answer from the tolerance
+    // to full precision. Where f is flat, the 24 highest bounds are enough.
     std::sort(finalists.begin(), finalists.end(),
               [](const Interval& x, const Interval& y) { return x.upper > y.upper; });
     if (finalists.size() > 24) finalists.resize(24);
     for (const Interval& iv : finalists) {
-        const double w = iv.t1 - iv.t0;
-        double lo = std::max(0.0, iv.t0 - w), hi = std::min(1.0, iv.t1 + w);
+        const double w = iv.s1.t - iv.s0.t;
+        double lo = std::max(0.0, iv.s0.t - w), hi = std::min(1.0, iv.s1.t + w);
         const double g = 0.5 * (std::sqrt(5.0) - 1);
         double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
-        double f1 = f(iv.seg, x1), f2 = f(iv.seg, x2);
+        double f1 = f(iv.piece, iv.seg, x1), f2 = f(iv.piece, iv.seg, x2);
         for (int it = 0; it < 80 && hi - lo > 1e-15; ++it) {
             if (f1 < f2) {
-                lo = x1, x1 = x2, f1 = f2, x2 = lo + g * (hi - lo), f2 = f(iv.seg, x2);
+                lo = x1, x1 = x2, f1 = f2, x2 = lo + g * (hi - lo), f2 = f(iv.piece, iv.seg, x2);
             } else {
-                hi = x2, x2 = x1, f2 = f1, x1 = hi - g * (hi - lo), f1 = f(iv.seg, x1);
+                hi = x2, x2 = x1, f2 = f1, x1 = hi - g * (hi - lo), f1 = f(iv.piece, iv.seg, x1);
             }
         }
-        for (double t : {x1, x2, lo, hi}) {
-            const double v = f(iv.seg, t);
-            if (v > best) best = v, bestSeg = iv.seg, bestT = t;
-        }
+        consider(f1, iv.piece, iv.seg, x1);
+        consider(f2, iv.piece, iv.seg, x2);
+        for (double t : {lo, hi}) consider(f(iv.piece, iv.seg, t), iv.piece, iv.seg, t);
     }
 
     // The witness and its case.
     result.value = std::max(best, 0.0);
-    result.a = pointOf(A, bestSeg, bestT);
-    const Segment& sa = A.segments[bestSeg];
+    const Segment& sa = A[bestPiece].segments[bestSeg];
+    result.a = evaluate(sa, bestT);
+    result.pieceA = bestPiece;
     result.paramA = sa.paramStart + bestT * (sa.paramEnd - sa.paramStart);
-    const auto fs = feet(B, result.a, 1e-7 * scaleRef);
+    const auto fs = indexB.feet(result.a, 1e-7 * scaleRef);
     result.foot = fs.front();
     result.footQueries = queries;
     if (result.value <= 1e-12 * scaleRef) {
         result.kind = WitnessCase::Zero;
-    } else if (isEndpoint(A, bestSeg, bestT)) {
+    } else if (isEndpoint(A[bestPiece], bestSeg, bestT)) {
         result.kind = WitnessCase::EndpointOfA;
     } else {
         // A second foot, as near, elsewhere on B: the witness is on B's medial axis.
@@ -257,18 +392,44 @@ OneSided oneSidedHausdorff(const PiecewiseBezier& A, const PiecewiseBezier& B) {
                 break;
             }
         if (result.kind != WitnessCase::OneToTwo)
-            result.kind = isEndpoint(B, result.foot.segment, result.foot.t) ? WitnessCase::EndpointOfB
-                                                                            : WitnessCase::Antipodal;
+            result.kind = isEndpoint(B[result.foot.piece], result.foot.segment, result.foot.t)
+                              ? WitnessCase::EndpointOfB
+                              : WitnessCase::Antipodal;
     }
     return result;
 }
 
-HausdorffResult hausdorff(const PiecewiseBezier& a, const PiecewiseBezier& b) {
+HausdorffResult hausdorff(std::span<const PiecewiseBezier> a, std::span<const PiecewiseBezier> b,
+                          const HausdorffOptions& options) {
     HausdorffResult r;
-    r.ab = oneSidedHausdorff(a, b);
-    r.ba = oneSidedHausdorff(b, a);
+    r.ab = oneSidedHausdorff(a, b, options);
+    r.ba = oneSidedHausdorff(b, a, options);
     r.H = std::max(r.ab.value, r.ba.value);
     return r;
+}
+
+OneSided oneSidedHausdorff(const PiecewiseBezier& a, const PiecewiseBezier& b,
+                           const HausdorffOptions& options) {
+    return oneSidedHausdorff({&a, 1}, {&b, 1}, options);
+}
+
+HausdorffResult hausdorff(const PiecewiseBezier& a, const PiecewiseBezier& b,
+                          const HausdorffOptions& options) {
+    return hausdorff({&a, 1}, {&b, 1}, options);
+}
+
+double vertexHausdorff(std::span<const PiecewiseBezier> a, std::span<const PiecewiseBezier> b) {
+    auto oneSided = [](std::span<const PiecewiseBezier> from, std::span<const PiecewiseBezier> to) {
+        const SegmentIndex index(to);
+        double h = 0;
+        for (const auto& c : from)
+            for (const auto& s : c.segments) {
+                h = std::max(h, index.distance(s.control.front()));
+                h = std::max(h, index.distance(s.control.back()));
+            }
+        return h;
+    };
+    return std::max(oneSided(a, b), oneSided(b, a));
 }
 
 }  // namespace relief::curves

@@ -374,7 +374,26 @@ std::optional<SceneDesc> readScene(const std::filesystem::path& path, Diagnostic
             scene.schemeLoc = s.loc();
             if (s.find("preset")) scene.scheme = "";  // the preset names the scheme
         }
-        if (auto d = s.integer("depth", 0, 8, "levels")) scene.depth = *d;
+        scene.depthLoc = s.keyLoc("depth");
+        if (const toml::node* d = s.find("depth"); d && d->value_exact<std::string>()) {
+            s.markKnown("depth");
+            if (*d->value_exact<std::string>() == "auto")
+                scene.depthAuto = true;
+            else
+                s.error("depth", "subdivision.depth must be an integer number of levels in "
+                                 "[0, 8] or \"auto\" (with tolerance_m)");
+        } else if (auto n = s.integer("depth", 0, 8, "levels")) {
+            scene.depth = *n;
+        }
+        scene.toleranceLoc = s.keyLoc("tolerance_m");
+        if (auto t = s.number("tolerance_m", 0, 1e6, "m", true)) scene.toleranceM = *t;
+        if (scene.depthAuto && scene.toleranceM <= 0 && !s.find("tolerance_m"))
+            s.error("depth", "subdivision.depth = \"auto\" needs subdivision.tolerance_m, the "
+                             "largest change in metres one more level may make (e.g. "
+                             "tolerance_m = 1)");
+        if (!scene.depthAuto && s.find("tolerance_m"))
+            diags.warning(scene.toleranceLoc, "subdivision.tolerance_m is ignored: it is used "
+                                              "only with depth = \"auto\"");
         if (auto p = s.string("preset")) {
             scene.preset = *p;
             scene.presetLoc = s.keyLoc("preset");
@@ -410,7 +429,8 @@ std::optional<SceneDesc> readScene(const std::filesystem::path& path, Diagnostic
         if (const toml::table* t = root.get_as<toml::table>("subdivision")) {
             for (auto&& [k, v] : *t) {
                 const std::string key(k.str());
-                if (key == "scheme" || key == "depth" || key == "preset" || key == "mask" ||
+                if (key == "scheme" || key == "depth" || key == "tolerance_m" ||
+                    key == "preset" || key == "mask" ||
                     key == "arity" || key == "mask_first" || key == "allow_nonconvergent")
                     continue;
                 s.markKnown(key);

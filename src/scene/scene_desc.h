@@ -70,7 +70,12 @@ struct SceneDesc {
     std::vector<double> mask;
     SourceLoc maskLoc;
     bool allowNonconvergent = false;
-    int depth = 3;
+    int depth = 3;                  ///< when depthAuto: set by the subdivision stage
+    SourceLoc depthLoc;
+    bool depthAuto = false;         ///< depth = "auto": the smallest depth whose last
+                                    ///< level moves the rows and columns by <= toleranceM
+    double toleranceM = 0;
+    SourceLoc toleranceLoc;
 
     // [limits]
     double maxTriangles = 20e6;

@@ -37,10 +37,16 @@ double bruteForce(const PiecewiseBezier& A, const PiecewiseBezier& B, int perSeg
             };
             std::vector<double> v(perSegment + 1);
             for (int k = 0; k <= perSegment; ++k) v[k] = d(double(k) / perSegment);
+            double step = 0;  // the control polygon's length bounds the arc's
+            const auto& c = B.segments[s].control;
+            for (size_t i = 0; i + 1 < c.size(); ++i) step += std::hypot(c[i + 1].x - c[i].x, c[i + 1].y - c[i].y);
+            step /= perSegment;
             for (int k = 0; k <= perSegment; ++k) {
                 best = std::min(best, v[k]);
                 const bool localMin = (k == 0 || v[k] <= v[k - 1]) && (k == perSegment || v[k] <= v[k + 1]);
-                if (localMin && v[k] < best + 1e-2)
+                // A sample is at most step (the arc between samples) above the
+                // minimum next to it.
+                if (localMin && v[k] - step < best)
                     best = std::min(best, ternary(std::max(0.0, (k - 1.0) / perSegment),
                                                   std::min(1.0, (k + 1.0) / perSegment), d, false));
             }
@@ -160,6 +166,56 @@ TEST(Hausdorff, AgainstBruteForceOnRandomCurves) {
     const auto rb = hausdorff(bez, B);
     EXPECT_NEAR(rb.ab.value, bruteForce(bez, B, 200), 1e-9);
     EXPECT_NEAR(rb.ba.value, bruteForce(B, bez, 30), 1e-9);
+}
+
+// Long polylines, as the terrain uses give it (rows of a refined net against
+// the level before; contour lines): the convexity bound for straight pieces
+// must keep the answer exact.
+TEST(Hausdorff, PolylinesAgainstBruteForce) {
+    std::mt19937 rng(7);
+    std::normal_distribution<double> n(0, 1);
+    std::vector<Point2> row, finer, zigzag;
+    double z = 0;
+    for (int i = 0; i < 60; ++i) row.push_back({10.0 * i, z += 5 * n(rng)});
+    for (size_t i = 0; i + 1 < row.size(); ++i) {
+        finer.push_back(row[i]);
+        finer.push_back({0.5 * (row[i].x + row[i + 1].x), 0.5 * (row[i].y + row[i + 1].y) + 2 * n(rng)});
+    }
+    finer.push_back(row.back());
+    for (int i = 0; i < 40; ++i) zigzag.push_back({15.0 * i + 20 * n(rng), 30 * n(rng)});
+    const auto A = curve("polyline", false, row), B = curve("polyline", false, finer),
+               C = curve("polyline", false, zigzag);
+    for (const auto& [a, b] : {std::pair{&A, &B}, std::pair{&B, &A}, std::pair{&A, &C}, std::pair{&C, &B}}) {
+        const double reference = bruteForce(*a, *b, 12);
+        EXPECT_NEAR(oneSidedHausdorff(*a, *b).value, reference, 1e-9);
+        // With a floor below the answer, the answer is unchanged; above it, at most the floor.
+        EXPECT_NEAR(oneSidedHausdorff(*a, *b, {0, 0.5 * reference}).value, reference, 1e-9);
+        EXPECT_LE(oneSidedHausdorff(*a, *b, {0, 2 * reference}).value, 2 * reference);
+    }
+    EXPECT_LE(vertexHausdorff({&A, 1}, {&B, 1}), hausdorff(A, B).H);
+}
+
+// Curve sets (contour lines at one elevation): the same point set as one
+// curve made of all the pieces, and the witness names its piece.
+TEST(Hausdorff, CurveSets) {
+    auto circle = [](double cx, double cy, double r) {
+        std::vector<Point2> p;
+        for (int i = 0; i < 64; ++i) p.push_back({cx + r * std::cos(2 * M_PI * i / 64), cy + r * std::sin(2 * M_PI * i / 64)});
+        return curve("polyline", true, p);
+    };
+    const CurveSet A{circle(0, 0, 1), circle(10, 0, 2)};
+    const CurveSet B{circle(0.1, 0, 1), circle(10, 0, 2.5)};
+    PiecewiseBezier a, b;
+    for (const auto& c : A) a.segments.insert(a.segments.end(), c.segments.begin(), c.segments.end());
+    for (const auto& c : B) b.segments.insert(b.segments.end(), c.segments.begin(), c.segments.end());
+    const auto sets = hausdorff(A, B);
+    EXPECT_NEAR(sets.H, hausdorff(a, b).H, 1e-12);
+    EXPECT_NEAR(sets.ba.value, 0.5, 1e-9);  // the larger circle grew by 0.5
+    EXPECT_EQ(sets.ba.pieceA, 1u);
+    EXPECT_EQ(sets.ba.foot.piece, 1u);
+    const CurveSet none;
+    EXPECT_TRUE(std::isinf(hausdorff(A, none).H));
+    EXPECT_EQ(hausdorff(none, none).H, 0.0);
 }
 
 TEST(Hausdorff, DegenerateInputs) {
