@@ -1,0 +1,129 @@
+#include "cli/cli_common.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <iostream>
+#include <tuple>
+
+#include <fmt/format.h>
+
+namespace relief::cli {
+
+const char* const kExitCodes =
+    "Exit codes: 0 success; 1 internal error; 2 bad input (arguments, scene file, samples,\n"
+    "template, output budget) or an output that cannot be written; 3 POV-Ray missing or failed.\n"
+    "relief diff keeps idiff's: 0 pass, 1 warning, 2 failure, 3 images not comparable,\n"
+    "4 file error or bad arguments. relief test: 0 all cases pass, 1 a case failed.";
+
+void printDiagnostics(const Diagnostics& diags, bool wrote) {
+    // In file order, so a user fixes them top to bottom.
+    auto sorted = diags.all();
+    std::stable_sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) {
+        return std::tie(a.loc.file, a.loc.line) < std::tie(b.loc.file, b.loc.line);
+    });
+    for (const auto& d : sorted) std::cerr << formatDiagnostic(d) << '\n';
+    if (diags.errorCount() > 0)
+        std::cerr << fmt::format("relief: {} error{}, {} warning{}; {}\n", diags.errorCount(),
+                                 diags.errorCount() == 1 ? "" : "s", diags.warningCount(),
+                                 diags.warningCount() == 1 ? "" : "s",
+                                 wrote ? "output may be incomplete" : "nothing written");
+}
+
+// Where the templates are: --templates, $RELIEF_TEMPLATES, the installed
+// share/relief/templates beside the binary, or the source tree.
+fs::path findTemplates(const std::string& option) {
+    if (!option.empty()) return option;
+    if (const char* env = std::getenv("RELIEF_TEMPLATES")) return env;
+    std::error_code ec;
+    const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+    if (!ec) {
+        const fs::path installed = exe.parent_path().parent_path() / "share/relief/templates";
+        if (fs::exists(installed / "scene.pov.in", ec)) return installed;
+    }
+    return RELIEF_SOURCE_TEMPLATES_DIR;
+}
+
+void ensureParent(const fs::path& file) {
+    if (file.has_parent_path()) fs::create_directories(file.parent_path());
+}
+
+
+// KEY=VALUE strings -> scene overrides (`section.key=value`).
+bool parseOverrides(const std::vector<std::string>& list, scene::SceneOverrides& out) {
+    for (const auto& kv : list) {
+        const auto eq = kv.find('=');
+        if (eq == std::string::npos || eq == 0) {
+            std::cerr << "relief: error: " << kv << ": write section.key=value, e.g. subdivision.omega=1/32\n";
+            return false;
+        }
+        out.emplace_back(kv.substr(0, eq), kv.substr(eq + 1));
+    }
+    return true;
+}
+
+Progress::Progress(bool quiet) : quiet_(quiet), tty_(::isatty(STDERR_FILENO)) {}
+
+void Progress::show(const std::string& line) {
+    if (quiet_) return;
+    if (tty_) {
+        std::cerr << "\r\033[K" << line << std::flush;
+        open_ = true;
+    } else if (line != last_) {
+        // Not a terminal (a log): stage lines, and render progress per 10 %.
+        const auto open = line.rfind('(');
+        const int pct = open == std::string::npos ? -1 : std::atoi(line.c_str() + open + 1);
+        if (pct < 0 || pct / 10 != lastDecile_) std::cerr << line << '\n';
+        lastDecile_ = pct < 0 ? -1 : pct / 10;
+    }
+    last_ = line;
+}
+
+void Progress::done() {
+    if (open_) std::cerr << "\r\033[K" << std::flush;
+    open_ = false;
+}
+
+// KEY=VALUE list (values may be fractions) -> map; false with a message on bad input.
+bool parseParams(const std::vector<std::string>& list, std::map<std::string, double>& out) {
+    for (const auto& kv : list) {
+        const auto eq = kv.find('=');
+        const auto value = eq == std::string::npos
+                               ? std::nullopt
+                               : scene::parseFraction(kv.substr(eq + 1));
+        if (!value) {
+            std::cerr << "relief: error: " << kv
+                      << ": write KEY=VALUE, the value a number or a fraction such as 7/32\n";
+            return false;
+        }
+        out[kv.substr(0, eq)] = *value;
+    }
+    return true;
+}
+
+std::vector<std::string> split(const std::string& s, char sep) {
+    std::vector<std::string> out;
+    size_t start = 0;
+    while (true) {
+        const size_t e = s.find(sep, start);
+        out.push_back(s.substr(start, e == std::string::npos ? std::string::npos : e - start));
+        if (e == std::string::npos) break;
+        start = e + 1;
+    }
+    return out;
+}
+
+bool parseLonLat(const std::string& text, double& lon, double& lat) {
+    const auto parts = split(text, ',');
+    if (parts.size() != 2) return false;
+    char* end = nullptr;
+    lon = std::strtod(parts[0].c_str(), &end);
+    if (end == parts[0].c_str() || *end) return false;
+    lat = std::strtod(parts[1].c_str(), &end);
+    if (end == parts[1].c_str() || *end) return false;
+    return std::fabs(lat) <= 90 && std::fabs(lon) <= 180;
+}
+
+}  // namespace relief::cli

@@ -1,0 +1,90 @@
+#pragma once
+// What the subcommands share: exit codes, printing diagnostics, progress,
+// the scene options every scene command takes, small argument parsers.
+// Each subcommand lives in one cmd_*.cpp and registers itself through a
+// Command; main.cpp only builds the app and dispatches.
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "core/diagnostics.h"
+#include "scene/read_scene.h"
+
+namespace relief::cli {
+
+namespace fs = std::filesystem;
+
+/// Exit codes (also in README.md and `relief --help`).
+enum class Exit : int {
+    Ok = 0,          ///< success
+    Internal = 1,    ///< a bug in relief: please report it
+    BadInput = 2,    ///< bad arguments, scene, samples or template; over budget; cannot write
+    ToolFailed = 3,  ///< POV-Ray is missing or failed (its own error text is printed)
+};
+inline int code(Exit e) { return static_cast<int>(e); }
+
+extern const char* const kExitCodes;
+
+/// A registered subcommand: run() is called when it was parsed; a parse error
+/// exits with parseErrorCode (relief diff keeps idiff's 4).
+struct Command {
+    CLI::App* app = nullptr;
+    std::function<int()> run;
+    int parseErrorCode = code(Exit::BadInput);
+};
+
+// Registration, one function per cmd_*.cpp.
+void addSceneCommands(CLI::App& app, std::vector<Command>& out);     // compile, render
+void addSchemeCommands(CLI::App& app, std::vector<Command>& out);    // check, curve
+void addImageCommands(CLI::App& app, std::vector<Command>& out);     // diff, test, sweep
+void addGeometryCommands(CLI::App& app, std::vector<Command>& out);  // hausdorff, profile, compare-geometry
+
+/// Errors and warnings in file order, then the count line.
+void printDiagnostics(const Diagnostics& diags, bool wrote);
+
+/// Where the templates are: --templates, $RELIEF_TEMPLATES, the installed
+/// share/relief/templates beside the binary, or the source tree.
+fs::path findTemplates(const std::string& option);
+
+void ensureParent(const fs::path& file);
+
+/// One status line, rewritten in place on a terminal; in a log, stage lines
+/// and render progress per 10 %.
+class Progress {
+public:
+    explicit Progress(bool quiet);
+    void show(const std::string& line);
+    void done();
+
+private:
+    bool quiet_, tty_, open_ = false;
+    std::string last_;
+    int lastDecile_ = -1;
+};
+
+/// The options of the commands that take one scene file.
+struct CommonOptions {
+    std::string scene;
+    std::vector<std::string> sets;  ///< section.key=value overrides
+    std::string output;
+    std::string templates;
+    int threads = 0;
+    bool quiet = false;
+};
+
+/// KEY=VALUE strings -> scene overrides (`section.key=value`); false with a message.
+bool parseOverrides(const std::vector<std::string>& list, scene::SceneOverrides& out);
+
+/// KEY=VALUE list (values may be fractions) -> map; false with a message on bad input.
+bool parseParams(const std::vector<std::string>& list, std::map<std::string, double>& out);
+
+std::vector<std::string> split(const std::string& s, char sep);
+
+/// "LON,LAT" in WGS84 degrees; false when malformed or out of range.
+bool parseLonLat(const std::string& text, double& lon, double& lat);
+
+}  // namespace relief::cli

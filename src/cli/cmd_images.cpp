@@ -1,0 +1,268 @@
+#include "cli/cli_common.h"
+
+// relief diff, relief test, relief sweep: images compared, regression runs, contact sheets.
+#include <chrono>
+#include <cmath>
+#include <iostream>
+#include <memory>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "compare/compare_images.h"
+#include "core/number_format.h"
+#include "figures/sweep.h"
+#include "pipeline.h"
+#include "regress/regress.h"
+
+namespace relief::cli {
+
+namespace {
+
+struct DiffOptions {
+    std::string a, b;
+    relief::compare::Thresholds t;
+    std::string diffImage;
+    bool json = false;
+};
+
+nlohmann::ordered_json differenceJson(const relief::compare::ImageDifference& d,
+                                      const relief::compare::Thresholds& t) {
+    nlohmann::ordered_json j;
+    j["verdict"] = relief::compare::verdictName(d.verdict);
+    if (!d.error.empty()) j["error"] = d.error;
+    j["width"] = d.width;
+    j["height"] = d.height;
+    j["channels"] = d.channels;
+    j["max_error"] = d.maxError;
+    j["max_error_at"] = {d.maxX, d.maxY};
+    j["max_error_channel"] = d.maxChannel;
+    j["mean_error"] = d.meanError;
+    j["rms_error"] = d.rmsError;
+    j["psnr"] = std::isfinite(d.psnr) ? nlohmann::ordered_json(d.psnr) : nlohmann::ordered_json("inf");
+    j["failing_pixels"] = d.failingPixels;
+    j["failing_percent"] = d.failingPercent;
+    j["warning_pixels"] = d.warningPixels;
+    j["warning_percent"] = d.warningPercent;
+    j["constant_a"] = d.constantA;
+    j["constant_b"] = d.constantB;
+    nlohmann::ordered_json ch = nlohmann::ordered_json::array();
+    for (const auto& c : d.perChannel)
+        ch.push_back({{"name", c.name}, {"max_error", c.maxError}, {"max_error_at", {c.maxX, c.maxY}},
+                      {"mean_error", c.meanError}, {"rms_error", c.rmsError},
+                      {"psnr", std::isfinite(c.psnr) ? nlohmann::ordered_json(c.psnr) : nlohmann::ordered_json("inf")}});
+    j["per_channel"] = ch;
+    j["thresholds"] = {{"fail", t.fail}, {"failpercent", t.failPercent},
+                       {"hardfail", t.hardFail < 1e300 ? nlohmann::ordered_json(t.hardFail) : nlohmann::ordered_json("inf")},
+                       {"warn", t.warn}, {"warnpercent", t.warnPercent},
+                       {"hardwarn", t.hardWarn < 1e300 ? nlohmann::ordered_json(t.hardWarn) : nlohmann::ordered_json("inf")},
+                       {"allowfailures", t.allowFailures}};
+    return j;
+}
+
+// `relief diff`: idiff's metrics, thresholds, verdict and exit codes.
+int runDiff(const DiffOptions& o) {
+    using relief::compare::Verdict;
+    const auto d = relief::compare::compareImages(o.a, o.b, o.t);
+    if (!o.diffImage.empty() && (d.verdict != Verdict::FileError && d.verdict != Verdict::NotComparable)) {
+        ensureParent(o.diffImage);
+        const std::string err = relief::compare::writeDifferenceImage(o.a, o.b, o.diffImage);
+        if (!err.empty()) {
+            std::cerr << "relief: error: " << err << '\n';
+            return 4;
+        }
+    }
+    if (o.json) {
+        std::cout << differenceJson(d, o.t).dump(2) << '\n';
+        return static_cast<int>(d.verdict);
+    }
+    if (d.verdict == Verdict::FileError || d.verdict == Verdict::NotComparable) {
+        std::cerr << "relief: error: " << d.error << '\n';
+        std::cout << relief::compare::verdictName(d.verdict) << '\n';
+        return static_cast<int>(d.verdict);
+    }
+    std::cout << fmt::format("Comparing {} and {} ({} x {}, {} channels)\n", o.a, o.b, d.width,
+                             d.height, d.channels);
+    std::cout << fmt::format("  {:<9} {:>10} {:>14} {:>11} {:>11} {:>8}\n", "channel", "max error",
+                             "at (x, y)", "mean", "RMS", "PSNR");
+    for (const auto& c : d.perChannel)
+        std::cout << fmt::format("  {:<9} {:>10.6f} {:>14} {:>11.3e} {:>11.3e} {:>8.2f}\n", c.name,
+                                 c.maxError, fmt::format("({}, {})", c.maxX, c.maxY), c.meanError,
+                                 c.rmsError, c.psnr);
+    std::cout << fmt::format("  {:<9} {:>10.6f} {:>14} {:>11.3e} {:>11.3e} {:>8.2f}\n", "all",
+                             d.maxError, fmt::format("({}, {})", d.maxX, d.maxY), d.meanError,
+                             d.rmsError, d.psnr);
+    std::cout << fmt::format("  {} pixels ({:.4f} %) over fail {}; {} pixels ({:.4f} %) over warn {}\n",
+                             d.failingPixels, d.failingPercent, relief::formatShortest(o.t.fail),
+                             d.warningPixels, d.warningPercent, relief::formatShortest(o.t.warn));
+    if (d.constantA) std::cout << "  note: " << o.a << " is a constant image (every pixel one colour)\n";
+    if (d.constantB) std::cout << "  note: " << o.b << " is a constant image (every pixel one colour)\n";
+    if (!o.diffImage.empty()) std::cout << "  difference image: " << o.diffImage << '\n';
+    std::cout << relief::compare::verdictName(d.verdict) << '\n';
+    return static_cast<int>(d.verdict);
+}
+
+struct TestOptions {
+    std::string manifest;
+    std::string report = "out/test-report";
+    std::string templates;
+    int jobs = 2;
+    bool update = false;
+};
+
+// `relief test`: render every case of a manifest, compare, report.
+int runTest(const TestOptions& o) {
+    relief::Diagnostics diags;
+    auto manifest = relief::regress::readManifest(o.manifest, diags);
+    if (!manifest) {
+        printDiagnostics(diags, false);
+        return code(Exit::BadInput);
+    }
+    relief::regress::RunOptions ro;
+    ro.reportDir = o.report;
+    ro.templatesDir = findTemplates(o.templates);
+    ro.jobs = o.jobs;
+    ro.update = o.update;
+    ro.manifestArgument = o.manifest;
+    const auto t0 = std::chrono::steady_clock::now();
+    std::cout << fmt::format("relief test: {} cases from {}, {} render{} at a time\n",
+                             manifest->cases.size(), o.manifest, o.jobs, o.jobs == 1 ? "" : "s");
+    auto results = relief::regress::runCases(
+        *manifest, ro, [](const relief::regress::CaseResult& r, size_t done, size_t total) {
+            std::cout << fmt::format("[{}/{}] {:<7} {} ({:.1f} s): {}\n", done, total,
+                                     relief::regress::statusName(r.status), r.testCase->name,
+                                     r.seconds, r.message)
+                      << std::flush;
+        });
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    relief::regress::writeReport(*manifest, results, ro, wall);
+    size_t failed = 0;
+    for (const auto& r : results)
+        failed += r.status == relief::regress::CaseStatus::Fail ||
+                  r.status == relief::regress::CaseStatus::Error ||
+                  r.status == relief::regress::CaseStatus::New;
+    std::cout << fmt::format("report: {}/index.html (also summary.json, junit.xml)\n", o.report);
+    if (failed && !o.update)
+        std::cout << fmt::format("to accept the new images: relief test {} --update\n", o.manifest);
+    std::cout << fmt::format("{} passed, {} failed\n", results.size() - failed, failed);
+    return failed && !o.update ? 1 : 0;
+}
+
+struct SweepOptions {
+    CommonOptions common;
+    std::vector<std::string> vary;
+    int columns = 0;
+};
+
+// `relief sweep`: one still per parameter combination, then a contact sheet.
+int runSweep(const SweepOptions& o) {
+    std::vector<relief::figures::Variation> variations;
+    for (const auto& v : o.vary) {
+        const auto eq = v.find('=');
+        if (eq == std::string::npos || eq == 0 || eq + 1 == v.size()) {
+            std::cerr << "relief: error: --vary " << v << ": write section.key=V1,V2,...\n";
+            return code(Exit::BadInput);
+        }
+        variations.push_back({v.substr(0, eq), split(v.substr(eq + 1), ',')});
+    }
+    relief::scene::SceneOverrides base;
+    if (!parseOverrides(o.common.sets, base)) return code(Exit::BadInput);
+    const auto combos = relief::figures::combinations(variations);
+    const std::string stem = fs::path(o.common.scene).stem().string();
+    const fs::path sheet = o.common.output.empty() ? fs::path("out") / (stem + "-sweep.png")
+                                                   : fs::path(o.common.output);
+    const fs::path stills = sheet.parent_path() / (sheet.stem().string() + "-stills");
+    fs::create_directories(stills);
+    std::vector<relief::figures::Tile> tiles;
+    for (size_t i = 0; i < combos.size(); ++i) {
+        std::string label;
+        for (const auto& [k, v] : combos[i])
+            label += fmt::format("{}{} = {}", label.empty() ? "" : ", ", k.substr(k.find('.') + 1), v);
+        relief::RenderJob job;
+        job.scenePath = o.common.scene;
+        job.overrides = base;
+        job.overrides.insert(job.overrides.end(), combos[i].begin(), combos[i].end());
+        job.png = stills / fmt::format("{:03}.png", i + 1);
+        job.templatesDir = findTemplates(o.common.templates);
+        job.threads = o.common.threads;
+        Progress progress(o.common.quiet);
+        progress.show(fmt::format("[{}/{}] {}", i + 1, combos.size(), label));
+        relief::Diagnostics diags;
+        const auto outcome = relief::renderSceneFile(job, diags, [&](const std::string& line) {
+            if (line.rfind("povray: Rendered", 0) == 0)
+                progress.show(fmt::format("[{}/{}] {}: {}", i + 1, combos.size(), label, line.substr(8)));
+        });
+        progress.done();
+        if (outcome.status != relief::JobStatus::Ok) {
+            printDiagnostics(diags, false);
+            if (outcome.status == relief::JobStatus::ToolFailed)
+                std::cerr << "relief: POV-Ray failed:\n" << outcome.render.error << '\n';
+            return code(outcome.status == relief::JobStatus::ToolFailed ? Exit::ToolFailed : Exit::BadInput);
+        }
+        printDiagnostics(diags, true);
+        if (!o.common.quiet)
+            std::cerr << fmt::format("[{}/{}] {} -> {} ({})\n", i + 1, combos.size(), label,
+                                     outcome.paths.png.string(), outcome.certified);
+        tiles.push_back({outcome.paths.png, fmt::format("{}\n{}", label, outcome.certified)});
+    }
+    const int columns = o.columns > 0 ? o.columns
+                                      : (variations.empty() ? 1 : static_cast<int>(variations[0].values.size()));
+    const std::string err = relief::figures::writeContactSheet(tiles, columns, fs::path(o.common.scene).filename().string(), sheet);
+    if (!err.empty() && err.rfind("warning", 0) != 0) {
+        std::cerr << "relief: error: " << err << '\n';
+        return code(Exit::BadInput);
+    }
+    if (!err.empty()) std::cerr << "relief: " << err << '\n';
+    std::cerr << "wrote " << sheet.string() << " (" << tiles.size() << " stills)\n";
+    return code(Exit::Ok);
+}
+
+}  // namespace
+
+void addImageCommands(CLI::App& app, std::vector<Command>& out) {
+    auto diff = std::make_shared<DiffOptions>();
+    CLI::App* diffCmd = app.add_subcommand(
+        "diff", "compare two images (OpenImageIO), with idiff's thresholds and exit codes: "
+                "0 PASS, 1 WARNING, 2 FAILURE, 3 not comparable (different sizes or channel "
+                "counts), 4 file error or bad arguments");
+    diffCmd->add_option("a", diff->a, "first image")->required();
+    diffCmd->add_option("b", diff->b, "second image")->required();
+    diffCmd->add_option("--fail", diff->t.fail, "a pixel fails when a channel differs by more (default 1e-6)");
+    diffCmd->add_option("--failpercent", diff->t.failPercent, "allow this % of pixels to fail (default 0)");
+    diffCmd->add_option("--hardfail", diff->t.hardFail, "fail if any pixel differs by more (default inf)");
+    diffCmd->add_option("--warn", diff->t.warn, "a pixel warns when a channel differs by more (default 1e-6)");
+    diffCmd->add_option("--warnpercent", diff->t.warnPercent, "allow this % of pixels to warn (default 0)");
+    diffCmd->add_option("--hardwarn", diff->t.hardWarn, "warn if any pixel differs by more (default inf)");
+    diffCmd->add_option("--allowfailures", diff->t.allowFailures, "this many pixels may fail by any amount (default 0)");
+    diffCmd->add_option("--diff-image", diff->diffImage, "write a heat map of the difference (black: identical)");
+    diffCmd->add_flag("--json", diff->json, "print the metrics and the verdict as one JSON object");
+    out.push_back({diffCmd, [diff] { return runDiff(*diff); }, 4});  // idiff's code for bad arguments
+
+    auto test = std::make_shared<TestOptions>();
+    CLI::App* testCmd = app.add_subcommand(
+        "test", "render every case of a manifest, compare with its reference images, write an "
+                "HTML report (and summary.json, junit.xml); exit 1 when a case fails");
+    testCmd->add_option("manifest", test->manifest, "manifest (TOML): [defaults] and [[case]] entries")->required();
+    testCmd->add_option("--report", test->report, "report folder (default out/test-report)");
+    testCmd->add_option("--jobs,-j", test->jobs, "renders at a time (default 2: measured faster on 2 cores)")
+        ->check(CLI::Range(1, 64));
+    testCmd->add_flag("--update", test->update, "bless the new images of failing or new cases as their references");
+    testCmd->add_option("--templates", test->templates, "folder with scene.pov.in");
+    out.push_back({testCmd, [test] { return runTest(*test); }});
+
+    auto sweep = std::make_shared<SweepOptions>();
+    CLI::App* sweepCmd = app.add_subcommand(
+        "sweep", "render one still per combination of --vary values and assemble a labelled "
+                 "contact sheet (one PNG)");
+    sweepCmd->add_option("scene", sweep->common.scene, "scene file (TOML)")->required();
+    sweepCmd->add_option("--vary", sweep->vary, "section.key=V1,V2,... (fractions allowed); repeatable")->required();
+    sweepCmd->add_option("--set", sweep->common.sets, "fixed override section.key=value; repeatable");
+    sweepCmd->add_option("-o,--output", sweep->common.output, "contact sheet (default out/<scene>-sweep.png)");
+    sweepCmd->add_option("--columns", sweep->columns, "tiles per row (default: the first --vary's count)");
+    sweepCmd->add_option("--templates", sweep->common.templates, "folder with scene.pov.in");
+    sweepCmd->add_option("--threads", sweep->common.threads, "threads (0: all cores)");
+    sweepCmd->add_flag("-q,--quiet", sweep->common.quiet, "print errors only");
+    out.push_back({sweepCmd, [sweep] { return runSweep(*sweep); }});
+}
+
+}  // namespace relief::cli

@@ -1,0 +1,297 @@
+#include "cli/cli_common.h"
+
+// relief check, relief curve: what a scheme gives, and refined curves drawn.
+#include <iostream>
+#include <memory>
+#include <optional>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "core/atomic_file.h"
+#include "core/number_format.h"
+#include "curves/curve_file.h"
+#include "emit/svg.h"
+#include "pipeline.h"
+#include "subdiv/analysis.h"
+#include "subdiv/refine.h"
+
+namespace relief::cli {
+
+namespace {
+
+struct CheckOptions {
+    std::string scheme;
+    std::string preset;
+    std::vector<std::string> params;
+    bool json = false;
+};
+
+std::string weightList(const std::vector<double>& w) {
+    std::string out;
+    for (double v : w) out += (out.empty() ? "" : ", ") + relief::formatShortest(v == 0 ? 0.0 : v);
+    return out;
+}
+
+
+struct ResolvedScheme {
+    std::string family;
+    relief::subdiv::Scheme scheme;
+    std::map<std::string, double> params;  ///< every parameter, defaults filled in
+};
+
+// --scheme / --preset / --param, as on the command line of check and curve.
+std::optional<ResolvedScheme> resolveScheme(const std::string& schemeName,
+                                            const std::string& presetName,
+                                            std::map<std::string, double> params) {
+    relief::Diagnostics diags;
+    std::map<std::string, relief::SourceLoc> locs;
+    for (const auto& [k, v] : params) locs[k] = {"--param " + k, 0, 0};
+    ResolvedScheme out;
+    out.family = schemeName;
+    if (!presetName.empty()) {
+        std::map<std::string, double> familyParams;
+        if (!relief::subdiv::resolvePreset(presetName, {"--preset", 0, 0}, params, locs, diags,
+                                           out.family, familyParams)) {
+            printDiagnostics(diags, false);
+            return std::nullopt;
+        }
+        if (!schemeName.empty() && schemeName != out.family) {
+            std::cerr << fmt::format("relief: error: preset \"{}\" belongs to scheme \"{}\", not "
+                                     "\"{}\"\n",
+                                     presetName, out.family, schemeName);
+            return std::nullopt;
+        }
+        params = familyParams;
+        locs.clear();
+    } else if (schemeName.empty()) {
+        std::cerr << "relief: error: give --scheme NAME or --preset NAME\n";
+        return std::nullopt;
+    }
+    auto scheme = relief::subdiv::makeScheme(out.family, {"--scheme", 0, 0}, params, locs, diags,
+                                             &out.params);
+    if (!scheme) {
+        printDiagnostics(diags, false);
+        return std::nullopt;
+    }
+    printDiagnostics(diags, false);  // warnings
+    out.scheme = std::move(*scheme);
+    return out;
+}
+
+// `relief check`: what a scheme and its parameters give.
+int runCheck(const CheckOptions& o) {
+    std::map<std::string, double> params;
+    if (!parseParams(o.params, params)) return code(Exit::BadInput);
+    auto resolved = resolveScheme(o.scheme, o.preset, params);
+    if (!resolved) return code(Exit::BadInput);
+    const std::string& family = resolved->family;
+    const relief::subdiv::Scheme* scheme = &resolved->scheme;
+    const std::map<std::string, double>& resolvedParams = resolved->params;
+    const auto rep = relief::subdiv::analyzeScheme(*scheme);
+    const auto notes = relief::subdiv::explainReport(rep, family, resolvedParams);
+
+    if (o.json) {
+        nlohmann::ordered_json j;
+        j["scheme"] = family;
+        if (!o.preset.empty()) j["preset"] = o.preset;
+        j["parameters"] = resolvedParams;
+        j["arity"] = scheme->arity;
+        nlohmann::ordered_json rules = nlohmann::ordered_json::array();
+        for (const auto& r : scheme->rules)
+            rules.push_back({{"offset", r.offset}, {"weights", r.weights}});
+        j["rules"] = rules;
+        j["symbol"] = {{"first_power", rep.symbol.first}, {"coefficients", rep.symbol.coeffs}};
+        j["sum_rules"] = rep.sumRules;
+        j["interpolating"] = rep.interpolating;
+        j["support_width"] = rep.supportWidth;
+        j["reproduction_degree"] = rep.reproductionDegree;
+        j["generation_degree"] = rep.generationDegree;
+        j["ghost_points"] = {{"before", rep.ghostsBefore}, {"after", rep.ghostsAfter}};
+        j["smoothness"] = rep.smoothness;
+        j["smoothness_by_paper_test"] = rep.smoothnessByPaperTest;
+        j["holder"] = rep.holder;
+        j["holder_lower_bound"] = rep.holderLower;
+        nlohmann::ordered_json tests = nlohmann::ordered_json::array();
+        for (const auto& t : rep.tests)
+            tests.push_back({{"k", t.k}, {"proved_at_L", t.provedAtL}, {"norm_L1", t.normAtL1},
+                             {"best_norm_root", t.bestNormRoot}});
+        j["difference_tests"] = tests;
+        j["notes"] = notes;
+        std::cout << j.dump(2) << '\n';
+        return code(Exit::Ok);
+    }
+    std::cout << fmt::format("scheme {}{}: arity {}\n", family,
+                             o.preset.empty() ? "" : " (preset " + o.preset + ")", scheme->arity);
+    std::string p;
+    for (const auto& [k, v] : resolvedParams) p += fmt::format("{}{} = {}", p.empty() ? "" : ", ", k, relief::formatShortest(v));
+    if (!p.empty()) std::cout << "  parameters: " << p << '\n';
+    for (size_t r = 0; r < scheme->rules.size(); ++r)
+        std::cout << fmt::format("  P'[{}i+{}] = ({}) . P[i{:+d} ...]\n", scheme->arity, r,
+                                 weightList(scheme->rules[r].weights), scheme->rules[r].offset);
+    std::cout << fmt::format("  symbol a(z): z^{} * ({})\n", rep.symbol.first, weightList(rep.symbol.coeffs));
+    std::cout << fmt::format("  sum rules: {}\n", rep.sumRules ? "hold (every child position sums to 1)" : "FAIL");
+    std::cout << fmt::format("  {}; support width {} intervals; reproduces polynomials of degree {}; "
+                             "generates degree {}\n",
+                             rep.interpolating ? "interpolating" : "approximating",
+                             relief::formatShortest(rep.supportWidth), rep.reproductionDegree,
+                             rep.generationDegree);
+    std::cout << fmt::format("  ghost points per side: {} before, {} after\n", rep.ghostsBefore, rep.ghostsAfter);
+    for (const auto& t : rep.tests)
+        std::cout << fmt::format("  C{} test: one-step norm {:.6f} ({}); {}\n", t.k, t.normAtL1,
+                                 t.normAtL1 < 1 ? "< 1, proved by the papers' test" : ">= 1",
+                                 t.provedAtL ? fmt::format("proved at L = {}", t.provedAtL)
+                                             : std::string("not proved up to the L tried"));
+    std::cout << fmt::format("  certified: {}; Hölder exponent ~ {:.3f} (proven lower bound {:.3f})\n",
+                             rep.smoothness < 0 ? std::string("convergence not proven")
+                                                : fmt::format("C{}", rep.smoothness),
+                             rep.holder, rep.holderLower);
+    for (const auto& n : notes) std::cout << "  note: " << n << '\n';
+    return code(Exit::Ok);
+}
+
+struct CurveOptions {
+    std::string polygon;
+    CheckOptions scheme;
+    std::vector<std::string> sets;  ///< one curve per entry: "k=v,k=v"
+    std::string vary;               ///< "k=v1,v2,..."
+    int depth = 5;
+    std::string output;
+    std::string points;
+    std::string title;
+};
+
+
+// `relief curve`: refine a 2-D control polygon with one or more parameter sets.
+int runCurve(const CurveOptions& o) {
+    relief::Diagnostics diags;
+    auto polygon = relief::curves::readCurveFile(o.polygon, diags);
+    if (!polygon) {
+        printDiagnostics(diags, false);
+        return code(Exit::BadInput);
+    }
+    std::map<std::string, double> base;
+    if (!parseParams(o.scheme.params, base)) return code(Exit::BadInput);
+
+    // The parameter sets: --set entries, or --vary values, or the base alone.
+    std::vector<std::map<std::string, double>> sets;
+    std::vector<std::string> labels;
+    for (const auto& set : o.sets) {
+        auto p = base;
+        if (!parseParams(split(set, ','), p)) return code(Exit::BadInput);
+        sets.push_back(p);
+        labels.push_back(set);
+    }
+    if (!o.vary.empty()) {
+        const auto eq = o.vary.find('=');
+        if (eq == std::string::npos) {
+            std::cerr << "relief: error: --vary KEY=V1,V2,... \n";
+            return code(Exit::BadInput);
+        }
+        const std::string key = o.vary.substr(0, eq);
+        for (const auto& v : split(o.vary.substr(eq + 1), ',')) {
+            auto p = base;
+            if (!parseParams({key + "=" + v}, p)) return code(Exit::BadInput);
+            sets.push_back(p);
+            labels.push_back(key + " = " + v);
+        }
+    }
+    if (sets.empty()) {
+        sets.push_back(base);
+        labels.push_back("");
+    }
+    if (polygon->type != "polyline") {
+        std::cerr << "relief: error: " << o.polygon << ": relief curve refines a control polygon "
+                  << "(\"type\": \"polyline\"), not a " << polygon->type << "\n";
+        return code(Exit::BadInput);
+    }
+    std::vector<relief::Vec3> control;
+    for (const auto& p : polygon->points) control.push_back({p.x, p.y, 0});
+
+    relief::emit::SvgCurve controlCurve{"control polygon", polygon->points, polygon->closed};
+    std::vector<relief::emit::SvgCurve> curves;
+    std::vector<relief::curves::CurveFile> refinedFiles;
+    for (size_t i = 0; i < sets.size(); ++i) {
+        auto resolved = resolveScheme(o.scheme.scheme, o.scheme.preset, sets[i]);
+        if (!resolved) return code(Exit::BadInput);
+        if (!polygon->closed &&
+            static_cast<int>(control.size()) < relief::subdiv::minPoints(resolved->scheme)) {
+            std::cerr << fmt::format("relief: error: {}: an open polygon needs at least {} points "
+                                     "for {}\n",
+                                     o.polygon, relief::subdiv::minPoints(resolved->scheme),
+                                     resolved->family);
+            return code(Exit::BadInput);
+        }
+        const auto report = relief::subdiv::analyzeScheme(resolved->scheme);
+        const auto refined =
+            relief::subdiv::refineCurveLevels(resolved->scheme, control, polygon->closed, o.depth);
+        relief::curves::CurveFile file{"polyline", polygon->closed, {}};
+        for (const auto& v : refined) file.points.push_back({v.x, v.y});
+        std::string label = resolved->family;
+        if (!labels[i].empty()) label += ": " + labels[i];
+        else {
+            std::string p;
+            for (const auto& [k, v] : resolved->params)
+                p += fmt::format("{}{} = {}", p.empty() ? "" : ", ", k, relief::formatShortest(v));
+            if (!p.empty()) label += ": " + p;
+        }
+        label += fmt::format(" ({})", relief::certifiedClass(report));
+        curves.push_back({label, file.points, polygon->closed});
+        refinedFiles.push_back(std::move(file));
+    }
+    const fs::path svgPath = o.output.empty()
+                                 ? fs::path("out") / (fs::path(o.polygon).stem().string() + ".svg")
+                                 : fs::path(o.output);
+    ensureParent(svgPath);
+    const std::string title =
+        o.title.empty() ? fmt::format("{} refined {} times", fs::path(o.polygon).filename().string(), o.depth)
+                        : o.title;
+    relief::writeFileAtomically(svgPath, relief::emit::curvesSvg(title, controlCurve, curves));
+    std::cerr << "wrote " << svgPath.string() << '\n';
+    if (!o.points.empty()) {
+        for (size_t i = 0; i < refinedFiles.size(); ++i) {
+            fs::path p = o.points;
+            if (refinedFiles.size() > 1)
+                p = p.parent_path() / fmt::format("{}.{}{}", p.stem().string(), i + 1, p.extension().string());
+            ensureParent(p);
+            relief::writeFileAtomically(p, relief::curves::curveFileJson(refinedFiles[i]));
+            std::cerr << "wrote " << p.string() << " (" << refinedFiles[i].points.size() << " points)\n";
+        }
+    }
+    return code(Exit::Ok);
+}
+
+}  // namespace
+
+void addSchemeCommands(CLI::App& app, std::vector<Command>& out) {
+    auto check = std::make_shared<CheckOptions>();
+    CLI::App* checkCmd = app.add_subcommand(
+        "check", "what a scheme and its parameters give: mask, interpolation, support, "
+                 "reproduction, certified smoothness (difference-scheme test), Hölder estimate");
+    checkCmd->add_option("--scheme", check->scheme,
+                         "dlg4, four-point-4p, binary-3p, ternary-blend, ternary-4point, "
+                         "ternary-bspline");
+    checkCmd->add_option("--preset", check->preset, "a named special case, e.g. hassan, deslauriers-dubuc");
+    checkCmd->add_option("--param", check->params, "KEY=VALUE (fractions such as 7/32 allowed); repeatable");
+    checkCmd->add_flag("--json", check->json, "one JSON object");
+    out.push_back({checkCmd, [check] { return runCheck(*check); }});
+
+    auto curve = std::make_shared<CurveOptions>();
+    CLI::App* curveCmd = app.add_subcommand(
+        "curve", "refine a 2-D control polygon (open or closed) and draw it as SVG; --set or "
+                 "--vary draws several parameter sets in one figure");
+    curveCmd->add_option("polygon", curve->polygon, "curve file: {\"type\": \"polyline\", \"closed\": "
+                                                    "false, \"points\": [[x, y], ...]}")->required();
+    curveCmd->add_option("--scheme", curve->scheme.scheme, "scheme name (see relief check)");
+    curveCmd->add_option("--preset", curve->scheme.preset, "a named special case");
+    curveCmd->add_option("--param", curve->scheme.params, "KEY=VALUE for every curve; repeatable");
+    curveCmd->add_option("--set", curve->sets, "one curve's parameters: \"k=v,k=v\"; repeatable");
+    curveCmd->add_option("--vary", curve->vary, "KEY=V1,V2,...: one curve per value");
+    curveCmd->add_option("--depth", curve->depth, "refinement levels")->check(CLI::Range(0, 12));
+    curveCmd->add_option("-o,--output", curve->output, "SVG to write (default out/<polygon>.svg)");
+    curveCmd->add_option("--points", curve->points, "also write the refined points as curve files");
+    curveCmd->add_option("--title", curve->title, "figure title");
+    out.push_back({curveCmd, [curve] { return runCurve(*curve); }});
+}
+
+}  // namespace relief::cli
