@@ -1,6 +1,6 @@
 #include "cli/cli_common.h"
 
-// relief hausdorff, relief profile, relief compare-geometry: distances in metres.
+// relief hausdorff, relief profile, relief compare-geometry: curves and distances in metres.
 #include <cmath>
 #include <iostream>
 #include <memory>
@@ -13,6 +13,8 @@
 #include "curves/hausdorff.h"
 #include "emit/svg.h"
 #include "geo/profile.h"
+#include "core/number_format.h"
+#include "measure/compare_geometry.h"
 #include "pipeline.h"
 
 namespace relief::cli {
@@ -146,6 +148,152 @@ int runProfile(const ProfileOptions& o) {
     return code(Exit::Ok);
 }
 
+
+struct CompareGeometryOptions {
+    std::string a, b;
+    std::vector<std::string> setA, setB;
+    std::vector<std::string> profiles;  ///< "LON,LAT:LON,LAT"
+    std::string levels;                 ///< "100,200,..."
+    int samples = 1001;
+    int threads = 0;
+    bool json = false;
+};
+
+std::string metres(double m) {
+    if (!std::isfinite(m)) return "infinite";
+    return std::fabs(m) >= 10000 ? fmt::format("{:.2f} km", m / 1000) : fmt::format("{:.3f} m", m);
+}
+
+nlohmann::ordered_json whereJson(const relief::measure::Where& w, const char* pointKeys) {
+    nlohmann::ordered_json j{{"on", w.onA ? "a" : "b"}, {"lat", w.latDeg}, {"lon", w.lonDeg}};
+    j[pointKeys] = {w.point.x, w.point.y};
+    j["nearest_on_other"] = {w.foot.x, w.foot.y};
+    return j;
+}
+
+nlohmann::ordered_json number(double v) {
+    return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json("inf");
+}
+
+// `relief compare-geometry`: Hausdorff distances between two scenes' surfaces.
+int runCompareGeometry(const CompareGeometryOptions& o) {
+    namespace m = relief::measure;
+    relief::Diagnostics diags;
+    relief::scene::SceneOverrides overA, overB;
+    if (!parseOverrides(o.setA, overA) || !parseOverrides(o.setB, overB)) return code(Exit::BadInput);
+    std::vector<m::ProfileLine> lines;
+    for (const auto& text : o.profiles) {
+        const auto ends = split(text, ':');
+        m::ProfileLine l{text};
+        if (ends.size() != 2 || !parseLonLat(ends[0], l.lon1, l.lat1) || !parseLonLat(ends[1], l.lon2, l.lat2)) {
+            std::cerr << "relief: error: --profile " << text
+                      << ": write LON,LAT:LON,LAT in WGS84 degrees, e.g. 174.76,-36.88:174.77,-36.87\n";
+            return code(Exit::BadInput);
+        }
+        lines.push_back(l);
+    }
+    std::vector<double> levels;
+    if (!o.levels.empty())
+        for (const auto& v : split(o.levels, ',')) {
+            char* end = nullptr;
+            const double z = std::strtod(v.c_str(), &end);
+            if (end == v.c_str() || *end || !std::isfinite(z)) {
+                std::cerr << "relief: error: --levels " << o.levels << ": write elevations in metres, "
+                          << "e.g. --levels 100,200,300\n";
+                return code(Exit::BadInput);
+            }
+            levels.push_back(z);
+        }
+    auto loadedA = relief::loadScene(o.a, diags, overA);
+    auto loadedB = relief::loadScene(o.b, diags, overB);
+    auto surfA = loadedA ? relief::buildSurface(*loadedA, diags, o.threads) : std::nullopt;
+    auto surfB = loadedB && surfA ? relief::buildSurface(*loadedB, diags, o.threads) : std::nullopt;
+    if (!surfA || !surfB) {
+        printDiagnostics(diags, false);
+        return code(Exit::BadInput);
+    }
+    auto framed = [](const std::string& name, const relief::Surface& s) {
+        return m::FramedSurface{name, s.net.frame, {&s.refined, s.net.x0, s.net.y0, s.refinedDx, s.refinedDy}};
+    };
+    const auto A = framed(o.a, *surfA), B = framed(o.b, *surfB);
+    if (lines.empty()) lines = m::defaultProfiles(A, B);
+    if (o.levels.empty()) levels = m::defaultLevels(A, B);
+    if (lines.empty() && levels.empty()) {
+        std::cerr << "relief: error: " << o.a << " and " << o.b
+                  << " share no area and no elevation range: nothing to compare\n";
+        return code(Exit::BadInput);
+    }
+    const auto result = m::compareGeometry(A, B, lines, levels, o.samples, diags);
+    if (!result) {
+        printDiagnostics(diags, false);
+        return code(Exit::BadInput);
+    }
+    printDiagnostics(diags, true);
+    auto describe = [](const relief::LoadedScene& l, const relief::Surface& s) {
+        return fmt::format("{}, depth {}, {}", l.schemeFamily, s.depth, relief::certifiedClass(l.report));
+    };
+    double worstProfile = 0, worstContour = 0;
+    for (const auto& p : result->profiles) worstProfile = std::max(worstProfile, p.h.H);
+    for (const auto& c : result->contours) worstContour = std::max(worstContour, c.h.H);
+    if (o.json) {
+        nlohmann::ordered_json j;
+        j["a"] = {{"scene", o.a}, {"surface", describe(*loadedA, *surfA)}, {"frame", A.frame.describe()}};
+        j["b"] = {{"scene", o.b}, {"surface", describe(*loadedB, *surfB)}, {"frame", B.frame.describe()}};
+        auto profiles = nlohmann::ordered_json::array();
+        for (const auto& p : result->profiles)
+            profiles.push_back({{"name", p.line.name},
+                                {"from", {p.line.lon1, p.line.lat1}},
+                                {"to", {p.line.lon2, p.line.lat2}},
+                                {"length_m", p.lengthM},
+                                {"H", p.h.H},
+                                {"h_ab", p.h.ab.value},
+                                {"h_ba", p.h.ba.value},
+                                {"where", whereJson(p.where, "distance_elevation_m")}});
+        j["profiles"] = profiles;
+        auto contours = nlohmann::ordered_json::array();
+        for (const auto& c : result->contours) {
+            nlohmann::ordered_json cj{{"level_m", c.level}, {"lines_a", c.linesA}, {"lines_b", c.linesB},
+                                      {"H", number(c.h.H)}, {"h_ab", number(c.h.ab.value)},
+                                      {"h_ba", number(c.h.ba.value)}};
+            if (std::isfinite(c.h.H) && c.linesA + c.linesB > 0) cj["where"] = whereJson(c.where, "xy_m");
+            contours.push_back(cj);
+        }
+        j["contours"] = contours;
+        j["max_profile_H"] = worstProfile;
+        j["max_contour_H"] = number(worstContour);
+        std::cout << j.dump(2) << '\n';
+        return code(Exit::Ok);
+    }
+    std::cout << fmt::format("a: {} ({})\nb: {} ({})\n", o.a, describe(*loadedA, *surfA), o.b,
+                             describe(*loadedB, *surfB));
+    for (const auto& p : result->profiles) {
+        const auto& w = p.where;
+        std::cout << fmt::format("profile {} ({:.1f} km): H = {}  (h(a,b) {}, h(b,a) {})\n", p.line.name,
+                                 p.lengthM / 1000, metres(p.h.H), metres(p.h.ab.value), metres(p.h.ba.value));
+        std::cout << fmt::format("    at {:.0f} m along, lat {:.6f} lon {:.6f}: {} at {:.1f} m, nearest {} "
+                                 "point ({:.0f} m along) at {:.1f} m\n",
+                                 w.point.x, w.latDeg, w.lonDeg, w.onA ? "a" : "b", w.point.y,
+                                 w.onA ? "b" : "a", w.foot.x, w.foot.y);
+    }
+    for (const auto& c : result->contours) {
+        std::cout << fmt::format("contour {} m: {} line{} in a, {} in b: H = {}", relief::formatShortest(c.level),
+                                 c.linesA, c.linesA == 1 ? "" : "s", c.linesB, metres(c.h.H));
+        if (c.linesA == 0 || c.linesB == 0) {
+            std::cout << (c.linesA + c.linesB == 0 ? " (neither surface reaches it)\n"
+                                                   : fmt::format(" (only {} reaches it)\n", c.linesA ? "a" : "b"));
+            continue;
+        }
+        const auto& w = c.where;
+        std::cout << fmt::format("  (h(a,b) {}, h(b,a) {})\n    at lat {:.6f} lon {:.6f} (x {:.0f}, y {:.0f} m): "
+                                 "{}'s line is {} from {}'s nearest\n",
+                                 metres(c.h.ab.value), metres(c.h.ba.value), w.latDeg, w.lonDeg, w.point.x,
+                                 w.point.y, w.onA ? "a" : "b", metres(c.h.H), w.onA ? "b" : "a");
+    }
+    std::cout << fmt::format("largest: {} between profiles, {} between contour lines\n", metres(worstProfile),
+                             metres(worstContour));
+    return code(Exit::Ok);
+}
+
 }  // namespace
 
 void addGeometryCommands(CLI::App& app, std::vector<Command>& out) {
@@ -172,6 +320,26 @@ void addGeometryCommands(CLI::App& app, std::vector<Command>& out) {
                            "SVG (default out/<scene>-profile.svg); curve files beside it");
     profileCmd->add_option("--set", profile->common.sets, "override a scene key: section.key=value");
     out.push_back({profileCmd, [profile] { return runProfile(*profile); }});
+
+    auto cg = std::make_shared<CompareGeometryOptions>();
+    CLI::App* cgCmd = app.add_subcommand(
+        "compare-geometry", "how far two scenes' refined surfaces are apart, in metres and where: "
+                            "exact Hausdorff distance between matching profiles and between contour "
+                            "lines at the same elevations");
+    cgCmd->add_option("a", cg->a, "scene file a (TOML)")->required();
+    cgCmd->add_option("b", cg->b, "scene file b (may be a again, with --set-b)")->required();
+    cgCmd->add_option("--set-a", cg->setA, "override a key of scene a: section.key=value; repeatable");
+    cgCmd->add_option("--set-b", cg->setB, "override a key of scene b: section.key=value; repeatable");
+    cgCmd->add_option("--profile", cg->profiles,
+                      "LON,LAT:LON,LAT, a geodesic to compare along; repeatable (default: west-east and "
+                      "south-north through the centre of the common area)");
+    cgCmd->add_option("--levels", cg->levels,
+                      "contour elevations in metres, e.g. 500,1000,1500 (default: about five round "
+                      "levels both surfaces reach)");
+    cgCmd->add_option("--samples", cg->samples, "points per profile (default 1001)")->check(CLI::Range(2, 1000000));
+    cgCmd->add_option("--threads", cg->threads, "refiner threads (0: all cores)")->check(CLI::Range(0, 256));
+    cgCmd->add_flag("--json", cg->json, "one JSON object: profiles and contours with H, h_ab, h_ba and where");
+    out.push_back({cgCmd, [cg] { return runCompareGeometry(*cg); }});
 }
 
 }  // namespace relief::cli

@@ -100,6 +100,30 @@ std::vector<FramePoint> projectSamples(const Frame& frame, const std::vector<Geo
     return out;
 }
 
+bool frameToGeodetic(const Frame& frame, Vec3 p, double& latDeg, double& lonDeg, double& heightM) {
+    try {
+        if (frame.kind == scene::FrameKind::Local) {
+            const GeographicLib::LocalCartesian lc(frame.originLatDeg, frame.originLonDeg, 0.0);
+            lc.Reverse(p.x, p.y, p.z, latDeg, lonDeg, heightM);
+            return true;
+        }
+        double gamma, k;
+        UTMUPS::Reverse(frame.utmZone, frame.northp, p.x, p.y, latDeg, lonDeg, gamma, k);
+        heightM = p.z;
+        return true;
+    } catch (const GeographicErr&) {
+        return false;
+    }
+}
+
+bool geodeticToFrame(const Frame& frame, double latDeg, double lonDeg, double heightM, Vec3& p) {
+    Diagnostics ignored;
+    const auto projected = projectSamples(frame, {GeoSample{lonDeg, latDeg, heightM, {}}}, ignored);
+    if (projected.empty()) return false;
+    p = projected[0].p;
+    return true;
+}
+
 namespace {
 
 // One GDALGridCreate call. GDAL registers pixel centres, so the nodes

@@ -38,6 +38,13 @@ struct ControlNet {
     size_t filledOutsideHull = 0;  ///< nodes set by the nearest-sample fill (linear gridding)
 };
 
+/// A frame point (metres) to WGS84 latitude, longitude (degrees) and height
+/// above the ellipsoid (metres), and back: GeographicLib UTMUPS (z is the
+/// height) or LocalCartesian (z is the height above the tangent plane), as
+/// projectSamples. False when the point cannot be converted.
+bool frameToGeodetic(const Frame& frame, Vec3 p, double& latDeg, double& lonDeg, double& heightM);
+bool geodeticToFrame(const Frame& frame, double latDeg, double lonDeg, double heightM, Vec3& p);
+
 /// Chooses the frame for these samples (UTM zone of their centre, unless the
 /// scene forces one; or the local tangent plane at their centre).
 std::optional<Frame> chooseFrame(const scene::SceneDesc& scene,
