@@ -2,6 +2,7 @@
 // the same run: the refiner against a naive per-point loop, the mesh2 writer
 // against fprintf("%.9g").
 #include <benchmark/benchmark.h>
+#include <omp.h>
 
 #include <cmath>
 #include <algorithm>
@@ -53,18 +54,24 @@ void setVertexCounters(benchmark::State& state, const Grid& out, double bytes = 
 }
 
 // STREAM-style copy of a buffer the size of the refined grid: the machine's
-// memory bandwidth, measured in the same binary and run.
+// memory bandwidth, measured in the same binary and run, on range(0) threads
+// (each copies its half, as STREAM's OpenMP loop does).
 void BM_StreamCopy(benchmark::State& state) {
+    const int threads = static_cast<int>(state.range(0));
     const size_t n = static_cast<size_t>(2049) * 2049 * 3;
     std::vector<double, BigBufferAllocator<double>> a(n, 1.0), b(n, 0.0);
     for (auto _ : state) {
-        std::copy(a.begin(), a.end(), b.begin());
+#pragma omp parallel num_threads(threads)
+        {
+            const size_t t = omp_get_thread_num(), nt = omp_get_num_threads();
+            std::copy(a.begin() + n * t / nt, a.begin() + n * (t + 1) / nt, b.begin() + n * t / nt);
+        }
         benchmark::DoNotOptimize(b.data());
         benchmark::ClobberMemory();
     }
     state.SetBytesProcessed(static_cast<int64_t>(state.iterations()) * static_cast<int64_t>(2 * n * sizeof(double)));
 }
-BENCHMARK(BM_StreamCopy)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_StreamCopy)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // Binary: 257 x 257 -> 2049 x 2049 (three levels); ternary: -> 2305 x 2305
 // (two levels, 5.3 M vertices; a third would be 48 M). Rows then columns.
@@ -264,5 +271,58 @@ void BM_HausdorffSampled(benchmark::State& state) {
 }
 BENCHMARK(BM_HausdorffSampled)->Args({0, 10000})->Args({0, 100000})->Args({1, 10000})->Args({1, 100000})
     ->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+// ---- Hausdorff distance on terrain-sized polylines ----
+// A random-walk profile of 1537 points (a level-6 row of the mountain net) and
+// its next refinement (classic 4-point, 3073 points), as depth = "auto" compares
+// them; the vertex-only distance (a lower bound: every vertex against the other
+// polyline, exactly) in the same run as the baseline.
+namespace {
+
+struct PolylinePair {
+    relief::curves::PiecewiseBezier coarse, fine;
+};
+const PolylinePair& terrainRows() {
+    static const PolylinePair p = [] {
+        std::mt19937 rng(3);
+        std::normal_distribution<double> n(0, 1);
+        std::vector<relief::Vec3> row;
+        double z = 1000;
+        for (int i = 0; i < 1537; ++i) row.push_back({52.0 * i, z += 20 * n(rng), 0});
+        const auto finer = relief::subdiv::refineCurve(relief::subdiv::dlgFourPoint(1.0 / 16), row);
+        auto line = [](const std::vector<relief::Vec3>& v) {
+            std::vector<Point2> pts;
+            for (const auto& q : v) pts.push_back({q.x, q.y});
+            return relief::curves::toBezier({"polyline", false, pts});
+        };
+        return PolylinePair{line(row), line(finer)};
+    }();
+    return p;
+}
+
+// Labels are computed outside the timed loop: google-benchmark 1.7.1's
+// DoNotOptimize(double&) corrupts the variable it is given.
+void BM_HausdorffTerrainRow(benchmark::State& state) {
+    const auto& p = terrainRows();
+    for (auto _ : state) {
+        const auto r = relief::curves::hausdorff(p.coarse, p.fine);
+        benchmark::DoNotOptimize(r.H);
+    }
+    state.SetLabel(fmt::format("H={:.9f} m", relief::curves::hausdorff(p.coarse, p.fine).H));
+}
+BENCHMARK(BM_HausdorffTerrainRow)->Unit(benchmark::kMillisecond);
+
+void BM_HausdorffTerrainRowVertexOnly(benchmark::State& state) {
+    const auto& p = terrainRows();
+    for (auto _ : state) {
+        const double h = relief::curves::vertexHausdorff({&p.coarse, 1}, {&p.fine, 1});
+        benchmark::DoNotOptimize(h);
+    }
+    state.SetLabel(fmt::format("H={:.9f} m (a lower bound)",
+                               relief::curves::vertexHausdorff({&p.coarse, 1}, {&p.fine, 1})));
+}
+BENCHMARK(BM_HausdorffTerrainRowVertexOnly)->Unit(benchmark::kMillisecond);
 
 }  // namespace

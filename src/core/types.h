@@ -6,6 +6,8 @@
 #include <cstddef>
 #include <cstdlib>
 #include <new>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace relief {
@@ -51,6 +53,18 @@ struct BigBufferAllocator {
         return static_cast<T*>(p);
     }
     void deallocate(T* p, std::size_t) { std::free(p); }
+
+    /// resize() leaves new elements unwritten: zeroing a 100 MB grid is one
+    /// more pass over memory than refining into it (every writer of a Grid
+    /// sets every point it sizes). Only for implicit-lifetime types.
+    template <class U>
+    void construct(U*) noexcept {
+        static_assert(std::is_trivially_copyable_v<U> && std::is_trivially_destructible_v<U>);
+    }
+    template <class U, class... Args>
+    void construct(U* p, Args&&... args) {
+        ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+    }
     friend bool operator==(const BigBufferAllocator&, const BigBufferAllocator&) { return true; }
 };
 
