@@ -157,12 +157,54 @@ struct CompareGeometryOptions {
     int samples = 1001;
     int threads = 0;
     bool json = false;
+    std::string map;  ///< SVG of both surfaces' contour lines and where each H is reached
 };
 
 std::string metres(double m) {
     if (!std::isfinite(m)) return "infinite";
     return std::fabs(m) >= 10000 ? fmt::format("{:.2f} km", m / 1000) : fmt::format("{:.3f} m", m);
 }
+
+// Both surfaces' contour lines in a's frame, the profiles, and a marker from
+// each level's witness to its nearest point on the other surface.
+std::string comparisonMap(const relief::measure::GeometryComparison& r, const std::string& a,
+                          const std::string& b, const std::string& frame) {
+    using relief::emit::SvgCurve;
+    auto lines = [](const relief::curves::CurveSet& set) {
+        std::vector<SvgCurve> out;
+        for (const auto& c : set) {
+            SvgCurve s{"", {}, c.closed};
+            for (const auto& seg : c.segments) s.points.push_back(seg.control.front());
+            if (!c.segments.empty() && !c.closed) s.points.push_back(c.segments.back().control.back());
+            out.push_back(std::move(s));
+        }
+        return out;
+    };
+    // One colour per level; a solid, b dashed.
+    static constexpr const char* kLevelColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd",
+                                                    "#ff7f0e", "#8c564b", "#e377c2", "#17becf"};
+    std::vector<relief::emit::SvgLayer> layers{{"profiles", {}, "#888", true}};
+    std::vector<relief::emit::SvgMarker> markers;
+    std::string levels;
+    for (size_t i = 0; i < r.contours.size(); ++i) {
+        const auto& c = r.contours[i];
+        const std::string level = relief::formatShortest(c.level) + " m";
+        layers.push_back({level + ", a", lines(c.a), kLevelColours[i % 8], false});
+        layers.push_back({level + ", b", lines(c.b), kLevelColours[i % 8], true});
+        levels += (levels.empty() ? "" : ", ") + relief::formatShortest(c.level);
+        if (std::isfinite(c.h.H) && c.h.H > 0)
+            markers.push_back({c.where.point, c.where.foot, fmt::format("{}: H = {}", level, metres(c.h.H))});
+    }
+    auto& profiles = layers.front();
+    for (const auto& p : r.profiles) profiles.lines.push_back({"", p.path, false});
+    relief::emit::SvgAxes axes{true, 1, fmt::format("x (m, {})", frame), "y (m)"};
+    if (layers.size() > 1) layers[1].label += " (" + a + ")";
+    if (layers.size() > 2) layers[2].label += " (" + b + ")";
+    return relief::emit::plotSvg(fmt::format("contour lines at {} m (a solid, b dashed); circles: where H is reached",
+                                             levels),
+                                 layers, markers, axes);
+}
+
 
 nlohmann::ordered_json whereJson(const relief::measure::Where& w, const char* pointKeys) {
     nlohmann::ordered_json j{{"on", w.onA ? "a" : "b"}, {"lat", w.latDeg}, {"lon", w.lonDeg}};
@@ -229,6 +271,11 @@ int runCompareGeometry(const CompareGeometryOptions& o) {
         return code(Exit::BadInput);
     }
     printDiagnostics(diags, true);
+    if (!o.map.empty()) {
+        ensureParent(o.map);
+        relief::writeFileAtomically(o.map, comparisonMap(*result, o.a, o.b, A.frame.describe()));
+        std::cerr << "wrote " << o.map << '\n';
+    }
     auto describe = [](const relief::LoadedScene& l, const relief::Surface& s) {
         return fmt::format("{}, depth {}, {}", l.schemeFamily, s.depth, relief::certifiedClass(l.report));
     };
@@ -339,6 +386,8 @@ void addGeometryCommands(CLI::App& app, std::vector<Command>& out) {
     cgCmd->add_option("--samples", cg->samples, "points per profile (default 1001)")->check(CLI::Range(2, 1000000));
     cgCmd->add_option("--threads", cg->threads, "refiner threads (0: all cores)")->check(CLI::Range(0, 256));
     cgCmd->add_flag("--json", cg->json, "one JSON object: profiles and contours with H, h_ab, h_ba and where");
+    cgCmd->add_option("--map", cg->map, "also write an SVG map: both surfaces' contour lines, the profiles, "
+                                        "and where each level's H is reached");
     out.push_back({cgCmd, [cg] { return runCompareGeometry(*cg); }});
 }
 

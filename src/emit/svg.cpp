@@ -25,23 +25,22 @@ std::string escape(const std::string& s) {
 
 }  // namespace
 
-std::string curvesSvg(const std::string& title, const SvgCurve& control,
-                      const std::vector<SvgCurve>& curves, const SvgAxes& axes) {
+std::string plotSvg(const std::string& title, const std::vector<SvgLayer>& layers,
+                    const std::vector<SvgMarker>& markers, const SvgAxes& axes) {
     double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300;
-    auto grow = [&](const SvgCurve& c) {
-        for (const auto& p : c.points) {
-            xmin = std::min(xmin, p.x), xmax = std::max(xmax, p.x);
-            ymin = std::min(ymin, p.y), ymax = std::max(ymax, p.y);
-        }
-    };
-    grow(control);
-    for (const auto& c : curves) grow(c);
+    for (const auto& layer : layers)
+        for (const auto& c : layer.lines)
+            for (const auto& p : c.points) {
+                xmin = std::min(xmin, p.x), xmax = std::max(xmax, p.x);
+                ymin = std::min(ymin, p.y), ymax = std::max(ymax, p.y);
+            }
+    if (xmin > xmax) xmin = ymin = 0, xmax = ymax = 1;
     const double ve = axes.verticalExaggeration;
     const double span = std::max({xmax - xmin, (ymax - ymin) * ve, 1e-12});
     const double margin = axes.show ? 70 : 20, plotW = axes.show ? 700 : 760, titleH = 30;
     const double scale = plotW / span;  // one scale for x and y (times ve): equal axes
     const double plotH = std::max((ymax - ymin) * ve * scale, axes.show ? 60.0 : 0.0);
-    const double legendH = 20.0 * static_cast<double>(curves.size() + 1) + 10;
+    const double legendH = 20.0 * static_cast<double>(layers.size()) + 10;
     const double width = plotW + 2 * margin, height = titleH + plotH + 2 * margin + legendH;
     auto X = [&](double x) { return margin + (x - xmin) * scale; };
     auto Y = [&](double y) { return titleH + margin + (ymax - y) * ve * scale; };
@@ -65,45 +64,67 @@ std::string curvesSvg(const std::string& title, const SvgCurve& control,
             const double raw = range / 5, p = std::pow(10.0, std::floor(std::log10(raw)));
             return raw / p < 2 ? p : raw / p < 5 ? 2 * p : 5 * p;
         };
+        // Map coordinates (UTM eastings, northings) in full, not as 5.53e+06.
+        auto tick = [](double v) { return std::fabs(v) >= 1e5 ? fmt::format("{:.0f}", v) : fmt::format("{:g}", v); };
         const double x0 = X(xmin), x1 = X(xmax), y0 = Y(ymin), y1 = Y(ymax);
         s += fmt::format("<path d=\"M{0:.1f},{1:.1f} L{2:.1f},{1:.1f} M{0:.1f},{1:.1f} L{0:.1f},{3:.1f}\" "
                          "stroke=\"#000\" fill=\"none\"/>\n", x0, y0 + 5, x1, y1 - 5);
         const double sx = step(std::max(xmax - xmin, 1e-12)), sy = step(std::max(ymax - ymin, 1e-12));
         for (double v = std::ceil(xmin / sx) * sx; v <= xmax + 1e-9 * sx; v += sx)
             s += fmt::format("<line x1=\"{0:.1f}\" y1=\"{1:.1f}\" x2=\"{0:.1f}\" y2=\"{2:.1f}\" stroke=\"#000\"/>"
-                             "<text x=\"{0:.1f}\" y=\"{3:.1f}\" text-anchor=\"middle\" font-size=\"11\">{4:g}</text>\n",
-                             X(v), y0 + 5, y0 + 10, y0 + 24, v);
+                             "<text x=\"{0:.1f}\" y=\"{3:.1f}\" text-anchor=\"middle\" font-size=\"11\">{4}</text>\n",
+                             X(v), y0 + 5, y0 + 10, y0 + 24, tick(v));
         for (double v = std::ceil(ymin / sy) * sy; v <= ymax + 1e-9 * sy; v += sy)
             s += fmt::format("<line x1=\"{0:.1f}\" y1=\"{1:.1f}\" x2=\"{2:.1f}\" y2=\"{1:.1f}\" stroke=\"#000\"/>"
-                             "<text x=\"{3:.1f}\" y=\"{4:.1f}\" text-anchor=\"end\" font-size=\"11\">{5:g}</text>\n",
-                             x0 - 5, Y(v), x0, x0 - 8, Y(v) + 4, v);
+                             "<text x=\"{3:.1f}\" y=\"{4:.1f}\" text-anchor=\"end\" font-size=\"11\">{5}</text>\n",
+                             x0 - 5, Y(v), x0, x0 - 8, Y(v) + 4, tick(v));
         s += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"middle\">{}</text>\n", 0.5 * (x0 + x1),
                          y0 + 42, escape(axes.xLabel));
         s += fmt::format("<text x=\"14\" y=\"{:.1f}\" transform=\"rotate(-90 14 {:.1f})\" "
                          "text-anchor=\"middle\">{}</text>\n",
                          0.5 * (y0 + y1), 0.5 * (y0 + y1), escape(axes.yLabel));
     }
-    s += fmt::format("<path d=\"{}\" fill=\"none\" stroke=\"#888\" stroke-width=\"1.2\" "
-                     "stroke-dasharray=\"5,4\"/>\n",
-                     path(control));
-    for (const auto& p : control.points)
-        if (!axes.show) s += fmt::format("<circle cx=\"{:.3f}\" cy=\"{:.3f}\" r=\"3.5\" fill=\"#444\"/>\n", X(p.x), Y(p.y));
-    for (size_t i = 0; i < curves.size(); ++i)
-        s += fmt::format("<path d=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"2\"/>\n",
-                         path(curves[i]), kColors[i % 8]);
-    double ly = titleH + plotH + 2 * margin + (axes.show ? 0 : 10);
-    s += fmt::format("<line x1=\"{0}\" y1=\"{1}\" x2=\"{2}\" y2=\"{1}\" stroke=\"#888\" "
-                     "stroke-dasharray=\"5,4\"/><text x=\"{3}\" y=\"{4}\">{5}</text>\n",
-                     margin, ly, margin + 30, margin + 40, ly + 5, escape(control.label));
-    for (size_t i = 0; i < curves.size(); ++i) {
-        ly += 20;
-        s += fmt::format("<line x1=\"{0}\" y1=\"{1}\" x2=\"{2}\" y2=\"{1}\" stroke=\"{3}\" "
-                         "stroke-width=\"2\"/><text x=\"{4}\" y=\"{5}\">{6}</text>\n",
-                         margin, ly, margin + 30, kColors[i % 8], margin + 40, ly + 5,
-                         escape(curves[i].label));
+    // Layers, then markers, then the legend.
+    std::vector<std::string> colours;
+    size_t next = 0;
+    for (const auto& layer : layers) {
+        const std::string colour = layer.colour.empty() ? kColors[next++ % 8] : layer.colour;
+        colours.push_back(colour);
+        const std::string style = layer.dashed ? "stroke-width=\"1.2\" stroke-dasharray=\"5,4\""
+                                               : "stroke-width=\"2\"";
+        for (const auto& c : layer.lines) {
+            s += fmt::format("<path d=\"{}\" fill=\"none\" stroke=\"{}\" {}/>\n", path(c), colour, style);
+            if (layer.vertices)
+                for (const auto& p : c.points)
+                    s += fmt::format("<circle cx=\"{:.3f}\" cy=\"{:.3f}\" r=\"3.5\" fill=\"#444\"/>\n", X(p.x), Y(p.y));
+        }
     }
+    for (const auto& m : markers) {
+        s += fmt::format("<line x1=\"{:.3f}\" y1=\"{:.3f}\" x2=\"{:.3f}\" y2=\"{:.3f}\" stroke=\"#000\" "
+                         "stroke-width=\"2.5\"/><circle cx=\"{:.3f}\" cy=\"{:.3f}\" r=\"5\" fill=\"none\" "
+                         "stroke=\"#000\" stroke-width=\"2\"/>\n",
+                         X(m.from.x), Y(m.from.y), X(m.to.x), Y(m.to.y), X(m.from.x), Y(m.from.y));
+        const bool right = X(m.from.x) > margin + 0.6 * plotW;  // keep the label inside the plot
+        s += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"{}\" font-size=\"12\" stroke=\"white\" "
+                         "stroke-width=\"3\" paint-order=\"stroke\">{}</text>\n",
+                         X(m.from.x) + (right ? -8 : 8), Y(m.from.y) - 8, right ? "end" : "start", escape(m.label));
+    }
+    double ly = titleH + plotH + 2 * margin + (axes.show ? 0 : 10);
+    for (size_t i = 0; i < layers.size(); ++i, ly += 20)
+        s += fmt::format("<line x1=\"{0}\" y1=\"{1}\" x2=\"{2}\" y2=\"{1}\" stroke=\"{3}\" {4}/>"
+                         "<text x=\"{5}\" y=\"{6}\">{7}</text>\n",
+                         margin, ly, margin + 30, colours[i],
+                         layers[i].dashed ? "stroke-dasharray=\"5,4\"" : "stroke-width=\"2\"", margin + 40,
+                         ly + 5, escape(layers[i].label));
     s += "</svg>\n";
     return s;
+}
+
+std::string curvesSvg(const std::string& title, const SvgCurve& control,
+                      const std::vector<SvgCurve>& curves, const SvgAxes& axes) {
+    std::vector<SvgLayer> layers{{control.label, {control}, "#888", true, !axes.show}};
+    for (const auto& c : curves) layers.push_back({c.label, {c}, "", false, false});
+    return plotSvg(title, layers, {}, axes);
 }
 
 }  // namespace relief::emit

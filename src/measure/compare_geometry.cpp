@@ -117,6 +117,8 @@ std::optional<GeometryComparison> compareGeometry(const FramedSurface& a, const 
                 curve.push_back({p.distanceM, *z});
             }
             pc.lengthM = pts.back().distanceM;
+            if (s == &a)
+                for (const auto& p : pts) pc.path.push_back({p.x, p.y});
         }
         const curves::CurveFile fa{"polyline", false, pc.a}, fb{"polyline", false, pc.b};
         pc.h = curves::hausdorff(curves::toBezier(fa), curves::toBezier(fb));
@@ -143,11 +145,13 @@ std::optional<GeometryComparison> compareGeometry(const FramedSurface& a, const 
     for (size_t i = 0; i < levels.size(); ++i) {
         ContourComparison cc;
         cc.level = levels[i];
-        const auto la = clipToBox(linesA[i], common.xmin, common.ymin, common.xmax, common.ymax);
-        const auto lb = clipToBox(linesB[i], common.xmin, common.ymin, common.xmax, common.ymax);
+        auto la = clipToBox(linesA[i], common.xmin, common.ymin, common.xmax, common.ymax);
+        auto lb = clipToBox(linesB[i], common.xmin, common.ymin, common.xmax, common.ymax);
         cc.linesA = la.size();
         cc.linesB = lb.size();
         cc.h = curves::hausdorff(la, lb);
+        cc.a = std::move(la);
+        cc.b = std::move(lb);
         cc.where = locate(cc.h);
         if (std::isfinite(cc.h.H))
             geodetic(a.frame, cc.where.point, cc.level, cc.where.latDeg, cc.where.lonDeg);

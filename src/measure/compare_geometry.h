@@ -39,6 +39,7 @@ struct ProfileComparison {
     ProfileLine line;
     double lengthM = 0;
     std::vector<curves::Point2> a, b;  ///< (distance along the geodesic, elevation), metres
+    std::vector<curves::Point2> path;  ///< the geodesic in a's frame (x, y), for maps
     curves::HausdorffResult h;         ///< in the (distance, elevation) plane
     Where where;
 };
@@ -46,6 +47,7 @@ struct ProfileComparison {
 struct ContourComparison {
     double level = 0;
     size_t linesA = 0, linesB = 0;
+    curves::CurveSet a, b;  ///< the lines compared: in a's frame, clipped to the common area
     curves::HausdorffResult h;  ///< in a's frame; infinite when one side has no line
     Where where;
 };
