@@ -72,13 +72,10 @@ void split(const std::vector<Point2>& c, double t, std::vector<Point2>& left, st
 }
 
 double curveSize(const PiecewiseBezier& c) {
-    double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300;
+    Bounds2 b;
     for (const auto& s : c.segments)
-        for (const auto& p : s.control) {
-            xmin = std::min(xmin, p.x), xmax = std::max(xmax, p.x);
-            ymin = std::min(ymin, p.y), ymax = std::max(ymax, p.y);
-        }
-    return std::hypot(xmax - xmin, ymax - ymin);
+        for (const auto& p : s.control) b.add(p);
+    return b.diagonal();
 }
 
 }  // namespace relief::curves

@@ -2,6 +2,8 @@
 // Planar curve files (JSON), shared by `relief curve` and the Hausdorff tools:
 //   {"type": "polyline" | "bezier" | "bspline3", "closed": false, "points": [[x, y], ...]}
 // Documented in docs/curve-format.md.
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -13,6 +15,29 @@ namespace relief::curves {
 
 struct Point2 {
     double x = 0, y = 0;
+};
+
+/// An axis-aligned bounding box, grown point by point; empty until the first.
+struct Bounds2 {
+    double xmin = 1e300, ymin = 1e300, xmax = -1e300, ymax = -1e300;
+
+    void add(Point2 p) {
+        xmin = std::min(xmin, p.x), xmax = std::max(xmax, p.x);
+        ymin = std::min(ymin, p.y), ymax = std::max(ymax, p.y);
+    }
+    void add(const Bounds2& b) {
+        xmin = std::min(xmin, b.xmin), xmax = std::max(xmax, b.xmax);
+        ymin = std::min(ymin, b.ymin), ymax = std::max(ymax, b.ymax);
+    }
+    bool empty() const { return xmin > xmax; }
+    /// The diagonal's length (0 when empty): a curve's size, for relative tolerances.
+    double diagonal() const { return empty() ? 0.0 : std::hypot(xmax - xmin, ymax - ymin); }
+    /// Distance from p to the box (0 inside).
+    double distance(Point2 p) const {
+        const double dx = std::max({xmin - p.x, 0.0, p.x - xmax});
+        const double dy = std::max({ymin - p.y, 0.0, p.y - ymax});
+        return std::sqrt(dx * dx + dy * dy);
+    }
 };
 
 struct CurveFile {

@@ -123,35 +123,23 @@ bool isEndpoint(const PiecewiseBezier& c, size_t seg, double t) {
 }
 
 double setSize(std::span<const PiecewiseBezier> curves) {
-    double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300;
+    Bounds2 b;
     for (const auto& c : curves)
         for (const auto& s : c.segments)
-            for (const auto& p : s.control) {
-                xmin = std::min(xmin, p.x), xmax = std::max(xmax, p.x);
-                ymin = std::min(ymin, p.y), ymax = std::max(ymax, p.y);
-            }
-    return xmin > xmax ? 0.0 : std::hypot(xmax - xmin, ymax - ymin);
+            for (const auto& p : s.control) b.add(p);
+    return b.diagonal();
 }
 
 constexpr unsigned kLeafSize = 4;
 
 }  // namespace
 
-double SegmentIndex::Box::distance(Point2 p) const {
-    const double dx = std::max({xmin - p.x, 0.0, p.x - xmax});
-    const double dy = std::max({ymin - p.y, 0.0, p.y - ymax});
-    return std::sqrt(dx * dx + dy * dy);
-}
-
 SegmentIndex::SegmentIndex(std::span<const PiecewiseBezier> curves) : curves_(curves) {
     for (size_t c = 0; c < curves.size(); ++c)
         for (size_t s = 0; s < curves[c].segments.size(); ++s) {
             // The control points' box holds the segment (convex hull property).
-            Box b{1e300, 1e300, -1e300, -1e300};
-            for (const auto& q : curves[c].segments[s].control) {
-                b.xmin = std::min(b.xmin, q.x), b.xmax = std::max(b.xmax, q.x);
-                b.ymin = std::min(b.ymin, q.y), b.ymax = std::max(b.ymax, q.y);
-            }
+            Bounds2 b;
+            for (const auto& q : curves[c].segments[s].control) b.add(q);
             entries_.push_back({static_cast<unsigned>(c), static_cast<unsigned>(s), b});
         }
     if (!entries_.empty()) {
@@ -163,12 +151,8 @@ SegmentIndex::SegmentIndex(std::span<const PiecewiseBezier> curves) : curves_(cu
 // Median split along the longer side of the node's box: a balanced tree whose
 // leaves hold neighbouring segments.
 unsigned SegmentIndex::build(unsigned first, unsigned count) {
-    Box box{1e300, 1e300, -1e300, -1e300};
-    for (unsigned i = first; i < first + count; ++i) {
-        const Box& b = entries_[i].box;
-        box.xmin = std::min(box.xmin, b.xmin), box.xmax = std::max(box.xmax, b.xmax);
-        box.ymin = std::min(box.ymin, b.ymin), box.ymax = std::max(box.ymax, b.ymax);
-    }
+    Bounds2 box;
+    for (unsigned i = first; i < first + count; ++i) box.add(entries_[i].box);
     const unsigned id = static_cast<unsigned>(nodes_.size());
     nodes_.push_back({box, first, count, 0, 0});
     if (count <= kLeafSize) return id;

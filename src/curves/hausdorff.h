@@ -75,18 +75,14 @@ public:
     double distance(Point2 a) const;
 
 private:
-    struct Box {
-        double xmin, ymin, xmax, ymax;
-        double distance(Point2 p) const;
-    };
     struct Node {
-        Box box;
+        Bounds2 box;
         unsigned first, count;  ///< a leaf: entries_[first, first + count)
         unsigned left, right;   ///< an inner node (count == 0)
     };
     struct Entry {
         unsigned piece, segment;
-        Box box;
+        Bounds2 box;
     };
     unsigned build(unsigned first, unsigned count);
 

@@ -27,14 +27,12 @@ std::string escape(const std::string& s) {
 
 std::string plotSvg(const std::string& title, const std::vector<SvgLayer>& layers,
                     const std::vector<SvgMarker>& markers, const SvgAxes& axes) {
-    double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300;
+    curves::Bounds2 bounds;
     for (const auto& layer : layers)
         for (const auto& c : layer.lines)
-            for (const auto& p : c.points) {
-                xmin = std::min(xmin, p.x), xmax = std::max(xmax, p.x);
-                ymin = std::min(ymin, p.y), ymax = std::max(ymax, p.y);
-            }
-    if (xmin > xmax) xmin = ymin = 0, xmax = ymax = 1;
+            for (const auto& p : c.points) bounds.add(p);
+    if (bounds.empty()) bounds = {0, 0, 1, 1};
+    const double xmin = bounds.xmin, xmax = bounds.xmax, ymin = bounds.ymin, ymax = bounds.ymax;
     const double ve = axes.verticalExaggeration;
     const double span = std::max({xmax - xmin, (ymax - ymin) * ve, 1e-12});
     const double margin = axes.show ? 70 : 20, plotW = axes.show ? 700 : 760, titleH = 30;

@@ -13,9 +13,7 @@ namespace relief::measure {
 
 namespace {
 
-struct Box {
-    double xmin, ymin, xmax, ymax;
-};
+using Box = curves::Bounds2;
 
 Box latticeBox(const Lattice& l) {
     return {l.x0, l.y0, l.x0 + (l.grid->cols - 1) * l.dx, l.y0 + (l.grid->rows - 1) * l.dy};
