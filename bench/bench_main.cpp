@@ -73,6 +73,45 @@ void BM_StreamCopy(benchmark::State& state) {
 }
 BENCHMARK(BM_StreamCopy)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
+// STREAM's Scale kernel, b[i] = q a[i], as a plain loop: ordinary stores (each
+// destination line is read before it is written), as the refiner's are.
+// std::copy above is glibc's memmove, which streams large copies with
+// non-temporal stores; the refiner measured no faster with those.
+void BM_StreamScale(benchmark::State& state) {
+    const int threads = static_cast<int>(state.range(0));
+    const size_t n = static_cast<size_t>(2049) * 2049 * 3;
+    std::vector<double, BigBufferAllocator<double>> a(n, 1.0), b(n, 0.0);
+    const double q = 1.000001;
+    for (auto _ : state) {
+        double* __restrict__ pb = b.data();
+        const double* __restrict__ pa = a.data();
+#pragma omp parallel for num_threads(threads) schedule(static)
+        for (size_t i = 0; i < n; ++i) pb[i] = q * pa[i];
+        benchmark::DoNotOptimize(b.data());
+        benchmark::ClobberMemory();
+    }
+    state.SetBytesProcessed(static_cast<int64_t>(state.iterations()) * static_cast<int64_t>(2 * n * sizeof(double)));
+}
+BENCHMARK(BM_StreamScale)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// Writes only (b[i] = q): the ceiling for a kernel that mostly writes, as a
+// refinement level does (it writes arity^2 points per point it reads).
+void BM_StreamFill(benchmark::State& state) {
+    const int threads = static_cast<int>(state.range(0));
+    const size_t n = static_cast<size_t>(2049) * 2049 * 3;
+    std::vector<double, BigBufferAllocator<double>> b(n, 0.0);
+    const double q = 1.000001;
+    for (auto _ : state) {
+        double* __restrict__ pb = b.data();
+#pragma omp parallel for num_threads(threads) schedule(static)
+        for (size_t i = 0; i < n; ++i) pb[i] = q;
+        benchmark::DoNotOptimize(b.data());
+        benchmark::ClobberMemory();
+    }
+    state.SetBytesProcessed(static_cast<int64_t>(state.iterations()) * static_cast<int64_t>(n * sizeof(double)));
+}
+BENCHMARK(BM_StreamFill)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+
 // Binary: 257 x 257 -> 2049 x 2049 (three levels); ternary: -> 2305 x 2305
 // (two levels, 5.3 M vertices; a third would be 48 M). Rows then columns.
 void BM_RefineTable(benchmark::State& state, subdiv::Scheme scheme) {
