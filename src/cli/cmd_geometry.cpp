@@ -260,11 +260,6 @@ int runCompareGeometry(const CompareGeometryOptions& o) {
     const auto A = framed(o.a, *surfA), B = framed(o.b, *surfB);
     if (lines.empty()) lines = m::defaultProfiles(A, B);
     if (o.levels.empty()) levels = m::defaultLevels(A, B);
-    if (lines.empty() && levels.empty()) {
-        std::cerr << "relief: error: " << o.a << " and " << o.b
-                  << " share no area and no elevation range: nothing to compare\n";
-        return code(Exit::BadInput);
-    }
     const auto result = m::compareGeometry(A, B, lines, levels, o.samples, diags);
     if (!result) {
         printDiagnostics(diags, false);

@@ -95,6 +95,13 @@ std::optional<GeometryComparison> compareGeometry(const FramedSurface& a, const 
                                                   const std::vector<double>& levels, int samples,
                                                   Diagnostics& diags) {
     GeometryComparison out;
+    const Box common = overlap(a, b);
+    if (!(common.xmax > common.xmin && common.ymax > common.ymin)) {
+        diags.error({b.name, 0, 0}, fmt::format("surface b covers no part of surface a ({}): nothing to "
+                                                "compare; compare scenes of the same area",
+                                                a.name));
+        return std::nullopt;
+    }
     const auto& wgs84 = GeographicLib::Geodesic::WGS84();
     for (const ProfileLine& line : profiles) {
         ProfileComparison pc;
@@ -139,7 +146,6 @@ std::optional<GeometryComparison> compareGeometry(const FramedSurface& a, const 
                 for (auto& seg : curve.segments)
                     for (auto& p : seg.control) p = carry(b.frame, a.frame, p, levels[&set - linesB.data()]);
     // Only where both surfaces are: a line outside the other's area has nothing to match.
-    const Box common = overlap(a, b);
     for (size_t i = 0; i < levels.size(); ++i) {
         ContourComparison cc;
         cc.level = levels[i];
