@@ -53,31 +53,19 @@ void setVertexCounters(benchmark::State& state, const Grid& out, double bytes = 
     if (bytes > 0) state.SetBytesProcessed(static_cast<int64_t>(bytes * static_cast<double>(state.iterations())));
 }
 
-// STREAM-style copy of a buffer the size of the refined grid: the machine's
-// memory bandwidth, measured in the same binary and run, on range(0) threads
-// (each copies its half, as STREAM's OpenMP loop does).
-void BM_StreamCopy(benchmark::State& state) {
-    const int threads = static_cast<int>(state.range(0));
-    const size_t n = static_cast<size_t>(2049) * 2049 * 3;
-    std::vector<double, BigBufferAllocator<double>> a(n, 1.0), b(n, 0.0);
-    for (auto _ : state) {
-#pragma omp parallel num_threads(threads)
-        {
-            const size_t t = omp_get_thread_num(), nt = omp_get_num_threads();
-            std::copy(a.begin() + n * t / nt, a.begin() + n * (t + 1) / nt, b.begin() + n * t / nt);
-        }
-        benchmark::DoNotOptimize(b.data());
-        benchmark::ClobberMemory();
-    }
-    state.SetBytesProcessed(static_cast<int64_t>(state.iterations()) * static_cast<int64_t>(2 * n * sizeof(double)));
-}
-BENCHMARK(BM_StreamCopy)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+// STREAM-style kernels on a buffer the size of the refined grid, on range(0)
+// threads (each takes its share, as STREAM's OpenMP loops do): the machine's
+// memory bandwidth, measured in the same binary and run.
+//   copy:  std::copy, i.e. glibc's memmove, which streams large copies with
+//          non-temporal stores;
+//   scale: STREAM's b[i] = q a[i] as a plain loop: ordinary stores (each
+//          destination line is read before it is written), as the refiner's;
+//   fill:  b[i] = q, writes only: the ceiling for a kernel that mostly writes,
+//          as a refinement level does (arity^2 points written per point read).
+// Bytes: read plus written.
+enum class StreamKernel { Copy, Scale, Fill };
 
-// STREAM's Scale kernel, b[i] = q a[i], as a plain loop: ordinary stores (each
-// destination line is read before it is written), as the refiner's are.
-// std::copy above is glibc's memmove, which streams large copies with
-// non-temporal stores; the refiner measured no faster with those.
-void BM_StreamScale(benchmark::State& state) {
+void BM_Stream(benchmark::State& state, StreamKernel kernel) {
     const int threads = static_cast<int>(state.range(0));
     const size_t n = static_cast<size_t>(2049) * 2049 * 3;
     std::vector<double, BigBufferAllocator<double>> a(n, 1.0), b(n, 0.0);
@@ -85,32 +73,25 @@ void BM_StreamScale(benchmark::State& state) {
     for (auto _ : state) {
         double* __restrict__ pb = b.data();
         const double* __restrict__ pa = a.data();
-#pragma omp parallel for num_threads(threads) schedule(static)
-        for (size_t i = 0; i < n; ++i) pb[i] = q * pa[i];
+#pragma omp parallel num_threads(threads)
+        {
+            const size_t t = omp_get_thread_num(), nt = omp_get_num_threads();
+            const size_t begin = n * t / nt, end = n * (t + 1) / nt;
+            switch (kernel) {
+                case StreamKernel::Copy: std::copy(pa + begin, pa + end, pb + begin); break;
+                case StreamKernel::Scale: for (size_t i = begin; i < end; ++i) pb[i] = q * pa[i]; break;
+                case StreamKernel::Fill: for (size_t i = begin; i < end; ++i) pb[i] = q; break;
+            }
+        }
         benchmark::DoNotOptimize(b.data());
         benchmark::ClobberMemory();
     }
-    state.SetBytesProcessed(static_cast<int64_t>(state.iterations()) * static_cast<int64_t>(2 * n * sizeof(double)));
+    const size_t arrays = kernel == StreamKernel::Fill ? 1 : 2;
+    state.SetBytesProcessed(static_cast<int64_t>(state.iterations()) * static_cast<int64_t>(arrays * n * sizeof(double)));
 }
-BENCHMARK(BM_StreamScale)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
-
-// Writes only (b[i] = q): the ceiling for a kernel that mostly writes, as a
-// refinement level does (it writes arity^2 points per point it reads).
-void BM_StreamFill(benchmark::State& state) {
-    const int threads = static_cast<int>(state.range(0));
-    const size_t n = static_cast<size_t>(2049) * 2049 * 3;
-    std::vector<double, BigBufferAllocator<double>> b(n, 0.0);
-    const double q = 1.000001;
-    for (auto _ : state) {
-        double* __restrict__ pb = b.data();
-#pragma omp parallel for num_threads(threads) schedule(static)
-        for (size_t i = 0; i < n; ++i) pb[i] = q;
-        benchmark::DoNotOptimize(b.data());
-        benchmark::ClobberMemory();
-    }
-    state.SetBytesProcessed(static_cast<int64_t>(state.iterations()) * static_cast<int64_t>(n * sizeof(double)));
-}
-BENCHMARK(BM_StreamFill)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(BM_Stream, copy, StreamKernel::Copy)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(BM_Stream, scale, StreamKernel::Scale)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(BM_Stream, fill, StreamKernel::Fill)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // Binary: 257 x 257 -> 2049 x 2049 (three levels); ternary: -> 2305 x 2305
 // (two levels, 5.3 M vertices; a third would be 48 M). Rows then columns.

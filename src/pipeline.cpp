@@ -253,36 +253,30 @@ std::optional<Surface> buildSurface(const LoadedScene& loaded, Diagnostics& diag
     s.depth = desc.depth;
     t0 = Clock::now();
     if (desc.depthAuto) {
-        // The deepest level the budget allows bounds the search.
-        int maxDepth = 0;
-        while (maxDepth < 8) {
-            const auto e = subdiv::estimateOutput(loaded.scheme, net->grid.rows, net->grid.cols, maxDepth + 1);
-            if (e.triangles > budget.maxTriangles || e.sdlBytes > budget.maxSdlMB * 1e6 ||
-                e.parseSeconds > budget.maxParseS)
-                break;
-            ++maxDepth;
+        // The deepest level the budget allows bounds the search; when not
+        // even level 1 fits, the budget check below says so.
+        const int maxDepth = subdiv::deepestWithinBudget(loaded.scheme, net->grid.rows, net->grid.cols,
+                                                         budget, scene::kMaxDepth);
+        s.depth = 1;
+        if (maxDepth > 0) {
+            s.autoDepth = measure::chooseDepth(loaded.scheme, *net, desc.toleranceM, maxDepth, threads);
+            const auto& last = s.autoDepth->levels.back();
+            if (!s.autoDepth->reached) {
+                diags.error(desc.toleranceLoc,
+                            fmt::format("subdivision.tolerance_m = {} m is not reached within the output "
+                                        "budget: level {} (the deepest [limits] allow) still moves {} by "
+                                        "{:.3g} m (per level: {}); raise tolerance_m or [limits], or set "
+                                        "a fixed depth",
+                                        formatShortest(desc.toleranceM), last.level, last.curve,
+                                        last.distanceM, levelSeries(*s.autoDepth)));
+                return std::nullopt;
+            }
+            s.depth = s.autoDepth->depth;
         }
-        if (maxDepth == 0) {
-            s.estimate = subdiv::estimateOutput(loaded.scheme, net->grid.rows, net->grid.cols, 1);
-            subdiv::checkBudget(s.estimate, budget, desc.depthLoc, 1, diags);
-            return std::nullopt;
-        }
-        s.autoDepth = measure::chooseDepth(loaded.scheme, *net, desc.toleranceM, maxDepth, threads);
-        const auto& last = s.autoDepth->levels.back();
-        if (!s.autoDepth->reached) {
-            diags.error(desc.toleranceLoc,
-                        fmt::format("subdivision.tolerance_m = {} m is not reached within the output "
-                                    "budget: level {} (the deepest [limits] allow) still moves {} by "
-                                    "{:.3g} m (per level: {}); raise tolerance_m or [limits], or set "
-                                    "a fixed depth",
-                                    formatShortest(desc.toleranceM), last.level, last.curve,
-                                    last.distanceM, levelSeries(*s.autoDepth)));
-            return std::nullopt;
-        }
-        s.depth = s.autoDepth->depth;
     }
     s.estimate = subdiv::estimateOutput(loaded.scheme, net->grid.rows, net->grid.cols, s.depth);
-    if (!subdiv::checkBudget(s.estimate, budget, desc.schemeLoc, s.depth, diags))
+    if (!subdiv::checkBudget(s.estimate, budget, desc.depthAuto ? desc.depthLoc : desc.schemeLoc,
+                             s.depth, diags))
         return std::nullopt;
     s.refined = subdiv::refineGrid(loaded.scheme, net->grid, s.depth, threads);
     s.subdivideSeconds = secondsSince(t0);

@@ -115,6 +115,10 @@ std::vector<std::string> split(const std::string& s, char sep) {
     return out;
 }
 
+nlohmann::ordered_json jsonNumber(double v) {
+    return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json("inf");
+}
+
 bool parseLonLat(const std::string& text, double& lon, double& lat) {
     const auto parts = split(text, ',');
     if (parts.size() != 2) return false;

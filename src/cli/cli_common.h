@@ -10,6 +10,7 @@
 #include <vector>
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
 #include "core/diagnostics.h"
 #include "scene/read_scene.h"
@@ -83,6 +84,10 @@ bool parseOverrides(const std::vector<std::string>& list, scene::SceneOverrides&
 bool parseParams(const std::vector<std::string>& list, std::map<std::string, double>& out);
 
 std::vector<std::string> split(const std::string& s, char sep);
+
+/// A number for --json output; infinity (a PSNR of identical images, a
+/// distance to nothing) as the string "inf", which JSON has no number for.
+nlohmann::ordered_json jsonNumber(double v);
 
 /// "LON,LAT" in WGS84 degrees; false when malformed or out of range.
 bool parseLonLat(const std::string& text, double& lon, double& lat);

@@ -213,9 +213,6 @@ nlohmann::ordered_json whereJson(const relief::measure::Where& w, const char* po
     return j;
 }
 
-nlohmann::ordered_json number(double v) {
-    return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json("inf");
-}
 
 // `relief compare-geometry`: Hausdorff distances between two scenes' surfaces.
 int runCompareGeometry(const CompareGeometryOptions& o) {
@@ -295,14 +292,14 @@ int runCompareGeometry(const CompareGeometryOptions& o) {
         auto contours = nlohmann::ordered_json::array();
         for (const auto& c : result->contours) {
             nlohmann::ordered_json cj{{"level_m", c.level}, {"lines_a", c.linesA}, {"lines_b", c.linesB},
-                                      {"H", number(c.h.H)}, {"h_ab", number(c.h.ab.value)},
-                                      {"h_ba", number(c.h.ba.value)}};
+                                      {"H", jsonNumber(c.h.H)}, {"h_ab", jsonNumber(c.h.ab.value)},
+                                      {"h_ba", jsonNumber(c.h.ba.value)}};
             if (std::isfinite(c.h.H) && c.linesA + c.linesB > 0) cj["where"] = whereJson(c.where, "xy_m");
             contours.push_back(cj);
         }
         j["contours"] = contours;
         j["max_profile_H"] = worstProfile;
-        j["max_contour_H"] = number(worstContour);
+        j["max_contour_H"] = jsonNumber(worstContour);
         std::cout << j.dump(2) << '\n';
         return code(Exit::Ok);
     }

@@ -39,7 +39,7 @@ nlohmann::ordered_json differenceJson(const relief::compare::ImageDifference& d,
     j["max_error_channel"] = d.maxChannel;
     j["mean_error"] = d.meanError;
     j["rms_error"] = d.rmsError;
-    j["psnr"] = std::isfinite(d.psnr) ? nlohmann::ordered_json(d.psnr) : nlohmann::ordered_json("inf");
+    j["psnr"] = jsonNumber(d.psnr);
     j["failing_pixels"] = d.failingPixels;
     j["failing_percent"] = d.failingPercent;
     j["warning_pixels"] = d.warningPixels;
@@ -50,7 +50,7 @@ nlohmann::ordered_json differenceJson(const relief::compare::ImageDifference& d,
     for (const auto& c : d.perChannel)
         ch.push_back({{"name", c.name}, {"max_error", c.maxError}, {"max_error_at", {c.maxX, c.maxY}},
                       {"mean_error", c.meanError}, {"rms_error", c.rmsError},
-                      {"psnr", std::isfinite(c.psnr) ? nlohmann::ordered_json(c.psnr) : nlohmann::ordered_json("inf")}});
+                      {"psnr", jsonNumber(c.psnr)}});
     j["per_channel"] = ch;
     j["thresholds"] = {{"fail", t.fail}, {"failpercent", t.failPercent},
                        {"hardfail", t.hardFail < 1e300 ? nlohmann::ordered_json(t.hardFail) : nlohmann::ordered_json("inf")},

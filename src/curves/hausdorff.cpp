@@ -26,6 +26,15 @@ double dist(Point2 p, Point2 q) {
     return std::sqrt(dx * dx + dy * dy);
 }
 
+Point2 lerp(Point2 p, Point2 q, double t) { return {p.x + t * (q.x - p.x), p.y + t * (q.y - p.y)}; }
+
+// The parameter of the point of the line p0 p1 nearest to a (not clamped;
+// 0 for a degenerate segment).
+double projectOntoLine(Point2 p0, Point2 p1, Point2 a) {
+    const double ex = p1.x - p0.x, ey = p1.y - p0.y, len2 = ex * ex + ey * ey;
+    return len2 > 0 ? ((a.x - p0.x) * ex + (a.y - p0.y) * ey) / len2 : 0.0;
+}
+
 double binomial(int n, int k) {
     double r = 1;
     for (int i = 1; i <= k; ++i) r = r * (n - k + i) / i;
@@ -74,9 +83,7 @@ void segmentFeet(const Segment& s, size_t piece, size_t index, Point2 a, std::ve
     if (d == 0) return;
     add(1.0);
     if (d == 1) {  // a straight piece: the foot of the perpendicular, if inside
-        const Point2 p0 = s.control[0], p1 = s.control[1];
-        const double ex = p1.x - p0.x, ey = p1.y - p0.y, len2 = ex * ex + ey * ey;
-        const double t = len2 > 0 ? ((a.x - p0.x) * ex + (a.y - p0.y) * ey) / len2 : 0.0;
+        const double t = projectOntoLine(s.control[0], s.control[1], a);
         if (t > 0 && t < 1) add(t);
         return;
     }
@@ -263,17 +270,9 @@ OneSided oneSidedHausdorff(std::span<const PiecewiseBezier> A, std::span<const P
         for (const Sample* s : {&s0, &s1}) {
             const auto& b = B[s->footPiece].segments[s->footSeg].control;
             if (b.size() > 2) continue;
-            const Sample* other = s == &s0 ? &s1 : &s0;
-            const Point2 q = evaluate(a, other->t);
-            double d;
-            if (b.size() == 1) {
-                d = dist(q, b[0]);
-            } else {
-                const double ex = b[1].x - b[0].x, ey = b[1].y - b[0].y, len2 = ex * ex + ey * ey;
-                const double t = len2 > 0 ? std::clamp(((q.x - b[0].x) * ex + (q.y - b[0].y) * ey) / len2, 0.0, 1.0) : 0.0;
-                d = dist(q, {b[0].x + t * ex, b[0].y + t * ey});
-            }
-            u = std::min(u, std::max(s->f, d));
+            const Point2 q = evaluate(a, (s == &s0 ? s1 : s0).t);  // the interval's other end
+            const Point2 nearest = b.size() == 1 ? b[0] : lerp(b[0], b[1], std::clamp(projectOntoLine(b[0], b[1], q), 0.0, 1.0));
+            u = std::min(u, std::max(s->f, dist(q, nearest)));
         }
         return u;
     };

@@ -91,6 +91,8 @@ private:
     std::vector<Node> nodes_;
 };
 
+/// One-off queries on a single curve (each builds its index: for many
+/// queries against one curve, keep a SegmentIndex).
 std::vector<Foot> feet(const PiecewiseBezier& b, Point2 a, double slack);
 double distanceToCurve(const PiecewiseBezier& b, Point2 a);
 

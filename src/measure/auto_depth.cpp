@@ -40,11 +40,9 @@ std::vector<NetCurve> netCurves(const geo::ControlNet& net) {
 }
 
 curves::PiecewiseBezier polyline(const std::vector<Vec3>& points) {
-    curves::PiecewiseBezier p;
-    for (size_t k = 0; k + 1 < points.size(); ++k)
-        p.segments.push_back({{{points[k].x, points[k].y}, {points[k + 1].x, points[k + 1].y}},
-                              double(k), double(k + 1)});
-    return p;
+    curves::CurveFile line{"polyline", false, {}};
+    for (const Vec3& p : points) line.points.push_back({p.x, p.y});
+    return curves::toBezier(line);
 }
 
 }  // namespace

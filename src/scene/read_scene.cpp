@@ -380,9 +380,9 @@ std::optional<SceneDesc> readScene(const std::filesystem::path& path, Diagnostic
             if (*d->value_exact<std::string>() == "auto")
                 scene.depthAuto = true;
             else
-                s.error("depth", "subdivision.depth must be an integer number of levels in "
-                                 "[0, 8] or \"auto\" (with tolerance_m)");
-        } else if (auto n = s.integer("depth", 0, 8, "levels")) {
+                s.error("depth", fmt::format("subdivision.depth must be an integer number of levels in "
+                                             "[0, {}] or \"auto\" (with tolerance_m)", kMaxDepth));
+        } else if (auto n = s.integer("depth", 0, kMaxDepth, "levels")) {
             scene.depth = *n;
         }
         scene.toleranceLoc = s.keyLoc("tolerance_m");

@@ -13,6 +13,9 @@
 
 namespace relief::scene {
 
+/// The deepest subdivision a scene may ask for (and depth = "auto" may choose).
+inline constexpr int kMaxDepth = 8;
+
 enum class FrameKind { Utm, Local };
 enum class Gridding { Linear, InverseDistance, Nearest };
 enum class Projection { Perspective, Orthographic };

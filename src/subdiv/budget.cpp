@@ -21,8 +21,20 @@ OutputEstimate estimateOutput(const Scheme& scheme, int rows, int cols, int dept
     return e;
 }
 
+bool withinBudget(const OutputEstimate& est, const Budget& budget) {
+    return est.triangles <= budget.maxTriangles && est.sdlBytes / 1e6 <= budget.maxSdlMB &&
+           est.parseSeconds <= budget.maxParseS;
+}
+
+int deepestWithinBudget(const Scheme& scheme, int rows, int cols, const Budget& budget, int maxDepth) {
+    int depth = 0;
+    while (depth < maxDepth && withinBudget(estimateOutput(scheme, rows, cols, depth + 1), budget)) ++depth;
+    return depth;
+}
+
 bool checkBudget(const OutputEstimate& est, const Budget& budget, const SourceLoc& where,
                  int depth, Diagnostics& diags) {
+    if (withinBudget(est, budget)) return true;
     std::string over;
     auto add = [&](std::string s) { over += (over.empty() ? "" : "; ") + s; };
     if (est.triangles > budget.maxTriangles)
@@ -34,7 +46,6 @@ bool checkBudget(const OutputEstimate& est, const Budget& budget, const SourceLo
     if (est.parseSeconds > budget.maxParseS)
         add(fmt::format("~{:.1f} s of POV-Ray parsing > limits.max_parse_s = {}",
                         est.parseSeconds, formatShortest(budget.maxParseS)));
-    if (over.empty()) return true;
     diags.error(where, fmt::format("depth {} refines the net to {} x {} vertices: {}; lower "
                                    "subdivision.depth, use a coarser net, or raise [limits]",
                                    depth, est.rows, est.cols, over));

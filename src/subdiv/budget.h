@@ -29,6 +29,13 @@ inline constexpr double kSdlBytesPerTriangle = 31;
 
 OutputEstimate estimateOutput(const Scheme& scheme, int rows, int cols, int depth);
 
+/// Every figure of the estimate within the budget.
+bool withinBudget(const OutputEstimate& est, const Budget& budget);
+
+/// The deepest depth, at most maxDepth, whose output is within the budget
+/// (0 when not even depth 1 is).
+int deepestWithinBudget(const Scheme& scheme, int rows, int cols, const Budget& budget, int maxDepth);
+
 /// Reports an error at `where` when the estimate exceeds the budget, naming
 /// each exceeded figure and the ways out. Returns true when within budget.
 bool checkBudget(const OutputEstimate& est, const Budget& budget, const SourceLoc& where,

@@ -10,6 +10,13 @@ namespace relief::subdiv {
 
 namespace {
 
+// The boundary rule, point reflection: the ghost beyond an edge point is
+// 2 edge - mirror, the mirror being the point as far inside (doubles
+// [eBegin, eEnd) of an element). Every refiner below makes its ghosts here.
+void reflect(const double* edge, const double* mirror, double* ghost, size_t eBegin, size_t eEnd) {
+    for (size_t e = eBegin; e < eEnd; ++e) ghost[e] = 2 * edge[e] - mirror[e];
+}
+
 // Refines one line of n elements of `width` doubles each (an element is one
 // point's x, y, z, or a whole row of points when refining across rows), using
 // only doubles [eBegin, eEnd) of every element so that threads can split a
@@ -28,14 +35,14 @@ void refineLine(const Scheme& scheme, const double* src, long n, size_t width, s
     for (int j = 1; j <= before; ++j) {  // P_{-j} = 2 P_0 - P_j
         double* g = ghosts.data() + static_cast<size_t>(j - 1) * width;
         const double* pj = src + static_cast<size_t>(j) * width;
-        for (size_t e = eBegin; e < eEnd; ++e) g[e] = 2 * first[e] - pj[e];
+        reflect(first, pj, g, eBegin, eEnd);
         rows[before - j] = g;
     }
     for (long k = 0; k < n; ++k) rows[before + k] = src + static_cast<size_t>(k) * width;
     for (int j = 1; j <= after; ++j) {  // P_{n-1+j} = 2 P_{n-1} - P_{n-1-j}
         double* g = ghosts.data() + static_cast<size_t>(before + j - 1) * width;
         const double* pj = src + static_cast<size_t>(n - 1 - j) * width;
-        for (size_t e = eBegin; e < eEnd; ++e) g[e] = 2 * last[e] - pj[e];
+        reflect(last, pj, g, eBegin, eEnd);
         rows[before + n - 1 + j] = g;
     }
 
@@ -109,9 +116,9 @@ void refineRowFlat(const Scheme& scheme, const Vec3* src, long n, double* out, R
     const double* first = ext + 3 * before;
     const double* last = first + 3 * (n - 1);
     for (int j = 1; j <= before; ++j)  // P_{-j} = 2 P_0 - P_j
-        for (int c = 0; c < 3; ++c) ext[3 * (before - j) + c] = 2 * first[c] - first[3 * j + c];
+        reflect(first, first + 3 * j, ext + 3 * (before - j), 0, 3);
     for (int j = 1; j <= after; ++j)  // P_{n-1+j} = 2 P_{n-1} - P_{n-1-j}
-        for (int c = 0; c < 3; ++c) ext[3 * (before + n - 1 + j) + c] = 2 * last[c] - last[-3 * j + c];
+        reflect(last, last - 3 * j, ext + 3 * (before + n - 1 + j), 0, 3);
     for (int r = 0; r < m; ++r) {
         const Rule& rule = scheme.rules[r];
         const long count = r == 0 ? n : n - 1;  // new points of child position r
@@ -254,7 +261,7 @@ void refineLevel(const Scheme& scheme, const Grid& in, Grid& out, int threads) {
                 const long mirror = k < 0 ? -k : 2 * (rows - 1) - k;
                 const Vec3* e = &in.points[0] + static_cast<size_t>(edge) * cols;
                 const Vec3* q = &in.points[0] + static_cast<size_t>(mirror) * cols;
-                for (long c = 0; c < cols; ++c) reflected[c] = 2.0 * e[c] - q[c];
+                reflect(&e->x, &q->x, &reflected[0].x, 0, 3 * static_cast<size_t>(cols));
                 src = reflected.data();
             }
             refineRowFlat(scheme, src, cols, row, scratch);
