@@ -2,16 +2,19 @@
 // the same run: the refiner against a naive per-point loop, the mesh2 writer
 // against fprintf("%.9g").
 #include <benchmark/benchmark.h>
+#include <immintrin.h>
 #include <omp.h>
 
 #include <cmath>
 #include <algorithm>
+#include <cstdint>
 #include <cstdio>
 
 #include "emit/mesh.h"
 #include "emit/write_scene.h"
 #include "reference/naive_four_point.h"
 #include "subdiv/refine.h"
+#include "subdiv/row_kernels.h"
 
 namespace {
 
@@ -61,9 +64,20 @@ void setVertexCounters(benchmark::State& state, const Grid& out, double bytes = 
 //   scale: STREAM's b[i] = q a[i] as a plain loop: ordinary stores (each
 //          destination line is read before it is written), as the refiner's;
 //   fill:  b[i] = q, writes only: the ceiling for a kernel that mostly writes,
-//          as a refinement level does (arity^2 points written per point read).
+//          as a refinement level does (arity^2 points written per point read);
+//   fill_streaming: the same with streaming (non-temporal) stores, as the
+//          refiner writes its output rows.
 // Bytes: read plus written.
-enum class StreamKernel { Copy, Scale, Fill };
+enum class StreamKernel { Copy, Scale, Fill, FillStreaming };
+
+__attribute__((target("avx2"))) void fillStreaming(double* b, size_t n, double q) {
+    size_t i = 0;
+    for (; i < n && reinterpret_cast<std::uintptr_t>(b + i) % 32 != 0; ++i) b[i] = q;
+    const __m256d v = _mm256_set1_pd(q);
+    for (; i + 4 <= n; i += 4) _mm256_stream_pd(b + i, v);
+    for (; i < n; ++i) b[i] = q;
+    _mm_sfence();
+}
 
 void BM_Stream(benchmark::State& state, StreamKernel kernel) {
     const int threads = static_cast<int>(state.range(0));
@@ -81,17 +95,19 @@ void BM_Stream(benchmark::State& state, StreamKernel kernel) {
                 case StreamKernel::Copy: std::copy(pa + begin, pa + end, pb + begin); break;
                 case StreamKernel::Scale: for (size_t i = begin; i < end; ++i) pb[i] = q * pa[i]; break;
                 case StreamKernel::Fill: for (size_t i = begin; i < end; ++i) pb[i] = q; break;
+                case StreamKernel::FillStreaming: fillStreaming(pb + begin, end - begin, q); break;
             }
         }
         benchmark::DoNotOptimize(b.data());
         benchmark::ClobberMemory();
     }
-    const size_t arrays = kernel == StreamKernel::Fill ? 1 : 2;
+    const size_t arrays = kernel == StreamKernel::Fill || kernel == StreamKernel::FillStreaming ? 1 : 2;
     state.SetBytesProcessed(static_cast<int64_t>(state.iterations()) * static_cast<int64_t>(arrays * n * sizeof(double)));
 }
 BENCHMARK_CAPTURE(BM_Stream, copy, StreamKernel::Copy)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(BM_Stream, scale, StreamKernel::Scale)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(BM_Stream, fill, StreamKernel::Fill)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(BM_Stream, fill_streaming, StreamKernel::FillStreaming)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // Binary: 257 x 257 -> 2049 x 2049 (three levels); ternary: -> 2305 x 2305
 // (two levels, 5.3 M vertices; a third would be 48 M). Rows then columns.
@@ -99,7 +115,7 @@ void BM_RefineTable(benchmark::State& state, subdiv::Scheme scheme) {
     const int threads = static_cast<int>(state.range(0));
     const int levels = scheme.arity == 2 ? 3 : 2;
     subdiv::Refiner refiner;  // storage reused across iterations, as STREAM's arrays are
-    const Grid* out = nullptr;
+    const Grid* out = &refiner.refine(scheme, net257(), levels, threads);  // pages touched, as STREAM's
     for (auto _ : state) {
         out = &refiner.refine(scheme, net257(), levels, threads);
         benchmark::DoNotOptimize(out->points.data());
@@ -118,6 +134,18 @@ BENCHMARK_CAPTURE(BM_RefineTable, ternary_4point, subdiv::ternaryFourPoint(19.0 
     ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(BM_RefineTable, ternary_blend, subdiv::ternaryBlend(-2.0 / 27, 1.0 / 81, 2.0 / 81))
     ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The same refiner with the plain kernels (no AVX2, ordinary stores for the
+// output): what the vector kernels and streaming stores buy.
+void BM_RefinePlainKernels(benchmark::State& state, subdiv::Scheme scheme) {
+    subdiv::useKernelIsa(subdiv::KernelIsa::Baseline);
+    BM_RefineTable(state, std::move(scheme));
+    subdiv::useKernelIsa(subdiv::bestKernelIsa());
+}
+BENCHMARK_CAPTURE(BM_RefinePlainKernels, dlg4, subdiv::dlgFourPoint(1.0 / 16))
+    ->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(BM_RefinePlainKernels, ternary_blend, subdiv::ternaryBlend(-2.0 / 27, 1.0 / 81, 2.0 / 81))
+    ->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // Baseline: the naive per-point 4-point loop (tests/reference), same net and depth.
 void BM_RefineNaiveLoop(benchmark::State& state) {

@@ -1,10 +1,12 @@
 #include "subdiv/refine.h"
 
 #include <algorithm>
+#include <array>
 #include <cassert>
-#include <limits>
 
 #include <omp.h>
+
+#include "subdiv/row_kernels.h"
 
 namespace relief::subdiv {
 
@@ -65,50 +67,48 @@ void refineLine(const Scheme& scheme, const double* src, long n, size_t width, s
     }
 }
 
-// out[e] = sum_j w[j] * in[j][e] for e in [0, n), one sweep over `out` for
-// the common stencil lengths (the row stays in cache between the rules).
-// Compiled twice, for AVX2 and for any x86-64, chosen at load time (no FMA:
-// -ffp-contract=off, so both round alike; an AVX-512 clone measured no faster).
-__attribute__((target_clones("avx2", "default")))
-void combineRows(double* out, const double* const* in, const std::vector<double>& w, size_t n) {
-    switch (w.size()) {
-        case 1:
-            for (size_t e = 0; e < n; ++e) out[e] = w[0] * in[0][e];
-            return;
-        case 3:
-            for (size_t e = 0; e < n; ++e)
-                out[e] = w[0] * in[0][e] + w[1] * in[1][e] + w[2] * in[2][e];
-            return;
-        case 4:
-            for (size_t e = 0; e < n; ++e)
-                out[e] = w[0] * in[0][e] + w[1] * in[1][e] + w[2] * in[2][e] + w[3] * in[3][e];
-            return;
-        case 5:
-            for (size_t e = 0; e < n; ++e)
-                out[e] = w[0] * in[0][e] + w[1] * in[1][e] + w[2] * in[2][e] + w[3] * in[3][e] +
-                         w[4] * in[4][e];
-            return;
-        default:
-            for (size_t e = 0; e < n; ++e) out[e] = w[0] * in[0][e];
-            for (size_t j = 1; j < w.size(); ++j)
-                for (size_t e = 0; e < n; ++e) out[e] += w[j] * in[j][e];
+// A rule as the fused level applies it: its nonzero weights and the offsets
+// of the coarse points they weigh. A zero weight adds nothing (paper 000's
+// rules at lambda = 0 have two: the quintic B-spline's even rule is 3 points,
+// not 5); dropping it changes no sum but the sign of an exact zero.
+struct Taps {
+    std::vector<double> weights;
+    std::vector<int> offsets;
+    bool keepsOldPoint() const {
+        return weights.size() == 1 && weights[0] == 1.0 && offsets[0] == 0;
     }
+};
+
+std::vector<Taps> nonzeroTaps(const Scheme& scheme) {
+    std::vector<Taps> all(scheme.rules.size());
+    for (size_t r = 0; r < scheme.rules.size(); ++r) {
+        const Rule& rule = scheme.rules[r];
+        for (size_t j = 0; j < rule.weights.size(); ++j)
+            if (rule.weights[j] != 0.0) {
+                all[r].weights.push_back(rule.weights[j]);
+                all[r].offsets.push_back(rule.offset + static_cast<int>(j));
+            }
+    }
+    return all;
 }
 
 // One row of points refined along itself, for the fused level: every rule is
 // a weighted sum of whole shifted copies of the (ghost-extended) row, seen as
-// flat doubles, so combineRows runs it as wide contiguous loops; the results
-// are then interleaved into the refined row (m points per coarse point).
-// Measured against refineLine<3> (per point, three doubles at a time) in the
-// same benchmark run, 257^2 -> 2049^2 on 2 threads: 9-point binary-3p 9.4 ->
-// 7.6 ms, 4-point dlg4 7.2 -> 6.4 ms.
+// flat doubles, so combineRows runs it as wide contiguous loops; the rules'
+// new points are then interleaved into the refined row (m points per coarse
+// point). Measured against refineLine<3> (per point, three doubles at a time)
+// in the same benchmark run, 257^2 -> 2049^2 on 2 threads: 9-point binary-3p
+// 9.4 -> 7.6 ms, 4-point dlg4 7.2 -> 6.4 ms. Working on pieces of 64 to 256
+// coarse points (the rules' results in L1) measured no faster.
 struct RowScratch {
     std::vector<double> extended;  ///< ghosts before, the row, ghosts after (x, y, z each)
-    std::vector<double> rule;      ///< one rule's new points, contiguous
+    std::array<std::vector<double>, kMaxArity> rule;  ///< each rule's new points, contiguous
+    std::array<const double*, kMaxArity> streams{};   ///< each rule's new points, where they are
     std::vector<const double*> inputs;
 };
 
-void refineRowFlat(const Scheme& scheme, const Vec3* src, long n, double* out, RowScratch& s) {
+void refineRowFlat(const Scheme& scheme, const std::vector<Taps>& taps, const Vec3* src, long n,
+                   double* out, RowScratch& s) {
     const int before = scheme.ghostsBefore(), after = scheme.ghostsAfter(), m = scheme.arity;
     s.extended.resize(static_cast<size_t>(before + n + after) * 3);
     double* ext = s.extended.data();
@@ -120,22 +120,20 @@ void refineRowFlat(const Scheme& scheme, const Vec3* src, long n, double* out, R
     for (int j = 1; j <= after; ++j)  // P_{n-1+j} = 2 P_{n-1} - P_{n-1-j}
         reflect(last, last - 3 * j, ext + 3 * (before + n - 1 + j), 0, 3);
     for (int r = 0; r < m; ++r) {
-        const Rule& rule = scheme.rules[r];
+        const Taps& rule = taps[static_cast<size_t>(r)];
         const long count = r == 0 ? n : n - 1;  // new points of child position r
-        const size_t nw = rule.weights.size();
-        s.inputs.resize(nw);
-        for (size_t j = 0; j < nw; ++j) s.inputs[j] = first + 3 * (rule.offset + static_cast<long>(j));
-        const double* values;
-        if (nw == 1 && rule.weights[0] == 1.0) {
-            values = s.inputs[0];  // an interpolating rule keeps the old points: no arithmetic
+        s.inputs.resize(rule.offsets.size());
+        for (size_t j = 0; j < rule.offsets.size(); ++j) s.inputs[j] = first + 3 * rule.offsets[j];
+        if (rule.keepsOldPoint()) {
+            s.streams[r] = s.inputs[0];  // an interpolating rule: no arithmetic
         } else {
-            s.rule.resize(static_cast<size_t>(count) * 3);
-            combineRows(s.rule.data(), s.inputs.data(), rule.weights, static_cast<size_t>(count) * 3);
-            values = s.rule.data();
+            s.rule[r].resize(static_cast<size_t>(count) * 3);
+            combineRows(s.rule[r].data(), s.inputs.data(), rule.weights,
+                        static_cast<size_t>(count) * 3);
+            s.streams[r] = s.rule[r].data();
         }
-        double* o = out + 3 * r;
-        for (long i = 0; i < count; ++i, o += 3 * m, values += 3) o[0] = values[0], o[1] = values[1], o[2] = values[2];
     }
+    interleavePoints(out, s.streams.data(), m, scheme.refinedCount(n), 3 * (n - 1));
 }
 
 int resolveThreads(int threads) { return threads > 0 ? threads : omp_get_num_procs(); }
@@ -225,12 +223,13 @@ void refineLevel(const Scheme& scheme, const Grid& in, Grid& out, int threads) {
     out.cols = static_cast<int>(scheme.refinedCount(cols));
     out.points.resize(static_cast<size_t>(out.rows) * static_cast<size_t>(out.cols));
     const size_t width = static_cast<size_t>(out.cols) * 3;  // doubles per refined row
+    const std::vector<Taps> taps = nonzeroTaps(scheme);
 
     // Coarse rows that output rows m i + r read: i + lowest .. i + highest.
     int lowest = 0, highest = 0;
-    for (const Rule& rule : scheme.rules) {
-        lowest = std::min(lowest, rule.offset);
-        highest = std::max(highest, rule.offset + static_cast<int>(rule.weights.size()) - 1);
+    for (const Taps& t : taps) {
+        lowest = std::min(lowest, t.offsets.front());
+        highest = std::max(highest, t.offsets.back());
     }
     const long ringSize = highest - lowest + 1;
 
@@ -245,16 +244,16 @@ void refineLevel(const Scheme& scheme, const Grid& in, Grid& out, int threads) {
         thread_local RowScratch scratch;
         ring.resize(static_cast<size_t>(ringSize) * width);
         reflected.resize(static_cast<size_t>(cols));
-        std::vector<long> ringKey(static_cast<size_t>(ringSize), std::numeric_limits<long>::min());
-        std::vector<const double*> inputs(8);
+        std::vector<const double*> inputs(static_cast<size_t>(ringSize));
 
-        // The row-refined coarse row k; beyond the edges, the row-refined
-        // point reflection of the coarse rows (linear, so the same as
-        // reflecting refined rows).
-        auto refinedRow = [&](long k) -> const double* {
-            const size_t slot = static_cast<size_t>(((k % ringSize) + ringSize) % ringSize);
-            double* row = ring.data() + slot * width;
-            if (ringKey[slot] == k) return row;
+        auto refinedRow = [&](long k) {
+            const long slot = ((k % ringSize) + ringSize) % ringSize;
+            return ring.data() + static_cast<size_t>(slot) * width;
+        };
+        // Row-refines coarse row k into the ring; beyond the edges, the point
+        // reflection of coarse rows (linear, so the same as reflecting
+        // row-refined rows).
+        auto makeRow = [&](long k) {
             const Vec3* src = &in.points[0] + static_cast<size_t>(std::clamp(k, 0L, rows - 1)) * cols;
             if (k < 0 || k >= rows) {
                 const long edge = k < 0 ? 0 : rows - 1;
@@ -264,22 +263,22 @@ void refineLevel(const Scheme& scheme, const Grid& in, Grid& out, int threads) {
                 reflect(&e->x, &q->x, &reflected[0].x, 0, 3 * static_cast<size_t>(cols));
                 src = reflected.data();
             }
-            refineRowFlat(scheme, src, cols, row, scratch);
-            ringKey[slot] = k;
-            return row;
+            refineRowFlat(scheme, taps, src, cols, refinedRow(k), scratch);
         };
 
+        for (long k = iBegin + lowest; k < iBegin + highest; ++k) makeRow(k);
         for (long i = iBegin; i < iEnd; ++i) {
+            makeRow(i + highest);  // the one row step i reads that step i - 1 did not
             for (int r = 0; r < m; ++r) {
                 if (r > 0 && i == rows - 1) break;
-                const Rule& rule = scheme.rules[r];
-                const size_t nw = rule.weights.size();
-                if (inputs.size() < nw) inputs.resize(nw);
-                for (size_t j = 0; j < nw; ++j) inputs[j] = refinedRow(i + rule.offset + static_cast<long>(j));
-                combineRows(&out.points[0].x + static_cast<size_t>(m * i + r) * width,
-                            inputs.data(), rule.weights, width);
+                const Taps& rule = taps[static_cast<size_t>(r)];
+                for (size_t j = 0; j < rule.offsets.size(); ++j)
+                    inputs[j] = refinedRow(i + rule.offsets[j]);
+                combineRowsStreaming(&out.points[0].x + static_cast<size_t>(m * i + r) * width,
+                                     inputs.data(), rule.weights, width);
             }
         }
+        streamingDone();
     }
 }
 

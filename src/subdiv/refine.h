@@ -28,11 +28,12 @@ enum class Axis { AlongRows, AlongColumns };
 Grid refinePass(const Scheme& scheme, const Grid& in, Axis axis, int threads = 0);
 
 /// One level, rows and columns fused (equal to refinePass along rows, then
-/// along columns): each output row combines row-refined input rows, which are
-/// made once each into a small ring buffer that stays in cache, so the grid is
-/// read once and written once. `out` is resized (its storage reused; new
-/// points are not zeroed first, see BigBufferAllocator). Non-temporal stores
-/// for the output were tried twice and measured no faster on this machine.
+/// along columns, up to rounding: ghost rows are reflected before the row
+/// pass, not after it): each output row combines
+/// row-refined input rows, which are made once each into a small ring buffer
+/// that stays in cache, so the grid is read once and written once, with
+/// streaming stores (row_kernels.h). `out` is resized (its storage reused; new
+/// points are not zeroed first, see BigBufferAllocator).
 void refineLevel(const Scheme& scheme, const Grid& in, Grid& out, int threads = 0);
 
 /// Repeated refinement with reusable storage: calling refine() again with

@@ -27,6 +27,9 @@ enum class Boundary {
     PointReflection,
 };
 
+/// Largest arity a Scheme has: binary and ternary schemes.
+inline constexpr int kMaxArity = 3;
+
 struct Scheme {
     std::string name;
     int arity = 2;            ///< 2 (binary) or 3 (ternary)

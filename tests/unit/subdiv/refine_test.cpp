@@ -3,10 +3,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <random>
 
 #include "reference/naive_four_point.h"
 #include "subdiv/budget.h"
+#include "subdiv/row_kernels.h"
 
 namespace relief::subdiv {
 namespace {
@@ -107,6 +109,61 @@ TEST(Refine, FusedLevelEqualsTwoPasses) {
             ASSERT_EQ(fused.cols, twoPass.cols);
             for (size_t i = 0; i < fused.points.size(); ++i)
                 ASSERT_LT(length(fused.points[i] - twoPass.points[i]), 1e-11) << s.name << " " << i;
+        }
+}
+
+// Every scheme family, and a user mask with rules longer than the unrolled
+// sums of row_kernels (11 and 10 taps).
+const std::vector<Scheme>& kernelSchemes() {
+    static const std::vector<Scheme> s = [] {
+        std::vector<Scheme> all = allSchemes();
+        all.push_back(ternaryFourPoint(19.0 / 30));
+        all.push_back(ternaryBlend(-2.0 / 27, 1.0 / 81, 2.0 / 81));
+        all.push_back(ternaryBSpline(1.0 / 27));
+        Scheme wide{"wide", 2, {}, Boundary::PointReflection};
+        const std::vector<double> even{0.01, -0.02, 0.03, -0.05, 0.2, 0.66,
+                                       0.2,  -0.05, 0.03, -0.02, 0.01};
+        const std::vector<double> odd{0.005, -0.015, 0.03, -0.07, 0.55,
+                                      0.55,  -0.07,  0.03, -0.015, 0.005};
+        wide.rules = {{-5, even}, {-4, odd}};
+        all.push_back(wide);
+        return all;
+    }();
+    return s;
+}
+
+// Nets wide or tall enough for every path of the row kernels: whole
+// interleave periods, several 128-point pieces (inside ones read the row in
+// place, end ones a copy with ghosts), odd tails, streaming heads and tails.
+TEST(Refine, FusedLevelEqualsTwoPassesOnWideAndTallNets) {
+    for (const Scheme& s : kernelSchemes())
+        for (auto [rows, cols] : {std::pair{7, 301}, std::pair{263, 6}}) {
+            const Grid net = randomNet(rows, cols, 12);
+            Grid fused;
+            refineLevel(s, net, fused, 2);
+            const Grid twoPass =
+                refinePass(s, refinePass(s, net, Axis::AlongRows), Axis::AlongColumns);
+            ASSERT_EQ(fused.points.size(), twoPass.points.size());
+            for (size_t i = 0; i < fused.points.size(); ++i)
+                ASSERT_LT(length(fused.points[i] - twoPass.points[i]), 1e-9) << s.name << " " << i;
+        }
+}
+
+// The AVX2 kernels and the plain ones compute the same sums in the same
+// order: a refined grid has the same bits on any x86-64 (so has a .pov).
+TEST(Refine, VectorKernelsGiveTheSameBitsAsPlainOnes) {
+    if (bestKernelIsa() == KernelIsa::Baseline) GTEST_SKIP() << "this CPU has no AVX2";
+    for (const Scheme& s : kernelSchemes())
+        for (auto [rows, cols] : {std::pair{7, 301}, std::pair{150, 9}}) {
+            const Grid net = randomNet(rows, cols, 13);
+            useKernelIsa(KernelIsa::Baseline);
+            const Grid plain = refineGrid(s, net, 2, 2);
+            useKernelIsa(bestKernelIsa());
+            const Grid vector = refineGrid(s, net, 2, 2);
+            ASSERT_EQ(plain.points.size(), vector.points.size());
+            EXPECT_EQ(0, std::memcmp(plain.points.data(), vector.points.data(),
+                                     plain.points.size() * sizeof(Vec3)))
+                << s.name << " " << rows << " x " << cols;
         }
 }
 
