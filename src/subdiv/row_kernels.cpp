@@ -46,13 +46,18 @@ struct LocalTaps {
     }
 };
 
-// A scalar streaming store (movnti): the line is not read first either.
-inline void streamOne(double* p, double v) {
-    _mm_stream_si64(reinterpret_cast<long long*>(p), std::bit_cast<long long>(v));
+// One double stored: streamed with movnti (the line is not read first
+// either), or an ordinary store.
+template <bool Stream>
+inline void storeOne(double* p, double v) {
+    if (Stream)
+        _mm_stream_si64(reinterpret_cast<long long*>(p), std::bit_cast<long long>(v));
+    else
+        *p = v;
 }
 
 // Plain C++ (the compiler vectorises it for SSE2), ordinary stores.
-template <int Taps, bool>
+template <int Taps>
 void sumBaseline(double* out, const double* const* in, const double* w, size_t n) {
     const LocalTaps<Taps> t(in, w);
     for (size_t e = 0; e < n; ++e) out[e] = t.sum(e);
@@ -71,7 +76,7 @@ __attribute__((target("avx2"))) void sumAvx2(double* out, const double* const* i
     size_t e = 0;
     if (Stream)
         for (; e < n && reinterpret_cast<std::uintptr_t>(out + e) % 32 != 0; ++e)
-            streamOne(out + e, t.sum(e));
+            storeOne<true>(out + e, t.sum(e));
     __m256d weight[Taps];
     for (int j = 0; j < Taps; ++j) weight[j] = _mm256_set1_pd(t.weight[j]);
     for (; e + 4 <= n; e += 4) {
@@ -83,12 +88,7 @@ __attribute__((target("avx2"))) void sumAvx2(double* out, const double* const* i
         else
             _mm256_storeu_pd(out + e, v);
     }
-    for (; e < n; ++e) {
-        if (Stream)
-            streamOne(out + e, t.sum(e));
-        else
-            out[e] = t.sum(e);
-    }
+    for (; e < n; ++e) storeOne<Stream>(out + e, t.sum(e));
 }
 
 constexpr int kUnrolledTaps = 9;  // the papers' rules have 1 to 5 taps; user masks may have more
@@ -98,7 +98,7 @@ constexpr auto sumTable(KernelIsa isa, std::index_sequence<T...>) {
     using Table = std::array<SumKernel, sizeof...(T)>;
     switch (isa) {
         case KernelIsa::Avx2: return Table{&sumAvx2<int(T) + 1, Stream>...};
-        default: return Table{&sumBaseline<int(T) + 1, Stream>...};
+        default: return Table{&sumBaseline<int(T) + 1>...};  // ordinary stores
     }
 }
 
