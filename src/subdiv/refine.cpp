@@ -67,18 +67,10 @@ void refineLine(const Scheme& scheme, const double* src, long n, size_t width, s
     }
 }
 
-// A rule as the fused level applies it: its nonzero weights and the offsets
-// of the coarse points they weigh. A zero weight adds nothing (paper 000's
+// The rules as the fused level applies them (Taps, row_kernels.h): nonzero
+// weights only. A zero weight adds nothing (paper 000's
 // rules at lambda = 0 have two: the quintic B-spline's even rule is 3 points,
 // not 5); dropping it changes no sum but the sign of an exact zero.
-struct Taps {
-    std::vector<double> weights;
-    std::vector<int> offsets;
-    bool keepsOldPoint() const {
-        return weights.size() == 1 && weights[0] == 1.0 && offsets[0] == 0;
-    }
-};
-
 std::vector<Taps> nonzeroTaps(const Scheme& scheme) {
     std::vector<Taps> all(scheme.rules.size());
     for (size_t r = 0; r < scheme.rules.size(); ++r) {
@@ -99,7 +91,8 @@ std::vector<Taps> nonzeroTaps(const Scheme& scheme) {
 // point). Measured against refineLine<3> (per point, three doubles at a time)
 // in the same benchmark run, 257^2 -> 2049^2 on 2 threads: 9-point binary-3p
 // 9.4 -> 7.6 ms, 4-point dlg4 7.2 -> 6.4 ms. Working on pieces of 64 to 256
-// coarse points (the rules' results in L1) measured no faster.
+// coarse points (the rules' results in L1) measured no faster. Where the CPU
+// has AVX-512, the approximating binary schemes skip both steps (RowSweep).
 struct RowScratch {
     std::vector<double> extended;  ///< ghosts before, the row, ghosts after (x, y, z each)
     std::array<std::vector<double>, kMaxArity> rule;  ///< each rule's new points, contiguous
@@ -107,11 +100,16 @@ struct RowScratch {
     std::vector<const double*> inputs;
 };
 
-void refineRowFlat(const Scheme& scheme, const std::vector<Taps>& taps, const Vec3* src, long n,
-                   double* out, RowScratch& s) {
+void refineRowFlat(const Scheme& scheme, const std::vector<Taps>& taps, const RowSweep& sweep,
+                   const Vec3* src, long n, double* out, RowScratch& s) {
     const int before = scheme.ghostsBefore(), after = scheme.ghostsAfter(), m = scheme.arity;
-    s.extended.resize(static_cast<size_t>(before + n + after) * 3);
-    double* ext = s.extended.data();
+    // Zeros beyond the ghosts, so that the sweep can read a little past them
+    // (with zero weights) and still run whole periods to the ends.
+    constexpr long kPad = 12;
+    s.extended.resize(static_cast<size_t>(before + n + after) * 3 + 2 * kPad);
+    std::fill(s.extended.begin(), s.extended.begin() + kPad, 0.0);
+    std::fill(s.extended.end() - kPad, s.extended.end(), 0.0);
+    double* ext = s.extended.data() + kPad;
     std::copy(&src[0].x, &src[0].x + 3 * n, ext + 3 * before);
     const double* first = ext + 3 * before;
     const double* last = first + 3 * (n - 1);
@@ -119,6 +117,9 @@ void refineRowFlat(const Scheme& scheme, const std::vector<Taps>& taps, const Ve
         reflect(first, first + 3 * j, ext + 3 * (before - j), 0, 3);
     for (int j = 1; j <= after; ++j)  // P_{n-1+j} = 2 P_{n-1} - P_{n-1-j}
         reflect(last, last - 3 * j, ext + 3 * (before + n - 1 + j), 0, 3);
+    if (sweep.applies())
+        return sweep.refine(out, first, kPad + 3 * before, 3 * (n + after) + kPad,
+                            scheme.refinedCount(n));
     for (int r = 0; r < m; ++r) {
         const Taps& rule = taps[static_cast<size_t>(r)];
         const long count = r == 0 ? n : n - 1;  // new points of child position r
@@ -224,6 +225,7 @@ void refineLevel(const Scheme& scheme, const Grid& in, Grid& out, int threads) {
     out.points.resize(static_cast<size_t>(out.rows) * static_cast<size_t>(out.cols));
     const size_t width = static_cast<size_t>(out.cols) * 3;  // doubles per refined row
     const std::vector<Taps> taps = nonzeroTaps(scheme);
+    const RowSweep sweep(taps);
 
     // Coarse rows that output rows m i + r read: i + lowest .. i + highest.
     int lowest = 0, highest = 0;
@@ -263,7 +265,7 @@ void refineLevel(const Scheme& scheme, const Grid& in, Grid& out, int threads) {
                 reflect(&e->x, &q->x, &reflected[0].x, 0, 3 * static_cast<size_t>(cols));
                 src = reflected.data();
             }
-            refineRowFlat(scheme, taps, src, cols, refinedRow(k), scratch);
+            refineRowFlat(scheme, taps, sweep, src, cols, refinedRow(k), scratch);
         };
 
         for (long k = iBegin + lowest; k < iBegin + highest; ++k) makeRow(k);

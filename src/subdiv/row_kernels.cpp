@@ -15,7 +15,9 @@ namespace {
 
 KernelIsa detectIsa() {
     __builtin_cpu_init();  // this runs during static initialisation
-    if (__builtin_cpu_supports("avx2")) return KernelIsa::Avx2;
+    if (!__builtin_cpu_supports("avx2")) return KernelIsa::Baseline;
+    if (__builtin_cpu_supports("avx512f")) return KernelIsa::Avx512;
+    return KernelIsa::Avx2;
     return KernelIsa::Baseline;
 }
 
@@ -97,7 +99,8 @@ template <bool Stream, size_t... T>
 constexpr auto sumTable(KernelIsa isa, std::index_sequence<T...>) {
     using Table = std::array<SumKernel, sizeof...(T)>;
     switch (isa) {
-        case KernelIsa::Avx2: return Table{&sumAvx2<int(T) + 1, Stream>...};
+        case KernelIsa::Avx2:
+        case KernelIsa::Avx512: return Table{&sumAvx2<int(T) + 1, Stream>...};
         default: return Table{&sumBaseline<int(T) + 1>...};  // ordinary stores
     }
 }
@@ -105,8 +108,8 @@ constexpr auto sumTable(KernelIsa isa, std::index_sequence<T...>) {
 template <bool Stream>
 SumKernel sumKernel(size_t taps) {
     static constexpr auto kTables = [] {
-        std::array<std::array<SumKernel, kUnrolledTaps>, 2> t{};
-        for (KernelIsa isa : {KernelIsa::Baseline, KernelIsa::Avx2})
+        std::array<std::array<SumKernel, kUnrolledTaps>, 3> t{};
+        for (KernelIsa isa : {KernelIsa::Baseline, KernelIsa::Avx2, KernelIsa::Avx512})
             t[static_cast<size_t>(isa)] =
                 sumTable<Stream>(isa, std::make_index_sequence<kUnrolledTaps>{});
         return t;
@@ -153,7 +156,7 @@ void interleavePointsScalar(double* out, const double* const* streams, int m, lo
     for (long p = pBegin; p < pEnd; ++p) {
         const double* v = streams[r] + 3 * i;
         double* o = out + 3 * p;
-        o[0] = v[0], o[1] = v[1], o[2] = v[2];
+        o[0] = v[0] + 0.0, o[1] = v[1] + 0.0, o[2] = v[2] + 0.0;
         if (++r == m) r = 0, ++i;
     }
 }
@@ -200,6 +203,7 @@ __attribute__((target("avx2"))) void interleavePointsAvx2(double* out,
                                                           long points, long readable) {
     using Pattern = InterleavePattern<M>;
     static constexpr Pattern kPattern;
+    const __m256d zero = _mm256_setzero_pd();
     __m256d mask[Pattern::kVectors];
     for (int v = 0; v < Pattern::kVectors; ++v) {
         const bool* f = kPattern.vectors[v].fromSecond;
@@ -223,21 +227,158 @@ __attribute__((target("avx2"))) void interleavePointsAvx2(double* out,
             if (vec.stream[1] >= 0)
                 a = _mm256_blendv_pd(
                     a, _mm256_loadu_pd(streams[vec.stream[1]] + base + vec.offset[1]), mask[v]);
-            _mm256_storeu_pd(o + 4 * v, a);
+            _mm256_storeu_pd(o + 4 * v, _mm256_add_pd(a, zero));
         }
     }
     interleavePointsScalar(out, streams, M, std::min(points, last * kPointsPerPeriod), points);
+}
+
+// ---- A binary row refined in one sweep (AVX-512) -------------------------
+// Each 8-double output vector of the interleaved row holds parts of up to four
+// refined points, of both rules. Lane l of the vector at output double 8 v of
+// a period (24 doubles, 8 points) needs the coarse doubles at 8 v + l + 3 u
+// for u = (i - p) + offsets[j] (p its point, i = p / 2): one load per u, over
+// the union of the lanes' taps, each with a weight per lane (0 where the lane
+// does not use that u). The lanes' own terms come in their rule's order and
+// the others add exact zeros, so a lane's sum is its rule's sum up to the sign
+// of a zero, which the final + 0.0 makes +0, as interleavePoints does.
+// Against the rules' AVX2 sums and the interleave, four-point-4p, one row of
+// 1025 points in cache: 2.36 -> 1.46 us. The whole refiner, 257^2 to depth 3,
+// the two alternated in one process: 4-7 % faster (1 and 2 threads). Not for
+// interpolating rules (the sums skip a rule that keeps the old point, the
+// sweep could not), nor for ternary schemes: there a vector's union of taps
+// needs more weight vectors than there are registers, and it measured slower.
+constexpr int kSweepPeriod = 24;      // output doubles: lcm(8, 3 m) for m = 2
+constexpr int kSweepVectors = 3;      // 8-double vectors per period
+constexpr int kSweepAdvance = 12;     // coarse doubles per period
+constexpr int kSweepMaxTaps = 8;      // union taps per vector (coarse points one vector reads)
+
+}  // namespace
+
+struct SweepPattern {
+    int taps = 0;                                   // per vector (the same for all)
+    long shift[kSweepVectors][kSweepMaxTaps] = {};  // doubles, from the period's start
+    alignas(64) double weight[kSweepVectors][kSweepMaxTaps][8] = {};
+    long lowestRead = 0, highestRead = 0;           // [lowest, highest) from the period's start
+};
+
+namespace {
+
+bool buildSweep(const std::vector<Taps>& rules, SweepPattern& pattern) {
+    int lo[kSweepVectors], hi[kSweepVectors];
+    for (int v = 0; v < kSweepVectors; ++v) {
+        lo[v] = 1 << 20, hi[v] = -(1 << 20);
+        for (int lane = 0; lane < 8; ++lane) {
+            const int q = 8 * v + lane, p = q / 3, i = p / 2;
+            for (int offset : rules[static_cast<size_t>(p % 2)].offsets) {
+                lo[v] = std::min(lo[v], i - p + offset);
+                hi[v] = std::max(hi[v], i - p + offset);
+            }
+        }
+        pattern.taps = std::max(pattern.taps, hi[v] - lo[v] + 1);
+    }
+    if (pattern.taps > kSweepMaxTaps) return false;
+    pattern.lowestRead = 1 << 20;
+    pattern.highestRead = -(1 << 20);
+    for (int v = 0; v < kSweepVectors; ++v) {
+        for (int k = 0; k < pattern.taps; ++k) {
+            pattern.shift[v][k] = 8 * v + 3 * (lo[v] + k);
+            pattern.lowestRead = std::min(pattern.lowestRead, pattern.shift[v][k]);
+            pattern.highestRead = std::max(pattern.highestRead, pattern.shift[v][k] + 8);
+        }
+        for (int lane = 0; lane < 8; ++lane) {
+            const int q = 8 * v + lane, p = q / 3, i = p / 2;
+            const Taps& rule = rules[static_cast<size_t>(p % 2)];
+            for (size_t j = 0; j < rule.offsets.size(); ++j)
+                pattern.weight[v][i - p + rule.offsets[j] - lo[v]][lane] = rule.weights[j];
+        }
+    }
+    return true;
+}
+
+// Refined points [pBegin, pEnd), one by one: the rules' sums (+ 0.0, as the
+// interleave writes them).
+void sweepScalar(double* out, const double* first, const std::vector<Taps>& rules, long pBegin,
+                 long pEnd) {
+    for (long p = pBegin; p < pEnd; ++p) {
+        const Taps& rule = rules[static_cast<size_t>(p % 2)];
+        const double* at = first + 3 * (p / 2);
+        for (int c = 0; c < 3; ++c) {
+            double v = rule.weights[0] * at[3 * rule.offsets[0] + c];
+            for (size_t j = 1; j < rule.weights.size(); ++j)
+                v += rule.weights[j] * at[3 * rule.offsets[j] + c];
+            out[3 * p + c] = v + 0.0;
+        }
+    }
+}
+
+template <int T>
+__attribute__((target("avx512f"))) void sweepAvx512(double* out, const double* first,
+                                                   const SweepPattern& pattern, long kBegin,
+                                                   long kEnd) {
+    __m512d weight[kSweepVectors][T];
+    long shifts[kSweepVectors][T];  // in locals: a store could alias the pattern
+    for (int v = 0; v < kSweepVectors; ++v)
+        for (int k = 0; k < T; ++k) {
+            weight[v][k] = _mm512_load_pd(pattern.weight[v][k]);
+            shifts[v][k] = pattern.shift[v][k];
+        }
+    const __m512d zero = _mm512_setzero_pd();
+    for (long period = kBegin; period < kEnd; ++period) {
+        const double* at = first + kSweepAdvance * period;
+        double* o = out + kSweepPeriod * period;
+        for (int v = 0; v < kSweepVectors; ++v) {
+            const long* shift = shifts[v];
+            __m512d sum = _mm512_mul_pd(weight[v][0], _mm512_loadu_pd(at + shift[0]));
+            for (int k = 1; k < T; ++k)
+                sum = _mm512_add_pd(sum, _mm512_mul_pd(weight[v][k], _mm512_loadu_pd(at + shift[k])));
+            _mm512_storeu_pd(o + 8 * v, _mm512_add_pd(sum, zero));
+        }
+    }
+}
+
+using SweepKernel = void (*)(double*, const double*, const SweepPattern&, long, long);
+
+template <size_t... T>
+constexpr auto sweepTable(std::index_sequence<T...>) {
+    return std::array<SweepKernel, sizeof...(T)>{&sweepAvx512<int(T) + 1>...};
 }
 
 }  // namespace
 
 void interleavePoints(double* out, const double* const* streams, int m, long points,
                       long readable) {
-    if (gIsa == KernelIsa::Avx2) {
+    if (gIsa != KernelIsa::Baseline) {
         if (m == 2) return interleavePointsAvx2<2>(out, streams, points, readable);
         if (m == 3) return interleavePointsAvx2<3>(out, streams, points, readable);
     }
     interleavePointsScalar(out, streams, m, 0, points);
+}
+
+RowSweep::RowSweep(const std::vector<Taps>& rules) : rules_(rules) {
+    if (gIsa != KernelIsa::Avx512 || rules.size() != 2) return;
+    if (std::any_of(rules.begin(), rules.end(), [](const Taps& t) { return t.keepsOldPoint(); }))
+        return;
+    auto pattern = std::make_shared<SweepPattern>();
+    if (buildSweep(rules, *pattern)) pattern_ = std::move(pattern);
+}
+
+void RowSweep::refine(double* out, const double* first, long readableBefore, long readableAfter,
+                      long points) const {
+    static constexpr auto kKernels = sweepTable(std::make_index_sequence<kSweepMaxTaps>{});
+    const SweepPattern& pattern = *pattern_;
+    // Whole periods whose loads stay in the readable doubles and whose stores
+    // stay in the row; the points before and after them one by one.
+    const long kBegin = std::max(
+        0L, (-readableBefore - pattern.lowestRead + kSweepAdvance - 1) / kSweepAdvance);
+    const long byReads = readableAfter < pattern.highestRead
+                             ? 0
+                             : (readableAfter - pattern.highestRead) / kSweepAdvance + 1;
+    const long kEnd = std::max(kBegin, std::min(byReads, 3 * points / kSweepPeriod));
+    constexpr long kPointsPerPeriod = kSweepPeriod / 3;
+    sweepScalar(out, first, rules_, 0, std::min(points, kBegin * kPointsPerPeriod));
+    kKernels[static_cast<size_t>(pattern.taps - 1)](out, first, pattern, kBegin, kEnd);
+    sweepScalar(out, first, rules_, std::min(points, kEnd * kPointsPerPeriod), points);
 }
 
 }  // namespace relief::subdiv

@@ -1,19 +1,22 @@
 #pragma once
 // The inner loops of the fused refinement level (refine.cpp), on rows seen as
 // flat arrays of doubles (x, y, z, x, y, z, ...). The machine-specific code of
-// the refiner lives here, chosen once at load time: AVX2 where the CPU has it,
-// plain C++ elsewhere (an AVX-512 variant of the sums measured slower on this
-// machine's Zen 5: 9.9 against 7.8 ms for dlg4, 257^2 to depth 3). Every
-// variant computes the same products and sums in the same order (and the
-// build turns off FMA contraction), so a refined grid is bit-identical on any
-// x86-64 machine; the tests check it.
+// the refiner lives here, chosen once at load time: AVX-512 or AVX2 where the
+// CPU has them, plain C++ elsewhere. AVX-512 only adds the one-sweep row pass
+// (RowSweep); the row sums stay AVX2 (512-bit sums measured slower for the
+// streamed output rows, 9.9 against 7.8 ms for dlg4, and no faster in the row
+// pass of ternary schemes, on this machine's Zen 5). Every variant computes
+// the same products and sums in the same order (and the build turns off FMA
+// contraction), so a refined grid is bit-identical on any x86-64 machine; the
+// tests check it.
 #include <cstddef>
+#include <memory>
 #include <vector>
 
 namespace relief::subdiv {
 
 /// The instruction sets the kernels are built for (all give the same bits).
-enum class KernelIsa { Baseline = 0, Avx2 = 1 };
+enum class KernelIsa { Baseline = 0, Avx2 = 1, Avx512 = 2 };
 
 /// The best the CPU has: what the kernels use unless told otherwise.
 KernelIsa bestKernelIsa();
@@ -38,11 +41,47 @@ void combineRowsStreaming(double* out, const double* const* in, const std::vecto
 /// a barrier after it publishes them.
 void streamingDone();
 
+/// A rule as the kernels apply it: its nonzero weights and the offsets (in
+/// points) of the coarse points they weigh.
+struct Taps {
+    std::vector<double> weights;
+    std::vector<int> offsets;
+    bool keepsOldPoint() const {
+        return weights.size() == 1 && weights[0] == 1.0 && offsets[0] == 0;
+    }
+};
+
 /// The m rules' new points of one row, interleaved into the refined row:
 /// output point m i + r is point i of streams[r], for output points
 /// [0, points). Every stream may be read for its first `readable` doubles
-/// (at least what the output takes from it).
+/// (at least what the output takes from it). A zero is written as +0 (the
+/// refined rows carry no -0, whichever kernel made them).
 void interleavePoints(double* out, const double* const* streams, int m, long points,
                       long readable);
+
+struct SweepPattern;
+
+/// One row of a binary scheme refined along itself in one sweep (AVX-512):
+/// refined point 2 i + r is rule r's sum of the points i + offsets[j] of the
+/// ghost-extended coarse row, computed in its place, with no per-rule arrays
+/// and no interleave. The same bits as the rules' sums then interleavePoints.
+class RowSweep {
+public:
+    /// Prepares the sweep; it applies() only where the CPU has AVX-512, the
+    /// rules are binary and short (one 8-double vector reads at most 8 coarse
+    /// points: the papers' rules do) and none keeps the old point (the rules'
+    /// sums skip that one, and are then faster).
+    explicit RowSweep(const std::vector<Taps>& rules);
+    bool applies() const { return pattern_ != nullptr; }
+    /// Writes refined points [0, points) to `out`, from the coarse row whose
+    /// point 0 is at `first` (x, y, z each). Doubles [first - readableBefore,
+    /// first + readableAfter) may be read, and must be finite.
+    void refine(double* out, const double* first, long readableBefore, long readableAfter,
+                long points) const;
+
+private:
+    std::vector<Taps> rules_;
+    std::shared_ptr<const SweepPattern> pattern_;
+};
 
 }  // namespace relief::subdiv

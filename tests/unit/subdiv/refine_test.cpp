@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <random>
+#include <tuple>
 
 #include "reference/naive_four_point.h"
 #include "subdiv/budget.h"
@@ -149,22 +150,57 @@ TEST(Refine, FusedLevelEqualsTwoPassesOnWideAndTallNets) {
         }
 }
 
-// The AVX2 kernels and the plain ones compute the same sums in the same
-// order: a refined grid has the same bits on any x86-64 (so has a .pov).
+// The AVX-512, AVX2 and plain kernels compute the same sums in the same order
+// (the one-sweep row pass adds exact zeros, and every row pass writes a zero
+// as +0): a refined grid has the same bits on any x86-64 (so has a .pov).
 TEST(Refine, VectorKernelsGiveTheSameBitsAsPlainOnes) {
     if (bestKernelIsa() == KernelIsa::Baseline) GTEST_SKIP() << "this CPU has no AVX2";
     for (const Scheme& s : kernelSchemes())
-        for (auto [rows, cols] : {std::pair{7, 301}, std::pair{150, 9}}) {
-            const Grid net = randomNet(rows, cols, 13);
+        for (auto [rows, cols, zeros] : {std::tuple{7, 301, false}, std::tuple{150, 9, false},
+                                         std::tuple{7, 301, true}}) {
+            Grid net = randomNet(rows, cols, 13);
+            if (zeros)  // sums of -0 and +0: every kernel must write the same zero
+                for (size_t i = 0; i < net.points.size(); ++i) net.points[i].z = i % 7 ? -0.0 : 0.0;
             useKernelIsa(KernelIsa::Baseline);
             const Grid plain = refineGrid(s, net, 2, 2);
+            for (KernelIsa isa : {KernelIsa::Avx2, KernelIsa::Avx512}) {
+                if (static_cast<int>(isa) > static_cast<int>(bestKernelIsa())) continue;
+                useKernelIsa(isa);
+                const Grid vector = refineGrid(s, net, 2, 2);
+                ASSERT_EQ(plain.points.size(), vector.points.size());
+                EXPECT_EQ(0, std::memcmp(plain.points.data(), vector.points.data(),
+                                         plain.points.size() * sizeof(Vec3)))
+                    << s.name << " " << rows << " x " << cols << (zeros ? " zeros" : "")
+                    << " kernels " << static_cast<int>(isa);
+            }
             useKernelIsa(bestKernelIsa());
-            const Grid vector = refineGrid(s, net, 2, 2);
-            ASSERT_EQ(plain.points.size(), vector.points.size());
-            EXPECT_EQ(0, std::memcmp(plain.points.data(), vector.points.data(),
-                                     plain.points.size() * sizeof(Vec3)))
-                << s.name << " " << rows << " x " << cols;
         }
+}
+
+// Which schemes the AVX-512 one-sweep row pass takes (the test above checks
+// its bits): the approximating binary ones; not the classic 4-point (its even
+// rule keeps the old point), ternary schemes, or a rule too long for it.
+TEST(Refine, OneSweepRowPassTakesApproximatingBinarySchemes) {
+    if (bestKernelIsa() != KernelIsa::Avx512) GTEST_SKIP() << "this CPU has no AVX-512";
+    auto sweepApplies = [](const Scheme& s) {
+        std::vector<Taps> taps;
+        for (const Rule& rule : s.rules) {
+            Taps t;
+            for (size_t j = 0; j < rule.weights.size(); ++j)
+                if (rule.weights[j] != 0.0) {
+                    t.weights.push_back(rule.weights[j]);
+                    t.offsets.push_back(rule.offset + static_cast<int>(j));
+                }
+            taps.push_back(t);
+        }
+        return RowSweep(taps).applies();
+    };
+    EXPECT_TRUE(sweepApplies(fourPoint4p(7.0 / 32, 7.0 / 32, 0.5, 3.0 / 64)));
+    EXPECT_TRUE(sweepApplies(binary3p(0, 3.0 / 16, 1.0 / 32)));
+    EXPECT_TRUE(sweepApplies(binary3p(0.01, 0.23, 0.07)));
+    EXPECT_FALSE(sweepApplies(dlgFourPoint(1.0 / 16)));
+    EXPECT_FALSE(sweepApplies(ternaryBlend(-2.0 / 27, 1.0 / 81, 2.0 / 81)));
+    EXPECT_FALSE(sweepApplies(kernelSchemes().back()));  // the 11/10-point mask
 }
 
 TEST(Refine, RefinerReusesStorageAndGivesTheSameResult) {
