@@ -234,64 +234,74 @@ __attribute__((target("avx2"))) void interleavePointsAvx2(double* out,
 }
 
 // ---- A binary row refined in one sweep (AVX-512) -------------------------
-// Each 8-double output vector of the interleaved row holds parts of up to four
-// refined points, of both rules. Lane l of the vector at output double 8 v of
-// a period (24 doubles, 8 points) needs the coarse doubles at 8 v + l + 3 u
-// for u = (i - p) + offsets[j] (p its point, i = p / 2): one load per u, over
-// the union of the lanes' taps, each with a weight per lane (0 where the lane
-// does not use that u). The lanes' own terms come in their rule's order and
-// the others add exact zeros, so a lane's sum is its rule's sum up to the sign
-// of a zero, which the final + 0.0 makes +0, as interleavePoints does.
-// Against the rules' AVX2 sums and the interleave, four-point-4p, one row of
-// 1025 points in cache: 2.36 -> 1.46 us. The whole refiner, 257^2 to depth 3,
-// the two alternated in one process: 4-7 % faster (1 and 2 threads). Not for
-// interpolating rules (the sums skip a rule that keeps the old point, the
-// sweep could not), nor for ternary schemes: there a vector's union of taps
-// needs more weight vectors than there are registers, and it measured slower.
-constexpr int kSweepPeriod = 24;      // output doubles: lcm(8, 3 m) for m = 2
-constexpr int kSweepVectors = 3;      // 8-double vectors per period
-constexpr int kSweepAdvance = 12;     // coarse doubles per period
-constexpr int kSweepMaxTaps = 8;      // union taps per vector (coarse points one vector reads)
+// Two refined points per 8-double vector (x, y, z of each in lanes 0-2 and
+// 3-5; lanes 6-7 weigh 0 and are not stored): point p, of rule p % m and
+// coarse point i = p / m, needs the coarse doubles 3 (i + offsets[j]) + c; with
+// the vector loaded at 3 i + 3 u, lane c of p reads u = offsets[j] and lane
+// 3 + c of p + 1 reads u = (i' - i - 1) + offsets'[j]. One load per u over
+// the union of the two points' taps, each with a weight per lane (0 where the
+// lane does not use that u). The lanes' own terms come in their rule's order
+// and the others add exact zeros, so a lane's sum is its rule's sum up to the
+// sign of a zero, which the final + 0.0 makes +0, as interleavePoints does.
+// The pairs repeat every m pairs (2 m points, 2 coarse points); written for
+// any arity m, used for binary rules only.
+// Against the rules' AVX2 sums and the interleave, the whole refiner (257^2 to
+// depth 3, the two alternated in one process, minimum of 60): four-point-4p
+// 8.4 -> 7.0 ms on 1 thread, 4.3 -> 3.6 ms on 2; binary-3p 8.2 -> 6.9, 4.3 ->
+// 3.5; dlg4 7.1 -> 6.6, 3.6 -> 3.3. For ternary rules it was no faster
+// (ternary blend 7.15 -> 7.2 ms) or slower (ternary 4-point 6.5 -> 6.85 ms),
+// though faster on one row in cache (3.6 -> 2.7 us, 3.2 -> 2.7 us). Three full
+// vectors per 24 doubles (every lane used, each vector its own weights) was
+// faster in cache for binary rules but only 5 % in the refiner.
+constexpr int kSweepMaxTaps = 8;   // union taps of a pair (coarse points one vector reads)
+constexpr int kSweepMaxArity = 2;  // the arities it is built for
 
 }  // namespace
 
 struct SweepPattern {
-    int taps = 0;                                   // per vector (the same for all)
-    long shift[kSweepVectors][kSweepMaxTaps] = {};  // doubles, from the period's start
-    alignas(64) double weight[kSweepVectors][kSweepMaxTaps][8] = {};
-    long lowestRead = 0, highestRead = 0;           // [lowest, highest) from the period's start
+    int arity = 2;
+    int taps = 0;                                      // per pair (the same for all)
+    long shift[kSweepMaxArity][kSweepMaxTaps] = {};         // doubles, from the group's start
+    alignas(64) double weight[kSweepMaxArity][kSweepMaxTaps][8] = {};
+    long lowestRead = 0, highestRead = 0;              // [lowest, highest) from the group's start
 };
 
 namespace {
 
 bool buildSweep(const std::vector<Taps>& rules, SweepPattern& pattern) {
-    int lo[kSweepVectors], hi[kSweepVectors];
-    for (int v = 0; v < kSweepVectors; ++v) {
-        lo[v] = 1 << 20, hi[v] = -(1 << 20);
-        for (int lane = 0; lane < 8; ++lane) {
-            const int q = 8 * v + lane, p = q / 3, i = p / 2;
-            for (int offset : rules[static_cast<size_t>(p % 2)].offsets) {
-                lo[v] = std::min(lo[v], i - p + offset);
-                hi[v] = std::max(hi[v], i - p + offset);
-            }
-        }
-        pattern.taps = std::max(pattern.taps, hi[v] - lo[v] + 1);
+    const int m = static_cast<int>(rules.size());
+    pattern.arity = m;
+    int lo[kSweepMaxArity], hi[kSweepMaxArity];
+    // The taps of point q (of the pair starting at point p), as u.
+    auto forTaps = [&](int p, int q, auto&& visit) {
+        const Taps& rule = rules[static_cast<size_t>(q % m)];
+        const int shift = q == p ? 0 : q / m - p / m - 1;
+        for (size_t j = 0; j < rule.offsets.size(); ++j) visit(shift + rule.offsets[j], rule.weights[j]);
+    };
+    for (int pair = 0; pair < m; ++pair) {
+        const int p = 2 * pair;
+        lo[pair] = 1 << 20, hi[pair] = -(1 << 20);
+        for (int q : {p, p + 1})
+            forTaps(p, q, [&](int u, double) {
+                lo[pair] = std::min(lo[pair], u);
+                hi[pair] = std::max(hi[pair], u);
+            });
+        pattern.taps = std::max(pattern.taps, hi[pair] - lo[pair] + 1);
     }
     if (pattern.taps > kSweepMaxTaps) return false;
     pattern.lowestRead = 1 << 20;
     pattern.highestRead = -(1 << 20);
-    for (int v = 0; v < kSweepVectors; ++v) {
+    for (int pair = 0; pair < m; ++pair) {
+        const int p = 2 * pair;
         for (int k = 0; k < pattern.taps; ++k) {
-            pattern.shift[v][k] = 8 * v + 3 * (lo[v] + k);
-            pattern.lowestRead = std::min(pattern.lowestRead, pattern.shift[v][k]);
-            pattern.highestRead = std::max(pattern.highestRead, pattern.shift[v][k] + 8);
+            pattern.shift[pair][k] = 3 * (p / m + lo[pair] + k);
+            pattern.lowestRead = std::min(pattern.lowestRead, pattern.shift[pair][k]);
+            pattern.highestRead = std::max(pattern.highestRead, pattern.shift[pair][k] + 8);
         }
-        for (int lane = 0; lane < 8; ++lane) {
-            const int q = 8 * v + lane, p = q / 3, i = p / 2;
-            const Taps& rule = rules[static_cast<size_t>(p % 2)];
-            for (size_t j = 0; j < rule.offsets.size(); ++j)
-                pattern.weight[v][i - p + rule.offsets[j] - lo[v]][lane] = rule.weights[j];
-        }
+        for (int q : {p, p + 1})
+            forTaps(p, q, [&](int u, double w) {
+                for (int c = 0; c < 3; ++c) pattern.weight[pair][u - lo[pair]][3 * (q - p) + c] = w;
+            });
     }
     return true;
 }
@@ -300,9 +310,10 @@ bool buildSweep(const std::vector<Taps>& rules, SweepPattern& pattern) {
 // interleave writes them).
 void sweepScalar(double* out, const double* first, const std::vector<Taps>& rules, long pBegin,
                  long pEnd) {
+    const long m = static_cast<long>(rules.size());
     for (long p = pBegin; p < pEnd; ++p) {
-        const Taps& rule = rules[static_cast<size_t>(p % 2)];
-        const double* at = first + 3 * (p / 2);
+        const Taps& rule = rules[static_cast<size_t>(p % m)];
+        const double* at = first + 3 * (p / m);
         for (int c = 0; c < 3; ++c) {
             double v = rule.weights[0] * at[3 * rule.offsets[0] + c];
             for (size_t j = 1; j < rule.weights.size(); ++j)
@@ -312,36 +323,40 @@ void sweepScalar(double* out, const double* first, const std::vector<Taps>& rule
     }
 }
 
-template <int T>
+// Groups [gBegin, gEnd) of m pairs: group g is refined points [2 m g, 2 m (g + 1)),
+// from coarse doubles 6 g on.
+template <int M, int T>
 __attribute__((target("avx512f"))) void sweepAvx512(double* out, const double* first,
-                                                   const SweepPattern& pattern, long kBegin,
-                                                   long kEnd) {
-    __m512d weight[kSweepVectors][T];
-    long shifts[kSweepVectors][T];  // in locals: a store could alias the pattern
-    for (int v = 0; v < kSweepVectors; ++v)
+                                                   const SweepPattern& pattern, long gBegin,
+                                                   long gEnd) {
+    __m512d weight[M][T];
+    long shifts[M][T];  // in locals: a store could alias the pattern
+    for (int pair = 0; pair < M; ++pair)
         for (int k = 0; k < T; ++k) {
-            weight[v][k] = _mm512_load_pd(pattern.weight[v][k]);
-            shifts[v][k] = pattern.shift[v][k];
+            weight[pair][k] = _mm512_load_pd(pattern.weight[pair][k]);
+            shifts[pair][k] = pattern.shift[pair][k];
         }
     const __m512d zero = _mm512_setzero_pd();
-    for (long period = kBegin; period < kEnd; ++period) {
-        const double* at = first + kSweepAdvance * period;
-        double* o = out + kSweepPeriod * period;
-        for (int v = 0; v < kSweepVectors; ++v) {
-            const long* shift = shifts[v];
-            __m512d sum = _mm512_mul_pd(weight[v][0], _mm512_loadu_pd(at + shift[0]));
+    constexpr __mmask8 kTwoPoints = 0x3f;
+    for (long g = gBegin; g < gEnd; ++g) {
+        const double* at = first + 6 * g;
+        double* o = out + 6 * M * g;
+        for (int pair = 0; pair < M; ++pair) {
+            const long* shift = shifts[pair];
+            __m512d sum = _mm512_mul_pd(weight[pair][0], _mm512_loadu_pd(at + shift[0]));
             for (int k = 1; k < T; ++k)
-                sum = _mm512_add_pd(sum, _mm512_mul_pd(weight[v][k], _mm512_loadu_pd(at + shift[k])));
-            _mm512_storeu_pd(o + 8 * v, _mm512_add_pd(sum, zero));
+                sum = _mm512_add_pd(sum,
+                                    _mm512_mul_pd(weight[pair][k], _mm512_loadu_pd(at + shift[k])));
+            _mm512_mask_storeu_pd(o + 6 * pair, kTwoPoints, _mm512_add_pd(sum, zero));
         }
     }
 }
 
 using SweepKernel = void (*)(double*, const double*, const SweepPattern&, long, long);
 
-template <size_t... T>
+template <int M, size_t... T>
 constexpr auto sweepTable(std::index_sequence<T...>) {
-    return std::array<SweepKernel, sizeof...(T)>{&sweepAvx512<int(T) + 1>...};
+    return std::array<SweepKernel, sizeof...(T)>{&sweepAvx512<M, int(T) + 1>...};
 }
 
 }  // namespace
@@ -356,29 +371,25 @@ void interleavePoints(double* out, const double* const* streams, int m, long poi
 }
 
 RowSweep::RowSweep(const std::vector<Taps>& rules) : rules_(rules) {
-    if (gIsa != KernelIsa::Avx512 || rules.size() != 2) return;
-    if (std::any_of(rules.begin(), rules.end(), [](const Taps& t) { return t.keepsOldPoint(); }))
-        return;
+    if (gIsa != KernelIsa::Avx512 || rules.size() != kSweepMaxArity) return;
     auto pattern = std::make_shared<SweepPattern>();
     if (buildSweep(rules, *pattern)) pattern_ = std::move(pattern);
 }
 
 void RowSweep::refine(double* out, const double* first, long readableBefore, long readableAfter,
                       long points) const {
-    static constexpr auto kKernels = sweepTable(std::make_index_sequence<kSweepMaxTaps>{});
+    static constexpr auto kKernels = sweepTable<2>(std::make_index_sequence<kSweepMaxTaps>{});
     const SweepPattern& pattern = *pattern_;
-    // Whole periods whose loads stay in the readable doubles and whose stores
+    const long m = pattern.arity;
+    // Whole groups whose loads stay in the readable doubles and whose stores
     // stay in the row; the points before and after them one by one.
-    const long kBegin = std::max(
-        0L, (-readableBefore - pattern.lowestRead + kSweepAdvance - 1) / kSweepAdvance);
-    const long byReads = readableAfter < pattern.highestRead
-                             ? 0
-                             : (readableAfter - pattern.highestRead) / kSweepAdvance + 1;
-    const long kEnd = std::max(kBegin, std::min(byReads, 3 * points / kSweepPeriod));
-    constexpr long kPointsPerPeriod = kSweepPeriod / 3;
-    sweepScalar(out, first, rules_, 0, std::min(points, kBegin * kPointsPerPeriod));
-    kKernels[static_cast<size_t>(pattern.taps - 1)](out, first, pattern, kBegin, kEnd);
-    sweepScalar(out, first, rules_, std::min(points, kEnd * kPointsPerPeriod), points);
+    const long gBegin = std::max(0L, (-readableBefore - pattern.lowestRead + 5) / 6);
+    const long byReads =
+        readableAfter < pattern.highestRead ? 0 : (readableAfter - pattern.highestRead) / 6 + 1;
+    const long gEnd = std::max(gBegin, std::min(byReads, points / (2 * m)));
+    sweepScalar(out, first, rules_, 0, std::min(points, gBegin * 2 * m));
+    kKernels[static_cast<size_t>(pattern.taps - 1)](out, first, pattern, gBegin, gEnd);
+    sweepScalar(out, first, rules_, std::min(points, gEnd * 2 * m), points);
 }
 
 }  // namespace relief::subdiv

@@ -5,7 +5,7 @@
 // CPU has them, plain C++ elsewhere. AVX-512 only adds the one-sweep row pass
 // (RowSweep); the row sums stay AVX2 (512-bit sums measured slower for the
 // streamed output rows, 9.9 against 7.8 ms for dlg4, and no faster in the row
-// pass of ternary schemes, on this machine's Zen 5). Every variant computes
+// pass, on this machine's Zen 5). Every variant computes
 // the same products and sums in the same order (and the build turns off FMA
 // contraction), so a refined grid is bit-identical on any x86-64 machine; the
 // tests check it.
@@ -63,14 +63,15 @@ struct SweepPattern;
 
 /// One row of a binary scheme refined along itself in one sweep (AVX-512):
 /// refined point 2 i + r is rule r's sum of the points i + offsets[j] of the
-/// ghost-extended coarse row, computed in its place, with no per-rule arrays
-/// and no interleave. The same bits as the rules' sums then interleavePoints.
+/// ghost-extended coarse row, computed in its place, two points per vector,
+/// with no per-rule arrays and no interleave. The same bits as the rules' sums
+/// then interleavePoints.
 class RowSweep {
 public:
-    /// Prepares the sweep; it applies() only where the CPU has AVX-512, the
-    /// rules are binary and short (one 8-double vector reads at most 8 coarse
-    /// points: the papers' rules do) and none keeps the old point (the rules'
-    /// sums skip that one, and are then faster).
+    /// Prepares the sweep; it applies() only where the CPU has AVX-512 and the
+    /// rules are binary and short (two refined points read at most 8
+    /// consecutive coarse points: the papers' rules do). Ternary rules measured
+    /// no faster this way (row_kernels.cpp).
     explicit RowSweep(const std::vector<Taps>& rules);
     bool applies() const { return pattern_ != nullptr; }
     /// Writes refined points [0, points) to `out`, from the coarse row whose

@@ -178,9 +178,8 @@ TEST(Refine, VectorKernelsGiveTheSameBitsAsPlainOnes) {
 }
 
 // Which schemes the AVX-512 one-sweep row pass takes (the test above checks
-// its bits): the approximating binary ones; not the classic 4-point (its even
-// rule keeps the old point), ternary schemes, or a rule too long for it.
-TEST(Refine, OneSweepRowPassTakesApproximatingBinarySchemes) {
+// its bits): the binary ones; not ternary schemes, or rules too long for it.
+TEST(Refine, OneSweepRowPassTakesBinarySchemes) {
     if (bestKernelIsa() != KernelIsa::Avx512) GTEST_SKIP() << "this CPU has no AVX-512";
     auto sweepApplies = [](const Scheme& s) {
         std::vector<Taps> taps;
@@ -198,8 +197,9 @@ TEST(Refine, OneSweepRowPassTakesApproximatingBinarySchemes) {
     EXPECT_TRUE(sweepApplies(fourPoint4p(7.0 / 32, 7.0 / 32, 0.5, 3.0 / 64)));
     EXPECT_TRUE(sweepApplies(binary3p(0, 3.0 / 16, 1.0 / 32)));
     EXPECT_TRUE(sweepApplies(binary3p(0.01, 0.23, 0.07)));
-    EXPECT_FALSE(sweepApplies(dlgFourPoint(1.0 / 16)));
+    EXPECT_TRUE(sweepApplies(dlgFourPoint(1.0 / 16)));
     EXPECT_FALSE(sweepApplies(ternaryBlend(-2.0 / 27, 1.0 / 81, 2.0 / 81)));
+    EXPECT_FALSE(sweepApplies(ternaryFourPoint(19.0 / 30)));
     EXPECT_FALSE(sweepApplies(kernelSchemes().back()));  // the 11/10-point mask
 }
 
