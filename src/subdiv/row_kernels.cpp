@@ -18,7 +18,6 @@ KernelIsa detectIsa() {
     if (!__builtin_cpu_supports("avx2")) return KernelIsa::Baseline;
     if (__builtin_cpu_supports("avx512f")) return KernelIsa::Avx512;
     return KernelIsa::Avx2;
-    return KernelIsa::Baseline;
 }
 
 const KernelIsa kBestIsa = detectIsa();
@@ -258,12 +257,13 @@ constexpr int kSweepMaxArity = 2;  // the arities it is built for
 
 }  // namespace
 
+// The pairs of one group: pair k is refined points 2 k and 2 k + 1.
 struct SweepPattern {
     int arity = 2;
-    int taps = 0;                                      // per pair (the same for all)
-    long shift[kSweepMaxArity][kSweepMaxTaps] = {};         // doubles, from the group's start
-    alignas(64) double weight[kSweepMaxArity][kSweepMaxTaps][8] = {};
-    long lowestRead = 0, highestRead = 0;              // [lowest, highest) from the group's start
+    int taps = 0;                                    // per pair (the same for all)
+    long shift[kSweepMaxArity][kSweepMaxTaps] = {};  // doubles, from the group's start
+    alignas(64) double weight[kSweepMaxArity][kSweepMaxTaps][8] = {};  // per lane
+    long lowestRead = 0, highestRead = 0;  // doubles [lowest, highest) from the group's start
 };
 
 namespace {
