@@ -232,7 +232,7 @@ __attribute__((target("avx2"))) void interleavePointsAvx2(double* out,
     interleavePointsScalar(out, streams, M, std::min(points, last * kPointsPerPeriod), points);
 }
 
-// ---- A binary row refined in one sweep (AVX-512) -------------------------
+// ---- A row refined in one sweep (AVX-512) --------------------------------
 // Two refined points per 8-double vector (x, y, z of each in lanes 0-2 and
 // 3-5; lanes 6-7 weigh 0 and are not stored): point p, of rule p % m and
 // coarse point i = p / m, needs the coarse doubles 3 (i + offsets[j]) + c; with
@@ -242,26 +242,23 @@ __attribute__((target("avx2"))) void interleavePointsAvx2(double* out,
 // lane does not use that u). The lanes' own terms come in their rule's order
 // and the others add exact zeros, so a lane's sum is its rule's sum up to the
 // sign of a zero, which the final + 0.0 makes +0, as interleavePoints does.
-// The pairs repeat every m pairs (2 m points, 2 coarse points); written for
-// any arity m, used for binary rules only.
-// Against the rules' AVX2 sums and the interleave, the whole refiner (257^2 to
-// depth 3, the two alternated in one process, minimum of 60): four-point-4p
-// 8.4 -> 7.0 ms on 1 thread, 4.3 -> 3.6 ms on 2; binary-3p 8.2 -> 6.9, 4.3 ->
-// 3.5; dlg4 7.1 -> 6.6, 3.6 -> 3.3. For ternary rules it was no faster
-// (ternary blend 7.15 -> 7.2 ms) or slower (ternary 4-point 6.5 -> 6.85 ms),
-// though faster on one row in cache (3.6 -> 2.7 us, 3.2 -> 2.7 us). Three full
-// vectors per 24 doubles (every lane used, each vector its own weights) was
-// faster in cache for binary rules but only 5 % in the refiner.
+// The pairs repeat every m pairs (2 m points, 2 coarse points).
+// Against the rules' AVX2 sums and the interleave, the whole refiner (257^2,
+// the two alternated in one process, minimum of 60, 1 thread; 2 threads
+// alike): four-point-4p 8.9 -> 7.5 ms, binary-3p 8.2 -> 6.9, dlg4 7.1 -> 6.6,
+// ternary blend 7.55 -> 6.8, ternary 4-point 7.05 -> 6.55. Three full vectors
+// per 24 doubles (every lane used, each vector its own weights) was faster in
+// cache for binary rules but only 5 % in the refiner.
 constexpr int kSweepMaxTaps = 8;   // union taps of a pair (coarse points one vector reads)
-constexpr int kSweepMaxArity = 2;  // the arities it is built for
+constexpr int kSweepMaxArity = 3;  // binary and ternary rules
 
 }  // namespace
 
 // The pairs of one group: pair k is refined points 2 k and 2 k + 1.
 struct SweepPattern {
     int arity = 2;
-    int taps = 0;                                    // per pair (the same for all)
-    long shift[kSweepMaxArity][kSweepMaxTaps] = {};  // doubles, from the group's start
+    int taps = 0;                        // per pair (the same for all)
+    long firstTap[kSweepMaxArity] = {};  // doubles, from the group's start; taps are 3 apart
     alignas(64) double weight[kSweepMaxArity][kSweepMaxTaps][8] = {};  // per lane
     long lowestRead = 0, highestRead = 0;  // doubles [lowest, highest) from the group's start
 };
@@ -293,11 +290,10 @@ bool buildSweep(const std::vector<Taps>& rules, SweepPattern& pattern) {
     pattern.highestRead = -(1 << 20);
     for (int pair = 0; pair < m; ++pair) {
         const int p = 2 * pair;
-        for (int k = 0; k < pattern.taps; ++k) {
-            pattern.shift[pair][k] = 3 * (p / m + lo[pair] + k);
-            pattern.lowestRead = std::min(pattern.lowestRead, pattern.shift[pair][k]);
-            pattern.highestRead = std::max(pattern.highestRead, pattern.shift[pair][k] + 8);
-        }
+        pattern.firstTap[pair] = 3 * (p / m + lo[pair]);
+        pattern.lowestRead = std::min(pattern.lowestRead, pattern.firstTap[pair]);
+        pattern.highestRead =
+            std::max(pattern.highestRead, pattern.firstTap[pair] + 3 * (pattern.taps - 1) + 8);
         for (int q : {p, p + 1})
             forTaps(p, q, [&](int u, double w) {
                 for (int c = 0; c < 3; ++c) pattern.weight[pair][u - lo[pair]][3 * (q - p) + c] = w;
@@ -330,23 +326,25 @@ __attribute__((target("avx512f"))) void sweepAvx512(double* out, const double* f
                                                    const SweepPattern& pattern, long gBegin,
                                                    long gEnd) {
     __m512d weight[M][T];
-    long shifts[M][T];  // in locals: a store could alias the pattern
-    for (int pair = 0; pair < M; ++pair)
-        for (int k = 0; k < T; ++k) {
-            weight[pair][k] = _mm512_load_pd(pattern.weight[pair][k]);
-            shifts[pair][k] = pattern.shift[pair][k];
-        }
+    // A pair's taps are 3 doubles apart: one position each (in a local: a
+    // store could alias the pattern), the rest constant displacements. (Each
+    // tap's position loaded from memory, 15 of them for ternary rules, cost
+    // those all of their gain.)
+    long firstTap[M];
+    for (int pair = 0; pair < M; ++pair) {
+        firstTap[pair] = pattern.firstTap[pair];
+        for (int k = 0; k < T; ++k) weight[pair][k] = _mm512_load_pd(pattern.weight[pair][k]);
+    }
     const __m512d zero = _mm512_setzero_pd();
     constexpr __mmask8 kTwoPoints = 0x3f;
     for (long g = gBegin; g < gEnd; ++g) {
         const double* at = first + 6 * g;
         double* o = out + 6 * M * g;
         for (int pair = 0; pair < M; ++pair) {
-            const long* shift = shifts[pair];
-            __m512d sum = _mm512_mul_pd(weight[pair][0], _mm512_loadu_pd(at + shift[0]));
+            const double* taps = at + firstTap[pair];
+            __m512d sum = _mm512_mul_pd(weight[pair][0], _mm512_loadu_pd(taps));
             for (int k = 1; k < T; ++k)
-                sum = _mm512_add_pd(sum,
-                                    _mm512_mul_pd(weight[pair][k], _mm512_loadu_pd(at + shift[k])));
+                sum = _mm512_add_pd(sum, _mm512_mul_pd(weight[pair][k], _mm512_loadu_pd(taps + 3 * k)));
             _mm512_mask_storeu_pd(o + 6 * pair, kTwoPoints, _mm512_add_pd(sum, zero));
         }
     }
@@ -371,14 +369,15 @@ void interleavePoints(double* out, const double* const* streams, int m, long poi
 }
 
 RowSweep::RowSweep(const std::vector<Taps>& rules) : rules_(rules) {
-    if (gIsa != KernelIsa::Avx512 || rules.size() != kSweepMaxArity) return;
+    if (gIsa != KernelIsa::Avx512 || rules.size() < 2 || rules.size() > kSweepMaxArity) return;
     auto pattern = std::make_shared<SweepPattern>();
     if (buildSweep(rules, *pattern)) pattern_ = std::move(pattern);
 }
 
 void RowSweep::refine(double* out, const double* first, long readableBefore, long readableAfter,
                       long points) const {
-    static constexpr auto kKernels = sweepTable<2>(std::make_index_sequence<kSweepMaxTaps>{});
+    static constexpr auto kBinary = sweepTable<2>(std::make_index_sequence<kSweepMaxTaps>{});
+    static constexpr auto kTernary = sweepTable<3>(std::make_index_sequence<kSweepMaxTaps>{});
     const SweepPattern& pattern = *pattern_;
     const long m = pattern.arity;
     // Whole groups whose loads stay in the readable doubles and whose stores
@@ -388,7 +387,8 @@ void RowSweep::refine(double* out, const double* first, long readableBefore, lon
         readableAfter < pattern.highestRead ? 0 : (readableAfter - pattern.highestRead) / 6 + 1;
     const long gEnd = std::max(gBegin, std::min(byReads, points / (2 * m)));
     sweepScalar(out, first, rules_, 0, std::min(points, gBegin * 2 * m));
-    kKernels[static_cast<size_t>(pattern.taps - 1)](out, first, pattern, gBegin, gEnd);
+    const auto& kernels = m == 2 ? kBinary : kTernary;
+    kernels[static_cast<size_t>(pattern.taps - 1)](out, first, pattern, gBegin, gEnd);
     sweepScalar(out, first, rules_, std::min(points, gEnd * 2 * m), points);
 }
 

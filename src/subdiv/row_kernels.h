@@ -61,17 +61,15 @@ void interleavePoints(double* out, const double* const* streams, int m, long poi
 
 struct SweepPattern;
 
-/// One row of a binary scheme refined along itself in one sweep (AVX-512):
-/// refined point 2 i + r is rule r's sum of the points i + offsets[j] of the
-/// ghost-extended coarse row, computed in its place, two points per vector,
-/// with no per-rule arrays and no interleave. The same bits as the rules' sums
-/// then interleavePoints.
+/// One row refined along itself in one sweep (AVX-512): refined point m i + r
+/// is rule r's sum of the points i + offsets[j] of the ghost-extended coarse
+/// row, computed in its place, two points per vector, with no per-rule arrays
+/// and no interleave. The same bits as the rules' sums then interleavePoints.
 class RowSweep {
 public:
     /// Prepares the sweep; it applies() only where the CPU has AVX-512 and the
-    /// rules are binary and short (two refined points read at most 8
-    /// consecutive coarse points: the papers' rules do). Ternary rules measured
-    /// no faster this way (row_kernels.cpp).
+    /// rules are binary or ternary and short (two refined points read at most
+    /// 8 consecutive coarse points: the papers' rules do).
     explicit RowSweep(const std::vector<Taps>& rules);
     bool applies() const { return pattern_ != nullptr; }
     /// Writes refined points [0, points) to `out`, from the coarse row whose

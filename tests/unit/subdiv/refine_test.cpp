@@ -178,8 +178,8 @@ TEST(Refine, VectorKernelsGiveTheSameBitsAsPlainOnes) {
 }
 
 // Which schemes the AVX-512 one-sweep row pass takes (the test above checks
-// its bits): the binary ones; not ternary schemes, or rules too long for it.
-TEST(Refine, OneSweepRowPassTakesBinarySchemes) {
+// its bits): the papers' binary and ternary ones, not rules too long for it.
+TEST(Refine, OneSweepRowPassTakesThePapersSchemes) {
     if (bestKernelIsa() != KernelIsa::Avx512) GTEST_SKIP() << "this CPU has no AVX-512";
     auto sweepApplies = [](const Scheme& s) {
         std::vector<Taps> taps;
@@ -198,8 +198,9 @@ TEST(Refine, OneSweepRowPassTakesBinarySchemes) {
     EXPECT_TRUE(sweepApplies(binary3p(0, 3.0 / 16, 1.0 / 32)));
     EXPECT_TRUE(sweepApplies(binary3p(0.01, 0.23, 0.07)));
     EXPECT_TRUE(sweepApplies(dlgFourPoint(1.0 / 16)));
-    EXPECT_FALSE(sweepApplies(ternaryBlend(-2.0 / 27, 1.0 / 81, 2.0 / 81)));
-    EXPECT_FALSE(sweepApplies(ternaryFourPoint(19.0 / 30)));
+    EXPECT_TRUE(sweepApplies(ternaryBlend(-2.0 / 27, 1.0 / 81, 2.0 / 81)));
+    EXPECT_TRUE(sweepApplies(ternaryFourPoint(19.0 / 30)));
+    EXPECT_TRUE(sweepApplies(ternaryBSpline(1.0 / 27)));
     EXPECT_FALSE(sweepApplies(kernelSchemes().back()));  // the 11/10-point mask
 }
 
