@@ -136,9 +136,8 @@ BENCHMARK_CAPTURE(BM_RefineTable, ternary_blend, subdiv::ternaryBlend(-2.0 / 27,
     ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // The same refiner with the kernels of a smaller instruction set (where the
-// CPU has the larger one): what the AVX-512 one-sweep row pass of the binary
-// schemes buys, and what AVX2 and streaming stores buy over plain C++ with
-// ordinary stores.
+// CPU has the larger one): what the AVX-512 one-sweep row pass buys, and what
+// AVX2 and streaming stores buy over plain C++ with ordinary stores.
 void BM_RefineKernels(benchmark::State& state, subdiv::Scheme scheme, subdiv::KernelIsa isa) {
     subdiv::useKernelIsa(isa);
     BM_RefineTable(state, std::move(scheme));
@@ -151,6 +150,9 @@ BENCHMARK_CAPTURE(BM_RefineKernels, binary_3p_avx2, subdiv::binary3p(0, 3.0 / 16
                   subdiv::KernelIsa::Avx2)
     ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(BM_RefineKernels, dlg4_avx2, subdiv::dlgFourPoint(1.0 / 16), subdiv::KernelIsa::Avx2)
+    ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(BM_RefineKernels, ternary_blend_avx2, subdiv::ternaryBlend(-2.0 / 27, 1.0 / 81, 2.0 / 81),
+                  subdiv::KernelIsa::Avx2)
     ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(BM_RefineKernels, dlg4_plain, subdiv::dlgFourPoint(1.0 / 16), subdiv::KernelIsa::Baseline)
     ->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
