@@ -68,9 +68,9 @@ void refineLine(const Scheme& scheme, const double* src, long n, size_t width, s
 }
 
 // The rules as the fused level applies them (Taps, row_kernels.h): nonzero
-// weights only. A zero weight adds nothing (paper 000's
-// rules at lambda = 0 have two: the quintic B-spline's even rule is 3 points,
-// not 5); dropping it changes no sum but the sign of an exact zero.
+// weights only. A zero weight adds nothing (paper 000's rules at lambda = 0
+// have two: the quintic B-spline's even rule is 3 points, not 5); dropping it
+// changes no sum but the sign of an exact zero.
 std::vector<Taps> nonzeroTaps(const Scheme& scheme) {
     std::vector<Taps> all(scheme.rules.size());
     for (size_t r = 0; r < scheme.rules.size(); ++r) {
@@ -92,7 +92,7 @@ std::vector<Taps> nonzeroTaps(const Scheme& scheme) {
 // in the same benchmark run, 257^2 -> 2049^2 on 2 threads: 9-point binary-3p
 // 9.4 -> 7.6 ms, 4-point dlg4 7.2 -> 6.4 ms. Working on pieces of 64 to 256
 // coarse points (the rules' results in L1) measured no faster. Where the CPU
-// has AVX-512, the approximating binary schemes skip both steps (RowSweep).
+// has AVX-512, the papers' schemes skip both steps (RowSweep, row_kernels.h).
 struct RowScratch {
     std::vector<double> extended;  ///< ghosts before, the row, ghosts after (x, y, z each)
     std::array<std::vector<double>, kMaxArity> rule;  ///< each rule's new points, contiguous
@@ -104,7 +104,7 @@ void refineRowFlat(const Scheme& scheme, const std::vector<Taps>& taps, const Ro
                    const Vec3* src, long n, double* out, RowScratch& s) {
     const int before = scheme.ghostsBefore(), after = scheme.ghostsAfter(), m = scheme.arity;
     // Zeros beyond the ghosts, so that the sweep can read a little past them
-    // (with zero weights) and still run whole periods to the ends.
+    // (with zero weights) and still run whole groups of points to the ends.
     constexpr long kPad = 12;
     s.extended.resize(static_cast<size_t>(before + n + after) * 3 + 2 * kPad);
     std::fill(s.extended.begin(), s.extended.begin() + kPad, 0.0);

@@ -5,10 +5,9 @@
 // CPU has them, plain C++ elsewhere. AVX-512 only adds the one-sweep row pass
 // (RowSweep); the row sums stay AVX2 (512-bit sums measured slower for the
 // streamed output rows, 9.9 against 7.8 ms for dlg4, and no faster in the row
-// pass, on this machine's Zen 5). Every variant computes
-// the same products and sums in the same order (and the build turns off FMA
-// contraction), so a refined grid is bit-identical on any x86-64 machine; the
-// tests check it.
+// pass, on this machine's Zen 5). Every variant computes the same products and
+// sums in the same order (and the build turns off FMA contraction), so a
+// refined grid is bit-identical on any x86-64 machine; the tests check it.
 #include <cstddef>
 #include <memory>
 #include <vector>
