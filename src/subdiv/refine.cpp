@@ -284,6 +284,8 @@ void refineLevel(const Scheme& scheme, const Grid& in, Grid& out, int threads) {
     }
 }
 
+bool rowPassInOneSweep(const Scheme& scheme) { return RowSweep(nonzeroTaps(scheme)).applies(); }
+
 const Grid& Refiner::refine(const Scheme& scheme, const Grid& net, int levels, int threads) {
     if (levels == 0) {
         buffers_[0] = net;

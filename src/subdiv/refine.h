@@ -36,6 +36,11 @@ Grid refinePass(const Scheme& scheme, const Grid& in, Axis axis, int threads = 0
 /// points are not zeroed first, see BigBufferAllocator).
 void refineLevel(const Scheme& scheme, const Grid& in, Grid& out, int threads = 0);
 
+/// Whether refineLevel makes the scheme's row-refined rows in one sweep on
+/// this CPU (RowSweep, row_kernels.h), not by its rules' sums and an
+/// interleave: for tests and benchmarks.
+bool rowPassInOneSweep(const Scheme& scheme);
+
 /// Repeated refinement with reusable storage: calling refine() again with
 /// grids of the same sizes allocates nothing (a new 100 MB grid costs the
 /// kernel as much time as refining into it).

@@ -256,7 +256,6 @@ constexpr int kSweepMaxArity = 3;  // binary and ternary rules
 
 // The pairs of one group: pair k is refined points 2 k and 2 k + 1.
 struct SweepPattern {
-    int arity = 2;
     int taps = 0;                        // per pair (the same for all)
     long firstTap[kSweepMaxArity] = {};  // doubles, from the group's start; taps are 3 apart
     alignas(64) double weight[kSweepMaxArity][kSweepMaxTaps][8] = {};  // per lane
@@ -267,7 +266,6 @@ namespace {
 
 bool buildSweep(const std::vector<Taps>& rules, SweepPattern& pattern) {
     const int m = static_cast<int>(rules.size());
-    pattern.arity = m;
     int lo[kSweepMaxArity], hi[kSweepMaxArity];
     // The taps of point q (of the pair starting at point p), as u.
     auto forTaps = [&](int p, int q, auto&& visit) {
@@ -379,7 +377,7 @@ void RowSweep::refine(double* out, const double* first, long readableBefore, lon
     static constexpr auto kBinary = sweepTable<2>(std::make_index_sequence<kSweepMaxTaps>{});
     static constexpr auto kTernary = sweepTable<3>(std::make_index_sequence<kSweepMaxTaps>{});
     const SweepPattern& pattern = *pattern_;
-    const long m = pattern.arity;
+    const long m = static_cast<long>(rules_.size());
     // Whole groups whose loads stay in the readable doubles and whose stores
     // stay in the row; the points before and after them one by one.
     const long gBegin = std::max(0L, (-readableBefore - pattern.lowestRead + 5) / 6);

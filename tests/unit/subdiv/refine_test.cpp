@@ -181,27 +181,14 @@ TEST(Refine, VectorKernelsGiveTheSameBitsAsPlainOnes) {
 // its bits): the papers' binary and ternary ones, not rules too long for it.
 TEST(Refine, OneSweepRowPassTakesThePapersSchemes) {
     if (bestKernelIsa() != KernelIsa::Avx512) GTEST_SKIP() << "this CPU has no AVX-512";
-    auto sweepApplies = [](const Scheme& s) {
-        std::vector<Taps> taps;
-        for (const Rule& rule : s.rules) {
-            Taps t;
-            for (size_t j = 0; j < rule.weights.size(); ++j)
-                if (rule.weights[j] != 0.0) {
-                    t.weights.push_back(rule.weights[j]);
-                    t.offsets.push_back(rule.offset + static_cast<int>(j));
-                }
-            taps.push_back(t);
-        }
-        return RowSweep(taps).applies();
-    };
-    EXPECT_TRUE(sweepApplies(fourPoint4p(7.0 / 32, 7.0 / 32, 0.5, 3.0 / 64)));
-    EXPECT_TRUE(sweepApplies(binary3p(0, 3.0 / 16, 1.0 / 32)));
-    EXPECT_TRUE(sweepApplies(binary3p(0.01, 0.23, 0.07)));
-    EXPECT_TRUE(sweepApplies(dlgFourPoint(1.0 / 16)));
-    EXPECT_TRUE(sweepApplies(ternaryBlend(-2.0 / 27, 1.0 / 81, 2.0 / 81)));
-    EXPECT_TRUE(sweepApplies(ternaryFourPoint(19.0 / 30)));
-    EXPECT_TRUE(sweepApplies(ternaryBSpline(1.0 / 27)));
-    EXPECT_FALSE(sweepApplies(kernelSchemes().back()));  // the 11/10-point mask
+    EXPECT_TRUE(rowPassInOneSweep(fourPoint4p(7.0 / 32, 7.0 / 32, 0.5, 3.0 / 64)));
+    EXPECT_TRUE(rowPassInOneSweep(binary3p(0, 3.0 / 16, 1.0 / 32)));
+    EXPECT_TRUE(rowPassInOneSweep(binary3p(0.01, 0.23, 0.07)));
+    EXPECT_TRUE(rowPassInOneSweep(dlgFourPoint(1.0 / 16)));
+    EXPECT_TRUE(rowPassInOneSweep(ternaryBlend(-2.0 / 27, 1.0 / 81, 2.0 / 81)));
+    EXPECT_TRUE(rowPassInOneSweep(ternaryFourPoint(19.0 / 30)));
+    EXPECT_TRUE(rowPassInOneSweep(ternaryBSpline(1.0 / 27)));
+    EXPECT_FALSE(rowPassInOneSweep(kernelSchemes().back()));  // the 11/10-point mask
 }
 
 TEST(Refine, RefinerReusesStorageAndGivesTheSameResult) {
