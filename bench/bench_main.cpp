@@ -2,6 +2,7 @@
 // the same run: the refiner against a naive per-point loop, the mesh2 writer
 // against fprintf("%.9g").
 #include <benchmark/benchmark.h>
+#include <fmt/format.h>
 #include <immintrin.h>
 #include <omp.h>
 
@@ -11,6 +12,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <map>
+#include <utility>
 #include <vector>
 
 #include "emit/mesh.h"
@@ -136,24 +138,12 @@ void BM_RefineTable(benchmark::State& state, subdiv::Scheme scheme) {
     }
     setVertexCounters(state, *out, bytesMoved(scheme, 257, 257, levels));
 }
-BENCHMARK_CAPTURE(BM_RefineTable, dlg4, subdiv::dlgFourPoint(1.0 / 16))
-    ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK_CAPTURE(BM_RefineTable, four_point_4p, subdiv::fourPoint4p(7.0 / 32, 7.0 / 32, 0.5, 3.0 / 64))
-    ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK_CAPTURE(BM_RefineTable, binary_3p, subdiv::binary3p(0, 3.0 / 16, 1.0 / 32))
-    ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
-
-// Ternary schemes (paper 004): 257 x 257 -> 2305 x 2305, two levels.
-BENCHMARK_CAPTURE(BM_RefineTable, ternary_4point, subdiv::ternaryFourPoint(19.0 / 30))
-    ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK_CAPTURE(BM_RefineTable, ternary_blend, subdiv::ternaryBlend(-2.0 / 27, 1.0 / 81, 2.0 / 81))
-    ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // The refiner and the copy timed in turn, one of each per iteration (in
 // alternating order), each rate taken as its best, as STREAM reports its
 // kernels. The host is shared, and another tenant only ever slows a run:
 // medians of BM_RefineTable and BM_Stream/copy, run a minute apart, have moved
-// by 25-50 %, the refiner (arithmetic as well as memory traffic) more than the
+// by 25-70 %, the refiner (arithmetic as well as memory traffic) more than the
 // copy. A copy slowed for a whole benchmark would flatter the refiner, so the
 // copy's best is over every pair timed so far in the process at that thread
 // count. The time reported is the refiner's mean; counters: refine_ms, its
@@ -206,16 +196,25 @@ void BM_RefineAgainstCopy(benchmark::State& state, subdiv::Scheme scheme) {
     state.counters["refine_ms"] = 1e3 * refineBest;
     state.counters["ratio_to_copy"] = (copyBytes / copyBest) / (refineBytes / refineBest);
 }
-BENCHMARK_CAPTURE(BM_RefineAgainstCopy, dlg4, subdiv::dlgFourPoint(1.0 / 16))
-    ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseManualTime();
-BENCHMARK_CAPTURE(BM_RefineAgainstCopy, four_point_4p, subdiv::fourPoint4p(7.0 / 32, 7.0 / 32, 0.5, 3.0 / 64))
-    ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseManualTime();
-BENCHMARK_CAPTURE(BM_RefineAgainstCopy, binary_3p, subdiv::binary3p(0, 3.0 / 16, 1.0 / 32))
-    ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseManualTime();
-BENCHMARK_CAPTURE(BM_RefineAgainstCopy, ternary_4point, subdiv::ternaryFourPoint(19.0 / 30))
-    ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseManualTime();
-BENCHMARK_CAPTURE(BM_RefineAgainstCopy, ternary_blend, subdiv::ternaryBlend(-2.0 / 27, 1.0 / 81, 2.0 / 81))
-    ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseManualTime();
+// Each scheme of the papers at the parameters of their examples, in both
+// refiner benchmarks (registered in this order: the table, then the pairs).
+const int refinerBenchmarks = [] {
+    const std::pair<const char*, subdiv::Scheme> schemes[] = {
+        {"dlg4", subdiv::dlgFourPoint(1.0 / 16)},
+        {"four_point_4p", subdiv::fourPoint4p(7.0 / 32, 7.0 / 32, 0.5, 3.0 / 64)},
+        {"binary_3p", subdiv::binary3p(0, 3.0 / 16, 1.0 / 32)},
+        {"ternary_4point", subdiv::ternaryFourPoint(19.0 / 30)},
+        {"ternary_blend", subdiv::ternaryBlend(-2.0 / 27, 1.0 / 81, 2.0 / 81)},
+    };
+    for (const auto& [name, scheme] : schemes)
+        benchmark::RegisterBenchmark(fmt::format("BM_RefineTable/{}", name).c_str(), BM_RefineTable, scheme)
+            ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+    for (const auto& [name, scheme] : schemes)
+        benchmark::RegisterBenchmark(fmt::format("BM_RefineAgainstCopy/{}", name).c_str(), BM_RefineAgainstCopy,
+                                     scheme)
+            ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseManualTime();
+    return 0;
+}();
 
 // The same refiner with the kernels of a smaller instruction set (where the
 // CPU has the larger one): what the AVX-512 one-sweep row pass buys, and what
@@ -302,7 +301,6 @@ BENCHMARK(BM_Mesh2Fprintf)->Unit(benchmark::kMillisecond)->UseRealTime();
 #include <cmath>
 #include <random>
 
-#include <fmt/format.h>
 
 #include "curves/hausdorff.h"
 
