@@ -196,6 +196,7 @@ void BM_RefineAgainstCopy(benchmark::State& state, subdiv::Scheme scheme) {
     state.counters["refine_ms"] = 1e3 * refineBest;
     state.counters["ratio_to_copy"] = (copyBytes / copyBest) / (refineBytes / refineBest);
 }
+
 // Each scheme of the papers at the parameters of their examples, in both
 // refiner benchmarks (registered in this order: the table, then the pairs).
 const int refinerBenchmarks = [] {
@@ -300,7 +301,6 @@ BENCHMARK(BM_Mesh2Fprintf)->Unit(benchmark::kMillisecond)->UseRealTime();
 // ---- Hausdorff distance (paper 003): exact method against dense sampling ----
 #include <cmath>
 #include <random>
-
 
 #include "curves/hausdorff.h"
 
