@@ -11,7 +11,10 @@
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <map>
+#include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -149,10 +152,7 @@ void BM_RefineTable(benchmark::State& state, subdiv::Scheme scheme) {
 // count. The time reported is the refiner's mean; counters: refine_ms, its
 // best; copy_ms, the copy's best; ratio_to_copy, the copy's best bytes/s over
 // the refiner's.
-std::map<int, double>& bestCopySeconds() {
-    static std::map<int, double> best;
-    return best;
-}
+std::map<int, double> bestCopySeconds;  // by thread count
 
 void BM_RefineAgainstCopy(benchmark::State& state, subdiv::Scheme scheme) {
     using Clock = std::chrono::steady_clock;
@@ -174,7 +174,7 @@ void BM_RefineAgainstCopy(benchmark::State& state, subdiv::Scheme scheme) {
         out = &refiner.refine(scheme, net257(), levels, threads);
         benchmark::DoNotOptimize(out->points.data());
     };
-    double& copyBest = bestCopySeconds().try_emplace(threads, 1e300).first->second;
+    double& copyBest = bestCopySeconds.try_emplace(threads, 1e300).first->second;
     double refineBest = 1e300;
     bool copyFirst = true;
     for (auto _ : state) {
@@ -197,20 +197,31 @@ void BM_RefineAgainstCopy(benchmark::State& state, subdiv::Scheme scheme) {
     state.counters["ratio_to_copy"] = (copyBytes / copyBest) / (refineBytes / refineBest);
 }
 
-// Each scheme of the papers at the parameters of their examples, in both
-// refiner benchmarks (registered in this order: the table, then the pairs).
-const int refinerBenchmarks = [] {
-    const std::pair<const char*, subdiv::Scheme> schemes[] = {
+// Each scheme of the papers at the parameters of their examples: every
+// refiner benchmark takes its scheme from here, so that they compare alike.
+const std::vector<std::pair<std::string, subdiv::Scheme>>& exampleSchemes() {
+    static const std::vector<std::pair<std::string, subdiv::Scheme>> schemes = {
         {"dlg4", subdiv::dlgFourPoint(1.0 / 16)},
         {"four_point_4p", subdiv::fourPoint4p(7.0 / 32, 7.0 / 32, 0.5, 3.0 / 64)},
         {"binary_3p", subdiv::binary3p(0, 3.0 / 16, 1.0 / 32)},
         {"ternary_4point", subdiv::ternaryFourPoint(19.0 / 30)},
         {"ternary_blend", subdiv::ternaryBlend(-2.0 / 27, 1.0 / 81, 2.0 / 81)},
     };
-    for (const auto& [name, scheme] : schemes)
+    return schemes;
+}
+
+const subdiv::Scheme& exampleScheme(std::string_view name) {
+    for (const auto& [n, scheme] : exampleSchemes())
+        if (n == name) return scheme;
+    std::abort();  // a name missing from the list above
+}
+
+// Both refiner benchmarks on every example (in this order: the table, then the pairs).
+const int refinerBenchmarks = [] {
+    for (const auto& [name, scheme] : exampleSchemes())
         benchmark::RegisterBenchmark(fmt::format("BM_RefineTable/{}", name).c_str(), BM_RefineTable, scheme)
             ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
-    for (const auto& [name, scheme] : schemes)
+    for (const auto& [name, scheme] : exampleSchemes())
         benchmark::RegisterBenchmark(fmt::format("BM_RefineAgainstCopy/{}", name).c_str(), BM_RefineAgainstCopy,
                                      scheme)
             ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseManualTime();
@@ -225,21 +236,17 @@ void BM_RefineKernels(benchmark::State& state, subdiv::Scheme scheme, subdiv::Ke
     BM_RefineTable(state, std::move(scheme));
     subdiv::useKernelIsa(subdiv::bestKernelIsa());
 }
-BENCHMARK_CAPTURE(BM_RefineKernels, four_point_4p_avx2, subdiv::fourPoint4p(7.0 / 32, 7.0 / 32, 0.5, 3.0 / 64),
-                  subdiv::KernelIsa::Avx2)
+BENCHMARK_CAPTURE(BM_RefineKernels, four_point_4p_avx2, exampleScheme("four_point_4p"), subdiv::KernelIsa::Avx2)
     ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK_CAPTURE(BM_RefineKernels, binary_3p_avx2, subdiv::binary3p(0, 3.0 / 16, 1.0 / 32),
-                  subdiv::KernelIsa::Avx2)
+BENCHMARK_CAPTURE(BM_RefineKernels, binary_3p_avx2, exampleScheme("binary_3p"), subdiv::KernelIsa::Avx2)
     ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK_CAPTURE(BM_RefineKernels, dlg4_avx2, subdiv::dlgFourPoint(1.0 / 16), subdiv::KernelIsa::Avx2)
+BENCHMARK_CAPTURE(BM_RefineKernels, dlg4_avx2, exampleScheme("dlg4"), subdiv::KernelIsa::Avx2)
     ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK_CAPTURE(BM_RefineKernels, ternary_blend_avx2, subdiv::ternaryBlend(-2.0 / 27, 1.0 / 81, 2.0 / 81),
-                  subdiv::KernelIsa::Avx2)
+BENCHMARK_CAPTURE(BM_RefineKernels, ternary_blend_avx2, exampleScheme("ternary_blend"), subdiv::KernelIsa::Avx2)
     ->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK_CAPTURE(BM_RefineKernels, dlg4_plain, subdiv::dlgFourPoint(1.0 / 16), subdiv::KernelIsa::Baseline)
+BENCHMARK_CAPTURE(BM_RefineKernels, dlg4_plain, exampleScheme("dlg4"), subdiv::KernelIsa::Baseline)
     ->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK_CAPTURE(BM_RefineKernels, ternary_blend_plain, subdiv::ternaryBlend(-2.0 / 27, 1.0 / 81, 2.0 / 81),
-                  subdiv::KernelIsa::Baseline)
+BENCHMARK_CAPTURE(BM_RefineKernels, ternary_blend_plain, exampleScheme("ternary_blend"), subdiv::KernelIsa::Baseline)
     ->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // Baseline: the naive per-point 4-point loop (tests/reference), same net and depth.
