@@ -3,9 +3,13 @@
 #   tools/dev.sh render   install what is missing, build (Release), render scenes/default.toml
 #                         to out/default.png
 #   tools/dev.sh test     install what is missing, build, run the whole test suite (ctest),
-#                         then the unit tests again under AddressSanitizer + UBSan
+#                         then the unit and command-line tests again under AddressSanitizer + UBSan
 #   tools/dev.sh bench    install, build, run the benchmarks (Google Benchmark)
-# Both are idempotent: packages are installed only when missing, builds are incremental.
+#   tools/dev.sh build    install, build (Release)
+# Each is idempotent and recovers from an interrupted or failed earlier run: packages are
+# installed only when missing (a half-installed one is finished first), builds are incremental,
+# and a build folder whose configure step never completed is configured again.
+# tools/fresh-machine-check.sh proves these commands in a minimal Debian 12 root.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -14,9 +18,12 @@ case "$mode" in render|test|bench|build) ;; *)
   echo "usage: tools/dev.sh render|test|bench|build" >&2; exit 2 ;;
 esac
 
+# openimageio-tools: Debian 12's OpenImageIO CMake config names its command-line tools
+# (/usr/bin/iconvert, ...) as imported targets, so find_package fails without them.
 packages=(cmake make g++ pkg-config
-          libgeographiclib-dev libgdal-dev libopenimageio-dev libtomlplusplus-dev
-          libcli11-dev libfmt-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev povray chromium fonts-dejavu-core)
+          libgeographiclib-dev libgdal-dev libopenimageio-dev openimageio-tools libtomlplusplus-dev
+          libcli11-dev libfmt-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev
+          povray chromium fonts-dejavu-core)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -24,14 +31,23 @@ done
 if [ ${#missing[@]} -gt 0 ]; then
   echo "== installing: ${missing[*]}"
   sudo=""; [ "$(id -u)" -ne 0 ] && sudo="sudo"
+  export DEBIAN_FRONTEND=noninteractive
+  # An interrupted earlier install leaves packages unpacked but not configured: finish them.
+  $sudo dpkg --configure -a
   $sudo apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+  $sudo apt-get install -y -qq -f --no-install-recommends
+  $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
 jobs=$(nproc)
 build() {  # build DIR [cmake args...]
   local dir=$1; shift
-  [ -f "$dir/CMakeCache.txt" ] || cmake -S . -B "$dir" "$@" >/dev/null
+  # CMake writes CMakeCache.txt before it checks anything, and the build system (Makefile) only
+  # when configuring succeeded; without a Makefile the folder is half-configured: start afresh.
+  if [ ! -f "$dir/Makefile" ]; then
+    rm -rf "$dir"
+    cmake -S . -B "$dir" "$@" >/dev/null
+  fi
   cmake --build "$dir" -j "$jobs"
 }
 
@@ -44,7 +60,7 @@ case "$mode" in
   test)
     build build -DCMAKE_BUILD_TYPE=Release
     (cd build && ctest --output-on-failure -j "$jobs")
-    echo "== unit tests under AddressSanitizer + UBSan"
+    echo "== unit and command-line tests under AddressSanitizer + UBSan"
     build build-asan -DCMAKE_BUILD_TYPE=Debug -DRELIEF_SANITIZE=ON -DRELIEF_BUILD_BENCH=OFF
     (cd build-asan && ctest --output-on-failure -j "$jobs" -L "unit|cli")
     ;;

@@ -1,0 +1,117 @@
+#!/usr/bin/env bash
+# Proves the README's quick start on a fresh machine: builds a minimal Debian 12 root
+# (debootstrap --variant=minbase bookworm, cached between runs), puts a clean clone of HEAD in it,
+# runs the README's two quick-start commands exactly as written, then both again (a second run
+# must be fast and green), and reports each exit code and time. Exit 0 when all four runs exit 0
+# and a PNG is under out/.
+#
+#   tools/fresh-machine-check.sh [--keep]      (as root; needs debootstrap, git, unshare)
+#
+#   --keep                 leave the root in place afterwards (its path is printed)
+#   RELIEF_FRESH_CACHE     where the pristine root and the downloaded .deb files are kept
+#                          (default /var/cache/relief-fresh-machine)
+#   RELIEF_DEBIAN_MIRROR   the Debian mirror (default: the host's, else http://deb.debian.org/debian)
+#
+# Too slow for .ci/run (10-30 minutes); run it before resolving anything that touches the
+# dependencies or the set-up. Only the .deb download cache is shared between runs: every run starts
+# from the pristine minbase root, with no package of relief's installed.
+set -euo pipefail
+repo=$(cd "$(dirname "$0")/.." && pwd)
+
+keep=0
+case "${1:-}" in
+  --keep) keep=1 ;;
+  "") ;;
+  -h|--help) sed -n '2,18p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+  *) echo "fresh-machine-check: unknown option '$1' (try --help)" >&2; exit 2 ;;
+esac
+[ "$(id -u)" -eq 0 ] || { echo "fresh-machine-check: run as root (debootstrap and chroot need it)" >&2; exit 2; }
+for tool in debootstrap git unshare chroot; do
+  command -v "$tool" >/dev/null || {
+    echo "fresh-machine-check: '$tool' is missing (apt-get install debootstrap git util-linux)" >&2; exit 2; }
+done
+
+cache=${RELIEF_FRESH_CACHE:-/var/cache/relief-fresh-machine}
+host_mirror=$(grep -hoE '^(deb +|URIs: +)https?://[^ ]+/debian/?( |$)' /etc/apt/sources.list \
+                /etc/apt/sources.list.d/* 2>/dev/null | head -1 | grep -oE 'https?://[^ ]+' || true)
+mirror=${RELIEF_DEBIAN_MIRROR:-${host_mirror:-http://deb.debian.org/debian}}
+pristine=$cache/bookworm-minbase.tar
+mkdir -p "$cache/archives/partial"
+
+# The pristine root: made once, kept as a tarball; a half-made one is never kept.
+if [ ! -f "$pristine" ]; then
+  echo "== debootstrap --variant=minbase bookworm from $mirror (once; cached in $pristine)"
+  stage=$(mktemp -d /var/tmp/relief-debootstrap.XXXXXX)
+  t0=$(date +%s)
+  debootstrap --variant=minbase bookworm "$stage" "$mirror" >"$cache/debootstrap.log" 2>&1 || {
+    tail -20 "$cache/debootstrap.log" >&2; rm -rf "$stage"
+    echo "fresh-machine-check: debootstrap failed (log: $cache/debootstrap.log)" >&2; exit 1; }
+  tar -C "$stage" -cf "$pristine.tmp" . && mv "$pristine.tmp" "$pristine"
+  rm -rf "$stage"
+  echo "   made in $(( $(date +%s) - t0 )) s"
+fi
+
+root=$(mktemp -d /var/tmp/relief-fresh-root.XXXXXX)
+cleanup() { [ "$keep" -eq 1 ] && echo "root kept: $root" || rm -rf "$root"; }
+trap cleanup EXIT
+tar -C "$root" -xf "$pristine"
+cp -L /etc/resolv.conf "$root/etc/resolv.conf" 2>/dev/null || true
+
+# A clean clone of HEAD: what is committed, nothing of the work tree.
+head=$(git -C "$repo" rev-parse HEAD)
+git clone -q --no-hardlinks "$repo" "$root/root/relief"
+git -C "$root/root/relief" checkout -q --detach "$head"
+echo "== clean clone of $(git -C "$repo" rev-parse --short HEAD) in $root/root/relief"
+
+# The quick-start commands, exactly as the README writes them: the lines of the first code block
+# under "## Quick start", each without its trailing comment.
+mapfile -t commands < <(awk '
+  /^## Quick start/ { in_section = 1; next }
+  in_section && /^```/ { if (in_block) exit; in_block = 1; next }
+  in_section && in_block && NF { sub(/[ \t]+#.*$/, ""); print }' "$repo/README.md")
+[ ${#commands[@]} -eq 2 ] || {
+  echo "fresh-machine-check: expected two quick-start commands in README.md, found ${#commands[@]}" >&2
+  exit 1; }
+
+# Runs one command in the root, in a private mount namespace (its mounts vanish with it).
+run_in_root() {  # run_in_root LOG COMMAND
+  local log=$1 cmd=$2
+  unshare --mount --propagation private -- bash -c '
+    set -e
+    root=$1; cache=$2; cmd=$3
+    mount -t proc proc "$root/proc"
+    mount --rbind /dev "$root/dev"
+    mount -t sysfs sysfs "$root/sys"
+    mount --bind "$cache/archives" "$root/var/cache/apt/archives"
+    exec chroot "$root" /usr/bin/env -i HOME=/root TERM=dumb LANG=C.UTF-8 \
+      PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin \
+      /bin/bash -c "cd /root/relief && $cmd"' _ "$root" "$cache" "$cmd" >"$log" 2>&1
+}
+
+failed=0
+report=()
+for pass in 1 2; do
+  for i in "${!commands[@]}"; do
+    cmd=${commands[$i]}
+    log=$cache/run-$pass-$((i + 1)).log
+    echo "== run $pass: $cmd"
+    t0=$(date +%s)
+    rc=0; run_in_root "$log" "$cmd" || rc=$?
+    secs=$(( $(date +%s) - t0 ))
+    tail -3 "$log" | sed 's/^/   | /'
+    report+=("$(printf 'run %d  exit %-3d %5d s  %s' "$pass" "$rc" "$secs" "$cmd")")
+    [ "$rc" -eq 0 ] || { failed=1; echo "   (whole log: $log)"; }
+  done
+done
+
+pngs=$(find "$root/root/relief/out" -name '*.png' -printf '%P (%s bytes)\n' 2>/dev/null || true)
+echo
+echo "== fresh-machine-check: Debian $(cat "$root/etc/debian_version") minbase, clone of $head"
+printf '%s\n' "${report[@]}"
+if [ -n "$pngs" ]; then
+  echo "PNG under out/: $pngs"
+else
+  echo "no PNG under out/"; failed=1
+fi
+[ "$failed" -eq 0 ] && echo "fresh-machine-check: PASS" || echo "fresh-machine-check: FAIL"
+exit "$failed"
