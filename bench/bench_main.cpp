@@ -262,9 +262,9 @@ BENCHMARK(BM_RefineNaiveLoop)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 const emit::Mesh& benchMesh() {
     static const emit::Mesh m = [] {
-        scene::SceneDesc desc;
-        return emit::buildMesh(subdiv::refineGrid(subdiv::dlgFourPoint(1.0 / 16), terrainNet(129), 2),
-                               desc);
+        geo::GeoGrid refined;
+        refined.grid = subdiv::refineGrid(subdiv::dlgFourPoint(1.0 / 16), terrainNet(129), 2);
+        return emit::buildMesh(refined, scene::LookSpec{});
     }();
     return m;
 }

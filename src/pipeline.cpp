@@ -26,9 +26,13 @@ double secondsSince(Clock::time_point t0) {
 
 }  // namespace
 
-std::string depthLabel(const scene::SceneDesc& scene) {
-    return scene.depthAuto ? fmt::format("depth auto (tolerance_m = {})", formatShortest(scene.toleranceM))
-                           : fmt::format("depth {}", scene.depth);
+std::string depthLabel(const scene::SubdivisionSpec& sub) {
+    return sub.depthAuto ? fmt::format("depth auto (tolerance_m = {})", formatShortest(sub.toleranceM))
+                         : fmt::format("depth {}", sub.depth);
+}
+
+subdiv::Budget budgetOf(const scene::LimitsSpec& limits) {
+    return {limits.maxTriangles, limits.maxSdlMB, limits.maxParseS};
 }
 
 namespace {
@@ -63,65 +67,62 @@ const char* name(scene::Gridding g) {
     return "?";
 }
 
-emit::ParameterList describe(const scene::SceneDesc& s, const geo::ControlNet& net,
-                             const LoadedScene& loaded, int depth,
+emit::ParameterList describe(const scene::SceneSpec& s, const geo::ControlNet& net,
+                             const subdiv::ResolvedScheme& scheme, int depth,
                              const subdiv::OutputEstimate& est, double metresPerUnit) {
+    const scene::SubdivisionSpec& sub = s.subdivision;
+    const scene::LookSpec& look = s.look;
+    const scene::CameraSpec& camera = look.camera;
     emit::ParameterList p;
     auto add = [&](std::string k, std::string v) { p.emplace_back(std::move(k), std::move(v)); };
     add("relief", kVersion);
     add("scene", s.sceneFile.string());
     add("scene_sha1", s.sceneSha1);
     for (const auto& [k, v] : s.overrides) add("override " + k, v);
-    add("samples.path", s.samplesPathAsWritten);
+    add("samples.path", s.samples.pathAsWritten);
     add("samples.count", std::to_string(net.sampleCount));
     add("frame", net.frame.describe());
     add("net.size", fmt::format("{} rows x {} cols", net.grid.rows, net.grid.cols));
     add("net.spacing_m", fmt::format("{} x {}", formatShortest(net.dx), formatShortest(net.dy)));
     add("net.origin_m", fmt::format("{}, {}", formatShortest(net.x0), formatShortest(net.y0)));
-    add("net.gridding", name(s.gridding));
+    add("net.gridding", name(s.net.gridding));
     add("net.filled_outside_hull", std::to_string(net.filledOutsideHull));
-    add("vertical.exaggeration", formatShortest(s.exaggeration));
+    add("vertical.exaggeration", formatShortest(look.exaggeration));
     std::string params;
-    for (const auto& [k, v] : loaded.schemeParams)
+    for (const auto& [k, v] : scheme.params)
         params += fmt::format("{}{} = {}", params.empty() ? "" : ", ", k, formatShortest(v));
-    if (loaded.schemeFamily == "mask")
-        for (double v : s.mask) params += fmt::format("{}{}", params.empty() ? "mask " : ", ", formatShortest(v));
-    add("subdivision.scheme", loaded.schemeFamily);
-    if (!s.preset.empty()) add("subdivision.preset", s.preset);
+    if (scheme.family == "mask")
+        for (double v : sub.scheme.mask) params += fmt::format("{}{}", params.empty() ? "mask " : ", ", formatShortest(v));
+    add("subdivision.scheme", scheme.family);
+    if (!sub.scheme.preset.empty()) add("subdivision.preset", sub.scheme.preset);
     add("subdivision.params", params);
-    add("subdivision.certified", certifiedClass(loaded.report));
+    add("subdivision.certified", certifiedClass(scheme.report));
     add("subdivision.boundary", "point reflection");
-    add("subdivision.depth", s.depthAuto ? fmt::format("{} (auto, tolerance_m = {})", depth,
-                                                       formatShortest(s.toleranceM))
+    add("subdivision.depth", sub.depthAuto ? fmt::format("{} (auto, tolerance_m = {})", depth,
+                                                         formatShortest(sub.toleranceM))
                                          : std::to_string(depth));
     add("refined.size", fmt::format("{} rows x {} cols", est.rows, est.cols));
     add("refined.vertices", fmt::format("{:.0f}", est.vertices));
     add("refined.triangles", fmt::format("{:.0f}", est.triangles));
-    add("texture.ramp", s.ramp.preset);
+    add("texture.ramp", look.ramp.preset);
     add("lighting.sun", fmt::format("azimuth {} deg, altitude {} deg",
-                                    formatShortest(s.sunAzimuthDeg),
-                                    formatShortest(s.sunAltitudeDeg)));
+                                    formatShortest(look.sunAzimuthDeg),
+                                    formatShortest(look.sunAltitudeDeg)));
     add("camera", fmt::format("{}, azimuth {} deg, elevation {} deg, distance {}, fov {} deg",
-                              s.projection == scene::Projection::Perspective ? "perspective"
-                                                                             : "orthographic",
-                              formatShortest(s.cameraAzimuthDeg),
-                              formatShortest(s.cameraElevationDeg),
-                              s.cameraDistanceM > 0 ? formatShortest(s.cameraDistanceM) + " m"
-                                                    : std::string("fit"),
-                              formatShortest(s.fovDeg)));
-    add("render", fmt::format("{} x {}, antialias {}", s.width, s.height,
-                              s.antialias ? "on" : "off"));
+                              camera.projection == scene::Projection::Perspective ? "perspective"
+                                                                                  : "orthographic",
+                              formatShortest(camera.azimuthDeg),
+                              formatShortest(camera.elevationDeg),
+                              camera.distanceM > 0 ? formatShortest(camera.distanceM) + " m"
+                                                   : std::string("fit"),
+                              formatShortest(camera.fovDeg)));
+    add("render", fmt::format("{} x {}, antialias {}", s.render.width, s.render.height,
+                              s.render.antialias ? "on" : "off"));
     add("scene_unit_m", formatShortest(metresPerUnit));
     return p;
 }
 
 }  // namespace
-
-std::filesystem::path defaultPngPath(const std::filesystem::path& scenePath,
-                                     const std::string& sceneOutput) {
-    if (!sceneOutput.empty()) return sceneOutput;
-    return std::filesystem::path("out") / (scenePath.stem().string() + ".png");
-}
 
 OutputPaths outputPathsFor(const std::filesystem::path& png) {
     OutputPaths p;
@@ -136,55 +137,12 @@ OutputPaths outputPathsFor(const std::filesystem::path& png) {
 std::optional<LoadedScene> loadScene(const std::filesystem::path& scenePath,
                                      Diagnostics& diags, const scene::SceneOverrides& overrides) {
     const auto t0 = Clock::now();
-    auto desc = scene::readScene(scenePath, diags, overrides);
-    if (!desc) return std::nullopt;
-    LoadedScene loaded;
-    loaded.schemeFamily = desc->scheme;
-    std::map<std::string, double> params = desc->schemeParams;
-    auto paramLocs = desc->schemeParamLocs;
-    bool ok = true;
-    if (!desc->preset.empty()) {
-        std::map<std::string, double> familyParams;
-        std::string family;
-        ok = subdiv::resolvePreset(desc->preset, desc->presetLoc, params, paramLocs, diags,
-                                   family, familyParams);
-        if (ok && !desc->scheme.empty() && desc->scheme != family) {
-            diags.error(desc->presetLoc,
-                        fmt::format("preset \"{}\" is a case of scheme \"{}\", not \"{}\"; remove "
-                                    "subdivision.scheme or the preset",
-                                    desc->preset, family, desc->scheme));
-            ok = false;
-        }
-        loaded.schemeFamily = family;
-        params = familyParams;
-        paramLocs.clear();
-    }
-    std::optional<subdiv::Scheme> scheme;
-    if (ok && loaded.schemeFamily == "mask") {
-        if (!params.empty())
-            diags.error(paramLocs.begin()->second,
-                        fmt::format("scheme = \"mask\" takes no parameter \"{}\"",
-                                    params.begin()->first));
-        else if (!desc->mask.empty())
-            scheme = subdiv::schemeFromMask(
-                desc->maskArity,
-                desc->maskFirst.value_or(-(static_cast<int>(desc->mask.size()) - 1) / 2),
-                desc->mask, desc->maskLoc, diags);
-    } else if (ok) {
-        scheme = subdiv::makeScheme(loaded.schemeFamily, desc->schemeLoc, params, paramLocs,
-                                    diags, &loaded.schemeParams);
-    }
-    if (diags.hasErrors() || !scheme) return std::nullopt;
-    loaded.scheme = std::move(*scheme);
-    loaded.report = subdiv::analyzeScheme(loaded.scheme);
-    if (loaded.report.smoothness < 0 && !desc->allowNonconvergent)
-        diags.warning(desc->schemeLoc,
-                      fmt::format("scheme \"{}\" with these parameters is not proven to converge "
-                                  "(relief check says why): the terrain will look rough and "
-                                  "fractal-like; set subdivision.allow_nonconvergent = true if "
-                                  "that is what you want",
-                                  loaded.schemeFamily));
-    loaded.scene = std::move(*desc);
+    auto spec = scene::readScene(scenePath, diags, overrides);
+    if (!spec) return std::nullopt;
+    // The scene's own errors do not stop the scheme's checks: every problem is reported at once.
+    auto resolved = subdiv::resolveScheme(spec->subdivision.scheme, diags);
+    if (diags.hasErrors() || !resolved) return std::nullopt;
+    LoadedScene loaded{std::move(*spec), std::move(*resolved), 0};
     loaded.seconds = secondsSince(t0);
     return loaded;
 }
@@ -192,7 +150,7 @@ std::optional<LoadedScene> loadScene(const std::filesystem::path& scenePath,
 std::optional<CompileResult> compileScene(const LoadedScene& loaded,
                                           const CompileOptions& options, Diagnostics& diags) {
     CompileResult result;
-    const scene::SceneDesc& desc = loaded.scene;
+    const scene::SceneSpec& spec = loaded.scene;
     result.times.readScene = loaded.seconds;
 
     auto tmpl = emit::loadSceneTemplate(options.templatesDir, diags);
@@ -202,126 +160,156 @@ std::optional<CompileResult> compileScene(const LoadedScene& loaded,
     result.estimate = surface->estimate;
     result.times.normalize = surface->normalizeSeconds;
     result.times.subdivide = surface->subdivideSeconds;
-    const geo::ControlNet* net = &surface->net;
-    const Grid& refined = surface->refined;
+    const geo::ControlNet& net = surface->net;
 
     const auto t0 = Clock::now();
-    const emit::Mesh mesh = emit::buildMesh(refined, desc);
-    result.refinedRows = refined.rows;
-    result.arity = loaded.scheme.arity;
-    result.holder = loaded.report.holder;
-    result.refinedCols = refined.cols;
+    const emit::Mesh mesh = emit::buildMesh(surface->refined, spec.look);
+    result.schemeFamily = loaded.resolved.family;
+    result.certified = certifiedClass(loaded.resolved.report);
+    result.arity = loaded.resolved.scheme.arity;
+    result.holder = loaded.resolved.report.holder;
     result.metresPerUnit = mesh.metresPerUnit;
     result.depth = surface->depth;
     result.autoDepth = surface->autoDepth;
-    result.parameters = describe(desc, *net, loaded, surface->depth, result.estimate, mesh.metresPerUnit);
+    result.parameters = describe(spec, net, loaded.resolved, surface->depth, result.estimate,
+                                 mesh.metresPerUnit);
 
     if (!options.dumpNetPath.empty()) {
         const bool asc = options.dumpNetPath.extension() == ".asc";
-        if (asc && std::abs(net->dx - net->dy) > 1e-9 * net->dx) {
+        if (asc && std::abs(net.dx - net.dy) > 1e-9 * net.dx) {
             diags.error({options.dumpNetPath.string(), 0, 0},
                         fmt::format("an ESRI ASCII grid needs square cells, but the net's "
                                     "spacing is {} x {} m; set net.spacing_m or dump to .csv",
-                                    formatShortest(net->dx), formatShortest(net->dy)));
+                                    formatShortest(net.dx), formatShortest(net.dy)));
             return std::nullopt;
         }
     }
-    if (!emit::writeScene(options.povPath, *tmpl, mesh, desc, result.parameters, diags))
+    if (!emit::writeScene(options.povPath, *tmpl, mesh, spec.look, spec.render, result.parameters,
+                          diags))
         return std::nullopt;
     if (!options.dumpNetPath.empty())
         writeFileAtomically(options.dumpNetPath, options.dumpNetPath.extension() == ".asc"
-                                                     ? geo::netToAsciiGrid(*net)
-                                                     : geo::netToCsv(*net));
+                                                     ? geo::netToAsciiGrid(net)
+                                                     : geo::netToCsv(net));
     result.times.emit = secondsSince(t0);
     std::error_code ec;
     result.povBytes = std::filesystem::file_size(options.povPath, ec);
-    result.scene = desc;
+    result.scene = spec;
     result.net = std::move(surface->net);
     return result;
 }
 
 std::optional<Surface> buildSurface(const LoadedScene& loaded, Diagnostics& diags, int threads) {
-    const auto& desc = loaded.scene;
+    const scene::SceneSpec& spec = loaded.scene;
+    const scene::SubdivisionSpec& sub = spec.subdivision;
+    const subdiv::Scheme& scheme = loaded.resolved.scheme;
     auto t0 = Clock::now();
-    const auto samples = geo::readSamples(desc.samplesPath, desc.samplesPathAsWritten, diags);
+    const auto samples = geo::readSamples(spec.samples.path, spec.samples.pathAsWritten, diags);
     if (diags.hasErrors()) return std::nullopt;
-    auto net = geo::normalize(desc, samples, diags);
+    auto net = geo::normalize(spec.frame, spec.net, spec.samples.pathAsWritten, samples, diags);
     if (!net) return std::nullopt;
     Surface s;
     s.normalizeSeconds = secondsSince(t0);
-    const subdiv::Budget budget{desc.maxTriangles, desc.maxSdlMB, desc.maxParseS};
-    s.depth = desc.depth;
+    const subdiv::Budget budget = budgetOf(spec.limits);
+    s.depth = sub.depth;
     t0 = Clock::now();
-    if (desc.depthAuto) {
+    if (sub.depthAuto) {
         // The deepest level the budget allows bounds the search; when not
         // even level 1 fits, the budget check below says so.
-        const int maxDepth = subdiv::deepestWithinBudget(loaded.scheme, net->grid.rows, net->grid.cols,
-                                                         budget, scene::kMaxDepth);
+        const int maxDepth = subdiv::deepestWithinBudget(scheme, net->rows(), net->cols(), budget,
+                                                         scene::kMaxDepth);
         s.depth = 1;
         if (maxDepth > 0) {
-            s.autoDepth = measure::chooseDepth(loaded.scheme, *net, desc.toleranceM, maxDepth, threads);
+            s.autoDepth = measure::chooseDepth(scheme, *net, sub.toleranceM, maxDepth, threads);
             const auto& last = s.autoDepth->levels.back();
             if (!s.autoDepth->reached) {
-                diags.error(desc.toleranceLoc,
+                diags.error(sub.locs.at("subdivision.tolerance_m"),
                             fmt::format("subdivision.tolerance_m = {} m is not reached within the output "
                                         "budget: level {} (the deepest [limits] allow) still moves {} by "
                                         "{:.3g} m (per level: {}); raise tolerance_m or [limits], or set "
                                         "a fixed depth",
-                                        formatShortest(desc.toleranceM), last.level, last.curve,
+                                        formatShortest(sub.toleranceM), last.level, last.curve,
                                         last.distanceM, levelSeries(*s.autoDepth)));
                 return std::nullopt;
             }
             s.depth = s.autoDepth->depth;
         }
     }
-    s.estimate = subdiv::estimateOutput(loaded.scheme, net->grid.rows, net->grid.cols, s.depth);
-    if (!subdiv::checkBudget(s.estimate, budget, desc.depthAuto ? desc.depthLoc : desc.schemeLoc,
+    s.estimate = subdiv::estimateOutput(scheme, net->rows(), net->cols(), s.depth);
+    if (!subdiv::checkBudget(s.estimate, budget,
+                             sub.locs.at(sub.depthAuto ? "subdivision.depth" : "subdivision.scheme"),
                              s.depth, diags))
         return std::nullopt;
-    s.refined = subdiv::refineGrid(loaded.scheme, net->grid, s.depth, threads);
+    s.refined = net->refined(subdiv::refineGrid(scheme, net->grid, s.depth, threads),
+                             std::pow(scheme.arity, s.depth));
     s.subdivideSeconds = secondsSince(t0);
-    const double factor = std::pow(loaded.scheme.arity, s.depth);
-    s.refinedDx = net->dx / factor;
-    s.refinedDy = net->dy / factor;
     s.net = std::move(*net);
     return s;
 }
 
-RenderOutcome renderSceneFile(const RenderJob& job, Diagnostics& diags,
-                              const render::ProgressFn& progress) {
-    RenderOutcome outcome;
-    auto say = [&](const std::string& line) {
-        if (progress) progress(line);
+namespace {
+
+// The scene's [render] output, else out/<scene stem> with the extension.
+std::filesystem::path defaultOutput(const std::filesystem::path& scenePath,
+                                    const std::string& sceneOutput, const char* extension) {
+    if (!sceneOutput.empty()) return sceneOutput;
+    return std::filesystem::path("out") / (scenePath.stem().string() + extension);
+}
+
+void createParentOf(const std::filesystem::path& file) {
+    if (!file.empty() && file.has_parent_path()) std::filesystem::create_directories(file.parent_path());
+}
+
+}  // namespace
+
+JobOutcome runSceneJob(const SceneJob& job, Diagnostics& diags, const ProgressFn& progress) {
+    using Stage = ProgressEvent::Stage;
+    JobOutcome outcome;
+    auto say = [&](Stage stage, std::string text, int percent = -1) {
+        if (progress) progress({stage, std::move(text), percent});
     };
-    say("reading " + job.scenePath.string());
+    say(Stage::Reading, "reading " + job.scenePath.string());
     auto loaded = loadScene(job.scenePath, diags, job.overrides);
     if (!loaded) return outcome;
-    outcome.schemeFamily = loaded->schemeFamily;
-    outcome.certified = certifiedClass(loaded->report);
-    outcome.paths = outputPathsFor(job.png.empty()
-                                       ? defaultPngPath(job.scenePath, loaded->scene.output)
-                                       : job.png);
+    const bool render = job.until == SceneJob::Until::Png;
+    if (render) {
+        outcome.paths = outputPathsFor(
+            job.output.empty() ? defaultOutput(job.scenePath, loaded->scene.render.output, ".png")
+                               : job.output);
+    } else {
+        // Only compiling: the .pov is the output, and the scene's PNG name does not apply.
+        outcome.paths.pov = job.output.empty() ? defaultOutput(job.scenePath, "", ".pov") : job.output;
+        outcome.paths.sidecar = outcome.paths.pov;
+        outcome.paths.sidecar.replace_extension(".json");
+    }
     CompileOptions copts;
     copts.povPath = outcome.paths.pov;
     copts.templatesDir = job.templatesDir;
     copts.dumpNetPath = job.dumpNetPath;
     copts.threads = job.threads;
-    for (const auto& p : {outcome.paths.pov, job.dumpNetPath})
-        if (!p.empty() && p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
-    say(fmt::format("compiling {} ({}, {})", job.scenePath.string(), loaded->schemeFamily,
-                    depthLabel(loaded->scene)));
+    for (const auto& p : {outcome.paths.png, outcome.paths.pov, job.dumpNetPath}) createParentOf(p);
+    say(Stage::Compiling, fmt::format("compiling {} ({}, {})", job.scenePath.string(),
+                                      loaded->resolved.family, depthLabel(loaded->scene.subdivision)));
     outcome.compiled = compileScene(*loaded, copts, diags);
     if (!outcome.compiled) return outcome;
+    if (!render) {
+        writeFileAtomically(outcome.paths.sidecar, sidecarJson(*outcome.compiled, outcome.paths, nullptr));
+        outcome.status = JobStatus::Ok;
+        return outcome;
+    }
 
+    const scene::RenderSpec& still = loaded->scene.render;
     render::RenderRequest req;
     req.pov = outcome.paths.pov;
     req.png = outcome.paths.png;
-    req.width = loaded->scene.width;
-    req.height = loaded->scene.height;
-    req.antialias = loaded->scene.antialias;
+    req.width = still.width;
+    req.height = still.height;
+    req.antialias = still.antialias;
     req.includeDirs = {job.templatesDir};
     req.threads = job.threads;
-    outcome.render = render::renderPov(req, [&](const std::string& line) { say("povray: " + line); });
+    outcome.render = render::renderPov(req, [&](const render::RenderProgress& p) {
+        say(Stage::Rendering, p.text, p.percent);
+    });
     if (!outcome.render.ok) {
         outcome.status = JobStatus::ToolFailed;
         return outcome;
@@ -339,7 +327,7 @@ std::string sidecarJson(const CompileResult& c, const OutputPaths& paths,
     j["relief_version"] = kVersion;
     j["inputs"] = {{"scene", c.scene.sceneFile.string()},
                    {"scene_sha1", c.scene.sceneSha1},
-                   {"samples", c.scene.samplesPath.string()},
+                   {"samples", c.scene.samples.path.string()},
                    {"sample_count", c.net.sampleCount}};
     ordered_json params = ordered_json::object();
     for (const auto& [k, v] : c.parameters) params[k] = v;
@@ -350,10 +338,11 @@ std::string sidecarJson(const CompileResult& c, const OutputPaths& paths,
                 {"dy_m", c.net.dy},
                 {"frame", c.net.frame.describe()},
                 {"filled_outside_hull", c.net.filledOutsideHull}};
-    j["refined"] = {{"rows", c.refinedRows},
-                    {"cols", c.refinedCols},
-                    {"vertices", static_cast<long long>(c.refinedRows) * c.refinedCols},
-                    {"triangles", 2LL * (c.refinedRows - 1) * (c.refinedCols - 1)},
+    const MeshSize mesh = gridMeshSize(c.estimate.rows, c.estimate.cols);
+    j["refined"] = {{"rows", c.estimate.rows},
+                    {"cols", c.estimate.cols},
+                    {"vertices", mesh.vertices},
+                    {"triangles", mesh.triangles},
                     {"pov_bytes", c.povBytes}};
     ordered_json times = {{"read_scene", c.times.readScene},
                           {"normalize", c.times.normalize},
@@ -379,7 +368,7 @@ std::string sidecarJson(const CompileResult& c, const OutputPaths& paths,
             if (std::isfinite(rate)) level["rate"] = rate;
             levels.push_back(level);
         }
-        j["auto_depth"] = {{"tolerance_m", c.scene.toleranceM},
+        j["auto_depth"] = {{"tolerance_m", c.scene.subdivision.toleranceM},
                            {"depth", c.depth},
                            {"holder_estimate", c.holder},
                            {"levels", levels}};

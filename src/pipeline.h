@@ -1,10 +1,19 @@
 #pragma once
-// The stages composed: scene file -> SceneDesc -> ControlNet -> refined Grid
-// -> Mesh -> .pov -> PNG. Each stage is a free function in its own folder;
-// this file only wires them together, times them and names the outputs.
+// The stages composed:
+//
+//   scene file --scene::readScene--> SceneSpec (one spec per stage)
+//     SchemeSpec      --subdiv::resolveScheme--> ResolvedScheme   (loadScene)
+//     samples, FrameSpec, NetSpec --geo::normalize--> ControlNet (a GeoGrid)
+//     ControlNet, depth --subdiv::refineGrid--> refined GeoGrid    (buildSurface)
+//     GeoGrid, LookSpec --emit::buildMesh--> Mesh --emit::writeScene--> .pov
+//     .pov, RenderSpec --render::renderPov--> PNG                  (runSceneJob)
+//
+// Each stage is a free function in its own folder that takes its spec and
+// returns a plain value; this file only wires them together, times them,
+// names the outputs and writes the sidecar.
+#include <cstdint>
 #include <filesystem>
 #include <functional>
-#include <map>
 #include <optional>
 #include <string>
 
@@ -13,32 +22,26 @@
 #include "geo/normalize.h"
 #include "measure/auto_depth.h"
 #include "render/povray.h"
-#include "scene/scene_desc.h"
-#include "subdiv/analysis.h"
+#include "scene/scene_spec.h"
 #include "subdiv/budget.h"
-#include "subdiv/scheme.h"
+#include "subdiv/resolve.h"
 
 namespace relief {
 
-/// Stage 1 and the scheme's parameters: everything the scene file says, checked.
+/// Stage 1 and the scheme: everything the scene file says, checked.
 struct LoadedScene {
-    scene::SceneDesc scene;
-    std::string schemeFamily;  ///< the scheme's name (a preset resolved to its family)
-    subdiv::Scheme scheme;
-    std::map<std::string, double> schemeParams;  ///< every parameter, defaults filled in
-    subdiv::SchemeReport report;  ///< certified smoothness and the rest (relief check)
+    scene::SceneSpec scene;
+    subdiv::ResolvedScheme resolved;
     double seconds = 0;
 };
 
-/// Reads and validates the scene file and its scheme (name, preset or mask, and
-/// parameters), reporting every problem at once, then certifies the scheme's
-/// smoothness; a scheme not proven to converge is a warning unless
-/// subdivision.allow_nonconvergent is set. Nothing is written.
+/// Reads and validates the scene file and resolves its scheme, reporting every
+/// problem at once. Nothing is written.
 std::optional<LoadedScene> loadScene(const std::filesystem::path& scenePath, Diagnostics& diags,
                                      const scene::SceneOverrides& overrides = {});
 
 /// "depth 3" or "depth auto (tolerance_m = 5)".
-std::string depthLabel(const scene::SceneDesc& scene);
+std::string depthLabel(const scene::SubdivisionSpec& subdivision);
 
 /// For depth = "auto": "depth 4 chosen: level 1 moved the terrain 220 m, ..., 4: 4.1 m <= 5 m".
 std::string autoDepthSummary(const measure::DepthChoice& choice, double toleranceM);
@@ -46,13 +49,15 @@ std::string autoDepthSummary(const measure::DepthChoice& choice, double toleranc
 /// "C1 (Hölder ~1.68)" or "convergence not proven (...)".
 std::string certifiedClass(const subdiv::SchemeReport& report);
 
+/// The output budget of a scene's [limits].
+subdiv::Budget budgetOf(const scene::LimitsSpec& limits);
+
 /// Stages 2 and 3: the control net and the refined surface (metres, in the
 /// net's frame), refused with a diagnostic when over the output budget. Used
 /// by compileScene and by measurements such as profiles.
 struct Surface {
     geo::ControlNet net;
-    Grid refined;
-    double refinedDx = 0, refinedDy = 0;  ///< spacing of the refined lattice (metres)
+    geo::GeoGrid refined;  ///< the net refined `depth` times: same frame and extent
     subdiv::OutputEstimate estimate;
     int depth = 0;  ///< the scene's, or the one depth = "auto" chose
     std::optional<measure::DepthChoice> autoDepth;  ///< the change per level, for depth = "auto"
@@ -72,10 +77,11 @@ struct StageTimes {
 };
 
 struct CompileResult {
-    scene::SceneDesc scene;
-    geo::ControlNet net;  ///< the control net (its grid is kept; it is small)
-    subdiv::OutputEstimate estimate;
-    int refinedRows = 0, refinedCols = 0;
+    scene::SceneSpec scene;
+    std::string schemeFamily;
+    std::string certified;  ///< e.g. "C1 (Hölder ~1.68)"
+    geo::ControlNet net;    ///< the control net (its grid is kept; it is small)
+    subdiv::OutputEstimate estimate;  ///< the refined grid's size and its mesh's
     int depth = 0;  ///< the scene's, or the one depth = "auto" chose
     std::optional<measure::DepthChoice> autoDepth;
     int arity = 2;
@@ -91,43 +97,49 @@ struct CompileResult {
 std::optional<CompileResult> compileScene(const LoadedScene& loaded,
                                           const CompileOptions& options, Diagnostics& diags);
 
-/// Output paths derived from a scene: `out/<stem>.png` unless the scene's
-/// [render] output or the caller says otherwise; the .pov and the .json
-/// sidecar sit beside the PNG.
+/// Output paths derived from a scene: the .pov and the .json sidecar sit
+/// beside the still (or stand in for it when only compiling).
 struct OutputPaths {
     std::filesystem::path png, pov, sidecar;
 };
 OutputPaths outputPathsFor(const std::filesystem::path& png);
-std::filesystem::path defaultPngPath(const std::filesystem::path& scenePath,
-                                     const std::string& sceneOutput);
 
-/// One scene file all the way to a PNG: what `relief render`, `relief test`
-/// and `relief sweep` do for each still.
-struct RenderJob {
+/// One scene file to a .pov and its sidecar, or all the way to a PNG: what
+/// `relief compile`, `relief render`, `relief test` and `relief sweep` do.
+struct SceneJob {
+    enum class Until { Pov, Png };
+    Until until = Until::Png;
     std::filesystem::path scenePath;
     scene::SceneOverrides overrides;
-    std::filesystem::path png;  ///< "" = the scene's [render] output, else out/<scene>.png
+    /// The PNG (Until::Png) or the .pov (Until::Pov) to write; "" = the
+    /// scene's [render] output, else out/<scene>.png (a .pov: out/<scene>.pov).
+    std::filesystem::path output;
     std::filesystem::path templatesDir;
     std::filesystem::path dumpNetPath;
     int threads = 0;            ///< refiner and POV-Ray threads; 0 = all cores
 };
 
+/// What a job is doing, for the command line to show.
+struct ProgressEvent {
+    enum class Stage { Reading, Compiling, Rendering } stage = Stage::Reading;
+    std::string text;  ///< e.g. "reading scenes/default.toml", POV-Ray's "Rendered ... (40%)"
+    int percent = -1;  ///< of the render, 0..100; -1 when unknown
+};
+using ProgressFn = std::function<void(const ProgressEvent&)>;
+
 enum class JobStatus { Ok, BadInput, ToolFailed };
 
-struct RenderOutcome {
+struct JobOutcome {
     JobStatus status = JobStatus::BadInput;
-    std::string schemeFamily;
-    std::string certified;           ///< e.g. "C1 (Hölder ~1.68)"
     OutputPaths paths;
     std::optional<CompileResult> compiled;
-    render::RenderResult render;     ///< POV-Ray's timings and error text
+    render::RenderResult render;     ///< POV-Ray's timings and error text (Until::Png)
 };
 
-/// Loads, compiles and renders; writes the PNG, the .pov and the JSON sidecar
-/// (atomically; nothing when a stage fails). Diagnostics go to `diags`,
-/// progress lines to `progress` (may be empty).
-RenderOutcome renderSceneFile(const RenderJob& job, Diagnostics& diags,
-                              const render::ProgressFn& progress);
+/// Loads, compiles and (Until::Png) renders; writes the .pov, the JSON sidecar
+/// and the PNG (atomically; nothing when a stage fails), creating the output
+/// folders. Diagnostics go to `diags`, progress to `progress` (may be empty).
+JobOutcome runSceneJob(const SceneJob& job, Diagnostics& diags, const ProgressFn& progress);
 
 /// The JSON sidecar: inputs, parameters, net size, vertex and triangle
 /// counts, time per stage (and POV-Ray's, when `render` is given).

@@ -66,19 +66,21 @@ bool parseOverrides(const std::vector<std::string>& list, scene::SceneOverrides&
 
 Progress::Progress(bool quiet) : quiet_(quiet), tty_(::isatty(STDERR_FILENO)) {}
 
-void Progress::show(const std::string& line) {
+void Progress::show(const std::string& line, int percent) {
     if (quiet_) return;
     if (tty_) {
         std::cerr << "\r\033[K" << line << std::flush;
         open_ = true;
     } else if (line != last_) {
         // Not a terminal (a log): stage lines, and render progress per 10 %.
-        const auto open = line.rfind('(');
-        const int pct = open == std::string::npos ? -1 : std::atoi(line.c_str() + open + 1);
-        if (pct < 0 || pct / 10 != lastDecile_) std::cerr << line << '\n';
-        lastDecile_ = pct < 0 ? -1 : pct / 10;
+        if (percent < 0 || percent / 10 != lastDecile_) std::cerr << line << '\n';
+        lastDecile_ = percent < 0 ? -1 : percent / 10;
     }
     last_ = line;
+}
+
+void Progress::show(const relief::ProgressEvent& e) {
+    show(e.stage == relief::ProgressEvent::Stage::Rendering ? "povray: " + e.text : e.text, e.percent);
 }
 
 void Progress::done() {

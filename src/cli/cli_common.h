@@ -13,18 +13,28 @@
 #include <nlohmann/json.hpp>
 
 #include "core/diagnostics.h"
+#include "pipeline.h"
 #include "scene/read_scene.h"
 
 namespace relief::cli {
 
 namespace fs = std::filesystem;
 
-/// Exit codes (also in README.md and `relief --help`).
+/// Every command's exit codes (also in README.md and `relief --help`).
+/// `relief diff` keeps idiff's codes and `relief test` its own; the rest share
+/// the first four.
 enum class Exit : int {
-    Ok = 0,          ///< success
+    Ok = 0,          ///< success; diff: PASS; test: every case passed
     Internal = 1,    ///< a bug in relief: please report it
     BadInput = 2,    ///< bad arguments, scene, samples or template; over budget; cannot write
     ToolFailed = 3,  ///< POV-Ray is missing or failed (its own error text is printed)
+
+    DiffWarning = 1,        ///< diff: over the warning thresholds (WARNING)
+    DiffFailure = 2,        ///< diff: over the failure thresholds (FAILURE)
+    DiffNotComparable = 3,  ///< diff: sizes or channel counts differ
+    DiffFileError = 4,      ///< diff: an image cannot be read or written, or bad arguments
+
+    TestCaseFailed = 1,     ///< test: a case failed, errored or is new (without --update)
 };
 inline int code(Exit e) { return static_cast<int>(e); }
 
@@ -58,7 +68,10 @@ void ensureParent(const fs::path& file);
 class Progress {
 public:
     explicit Progress(bool quiet);
-    void show(const std::string& line);
+    /// A line of text; `percent` (0..100, or -1) thins a log to one line per 10 %.
+    void show(const std::string& line, int percent = -1);
+    /// A pipeline event: stages as they are, POV-Ray's lines prefixed "povray: ".
+    void show(const relief::ProgressEvent& event);
     void done();
 
 private:

@@ -101,22 +101,22 @@ int runProfile(const ProfileOptions& o) {
     }
     const auto& net = surface->net;
     const auto line = relief::geo::geodesicProfile(net.frame, lat1, lon1, lat2, lon2, o.samples);
+    size_t outside = 0;
+    const auto zr = relief::geo::heightsAlong(surface->refined, line, outside);
+    const auto zc = zr ? relief::geo::heightsAlong(net, line, outside) : std::nullopt;
+    if (!zr || !zc) {
+        const auto& p = line[outside];
+        std::cerr << fmt::format("relief: error: the profile leaves the net {:.0f} m from the start "
+                                 "(lat {:.6f}, lon {:.6f}); the net covers x {:.0f}..{:.0f} m, y "
+                                 "{:.0f}..{:.0f} m in {}: choose points inside it\n",
+                                 p.distanceM, p.latDeg, p.lonDeg, net.x0, net.xMax(), net.y0,
+                                 net.yMax(), net.frame.describe());
+        return code(Exit::BadInput);
+    }
     relief::curves::CurveFile refined{"polyline", false, {}}, control{"polyline", false, {}};
-    for (const auto& p : line) {
-        const auto zr = relief::geo::sampleLattice(surface->refined, net.x0, net.y0, surface->refinedDx,
-                                                   surface->refinedDy, p.x, p.y);
-        const auto zc = relief::geo::sampleLattice(net.grid, net.x0, net.y0, net.dx, net.dy, p.x, p.y);
-        if (!zr || !zc) {
-            std::cerr << fmt::format("relief: error: the profile leaves the net {:.0f} m from the start "
-                                     "(lat {:.6f}, lon {:.6f}); the net covers x {:.0f}..{:.0f} m, y "
-                                     "{:.0f}..{:.0f} m in {}: choose points inside it\n",
-                                     p.distanceM, p.latDeg, p.lonDeg, net.x0,
-                                     net.x0 + (net.grid.cols - 1) * net.dx, net.y0,
-                                     net.y0 + (net.grid.rows - 1) * net.dy, net.frame.describe());
-            return code(Exit::BadInput);
-        }
-        refined.points.push_back({p.distanceM, *zr});
-        control.points.push_back({p.distanceM, *zc});
+    for (size_t i = 0; i < line.size(); ++i) {
+        refined.points.push_back({line[i].distanceM, (*zr)[i]});
+        control.points.push_back({line[i].distanceM, (*zc)[i]});
     }
     const std::string stem = fs::path(o.common.scene).stem().string();
     const fs::path svg = o.common.output.empty() ? fs::path("out") / (stem + "-profile.svg") : fs::path(o.common.output);
@@ -135,8 +135,8 @@ int runProfile(const ProfileOptions& o) {
                                           fs::path(o.common.scene).filename().string(), length, ve);
     relief::writeFileAtomically(
         svg, relief::emit::curvesSvg(title, {"control net (bilinear)", control.points, false},
-                                     {{fmt::format("refined: {} depth {} ({})", loaded->schemeFamily,
-                                                   surface->depth, relief::certifiedClass(loaded->report)),
+                                     {{fmt::format("refined: {} depth {} ({})", loaded->resolved.family,
+                                                   surface->depth, relief::certifiedClass(loaded->resolved.report)),
                                        refined.points, false}},
                                      axes));
     relief::writeFileAtomically(curveRefined, relief::curves::curveFileJson(refined));
@@ -159,52 +159,6 @@ struct CompareGeometryOptions {
     bool json = false;
     std::string map;  ///< SVG of both surfaces' contour lines and where each H is reached
 };
-
-std::string metres(double m) {
-    if (!std::isfinite(m)) return "infinite";
-    return std::fabs(m) >= 10000 ? fmt::format("{:.2f} km", m / 1000) : fmt::format("{:.3f} m", m);
-}
-
-// Both surfaces' contour lines in a's frame, the profiles, and a marker from
-// each level's witness to its nearest point on the other surface.
-std::string comparisonMap(const relief::measure::GeometryComparison& r, const std::string& a,
-                          const std::string& b, const std::string& frame) {
-    using relief::emit::SvgCurve;
-    auto lines = [](const relief::curves::CurveSet& set) {
-        std::vector<SvgCurve> out;
-        for (const auto& c : set) {
-            SvgCurve s{"", {}, c.closed};
-            for (const auto& seg : c.segments) s.points.push_back(seg.control.front());
-            if (!c.segments.empty() && !c.closed) s.points.push_back(c.segments.back().control.back());
-            out.push_back(std::move(s));
-        }
-        return out;
-    };
-    // One colour per level; a solid, b dashed.
-    static constexpr const char* kLevelColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd",
-                                                    "#ff7f0e", "#8c564b", "#e377c2", "#17becf"};
-    std::vector<relief::emit::SvgLayer> layers{{"profiles", {}, "#888", true}};
-    std::vector<relief::emit::SvgMarker> markers;
-    std::string levels;
-    for (size_t i = 0; i < r.contours.size(); ++i) {
-        const auto& c = r.contours[i];
-        const std::string level = relief::formatShortest(c.level) + " m";
-        layers.push_back({level + ", a", lines(c.a), kLevelColours[i % 8], false});
-        layers.push_back({level + ", b", lines(c.b), kLevelColours[i % 8], true});
-        levels += (levels.empty() ? "" : ", ") + relief::formatShortest(c.level);
-        if (std::isfinite(c.h.H) && c.h.H > 0)
-            markers.push_back({c.where.point, c.where.foot, fmt::format("{}: H = {}", level, metres(c.h.H))});
-    }
-    auto& profiles = layers.front();
-    for (const auto& p : r.profiles) profiles.lines.push_back({"", p.path, false});
-    relief::emit::SvgAxes axes{true, 1, fmt::format("x (m, {})", frame), "y (m)"};
-    if (layers.size() > 1) layers[1].label += " (" + a + ")";
-    if (layers.size() > 2) layers[2].label += " (" + b + ")";
-    return relief::emit::plotSvg(fmt::format("contour lines at {} m (a solid, b dashed); circles: where H is reached",
-                                             levels),
-                                 layers, markers, axes);
-}
-
 
 nlohmann::ordered_json whereJson(const relief::measure::Where& w, const char* pointKeys) {
     nlohmann::ordered_json j{{"on", w.onA ? "a" : "b"}, {"lat", w.latDeg}, {"lon", w.lonDeg}};
@@ -251,10 +205,7 @@ int runCompareGeometry(const CompareGeometryOptions& o) {
         printDiagnostics(diags, false);
         return code(Exit::BadInput);
     }
-    auto framed = [](const std::string& name, const relief::Surface& s) {
-        return m::FramedSurface{name, s.net.frame, {&s.refined, s.net.x0, s.net.y0, s.refinedDx, s.refinedDy}};
-    };
-    const auto A = framed(o.a, *surfA), B = framed(o.b, *surfB);
+    const m::FramedSurface A{o.a, &surfA->refined}, B{o.b, &surfB->refined};
     if (lines.empty()) lines = m::defaultProfiles(A, B);
     if (o.levels.empty()) levels = m::defaultLevels(A, B);
     const auto result = m::compareGeometry(A, B, lines, levels, o.samples, diags);
@@ -265,19 +216,19 @@ int runCompareGeometry(const CompareGeometryOptions& o) {
     printDiagnostics(diags, true);
     if (!o.map.empty()) {
         ensureParent(o.map);
-        relief::writeFileAtomically(o.map, comparisonMap(*result, o.a, o.b, A.frame.describe()));
+        relief::writeFileAtomically(o.map, relief::measure::comparisonMapSvg(*result, o.a, o.b, A.frame().describe()));
         std::cerr << "wrote " << o.map << '\n';
     }
     auto describe = [](const relief::LoadedScene& l, const relief::Surface& s) {
-        return fmt::format("{}, depth {}, {}", l.schemeFamily, s.depth, relief::certifiedClass(l.report));
+        return fmt::format("{}, depth {}, {}", l.resolved.family, s.depth, relief::certifiedClass(l.resolved.report));
     };
     double worstProfile = 0, worstContour = 0;
     for (const auto& p : result->profiles) worstProfile = std::max(worstProfile, p.h.H);
     for (const auto& c : result->contours) worstContour = std::max(worstContour, c.h.H);
     if (o.json) {
         nlohmann::ordered_json j;
-        j["a"] = {{"scene", o.a}, {"surface", describe(*loadedA, *surfA)}, {"frame", A.frame.describe()}};
-        j["b"] = {{"scene", o.b}, {"surface", describe(*loadedB, *surfB)}, {"frame", B.frame.describe()}};
+        j["a"] = {{"scene", o.a}, {"surface", describe(*loadedA, *surfA)}, {"frame", A.frame().describe()}};
+        j["b"] = {{"scene", o.b}, {"surface", describe(*loadedB, *surfB)}, {"frame", B.frame().describe()}};
         auto profiles = nlohmann::ordered_json::array();
         for (const auto& p : result->profiles)
             profiles.push_back({{"name", p.line.name},
@@ -308,7 +259,7 @@ int runCompareGeometry(const CompareGeometryOptions& o) {
     for (const auto& p : result->profiles) {
         const auto& w = p.where;
         std::cout << fmt::format("profile {} ({:.1f} km): H = {}  (h(a,b) {}, h(b,a) {})\n", p.line.name,
-                                 p.lengthM / 1000, metres(p.h.H), metres(p.h.ab.value), metres(p.h.ba.value));
+                                 p.lengthM / 1000, relief::measure::formatDistance(p.h.H), relief::measure::formatDistance(p.h.ab.value), relief::measure::formatDistance(p.h.ba.value));
         std::cout << fmt::format("    at {:.0f} m along, lat {:.6f} lon {:.6f}: {} at {:.1f} m, nearest {} "
                                  "point ({:.0f} m along) at {:.1f} m\n",
                                  w.point.x, w.latDeg, w.lonDeg, w.onA ? "a" : "b", w.point.y,
@@ -316,7 +267,7 @@ int runCompareGeometry(const CompareGeometryOptions& o) {
     }
     for (const auto& c : result->contours) {
         std::cout << fmt::format("contour {} m: {} line{} in a, {} in b: H = {}", relief::formatShortest(c.level),
-                                 c.linesA, c.linesA == 1 ? "" : "s", c.linesB, metres(c.h.H));
+                                 c.linesA, c.linesA == 1 ? "" : "s", c.linesB, relief::measure::formatDistance(c.h.H));
         if (c.linesA == 0 || c.linesB == 0) {
             std::cout << (c.linesA + c.linesB == 0 ? " (neither surface reaches it)\n"
                                                    : fmt::format(" (only {} reaches it)\n", c.linesA ? "a" : "b"));
@@ -325,11 +276,11 @@ int runCompareGeometry(const CompareGeometryOptions& o) {
         const auto& w = c.where;
         std::cout << fmt::format("  (h(a,b) {}, h(b,a) {})\n    at lat {:.6f} lon {:.6f} (x {:.0f}, y {:.0f} m): "
                                  "{}'s line is {} from {}'s nearest\n",
-                                 metres(c.h.ab.value), metres(c.h.ba.value), w.latDeg, w.lonDeg, w.point.x,
-                                 w.point.y, w.onA ? "a" : "b", metres(c.h.H), w.onA ? "b" : "a");
+                                 relief::measure::formatDistance(c.h.ab.value), relief::measure::formatDistance(c.h.ba.value), w.latDeg, w.lonDeg, w.point.x,
+                                 w.point.y, w.onA ? "a" : "b", relief::measure::formatDistance(c.h.H), w.onA ? "b" : "a");
     }
-    std::cout << fmt::format("largest: {} between profiles, {} between contour lines\n", metres(worstProfile),
-                             metres(worstContour));
+    std::cout << fmt::format("largest: {} between profiles, {} between contour lines\n", relief::measure::formatDistance(worstProfile),
+                             relief::measure::formatDistance(worstContour));
     return code(Exit::Ok);
 }
 

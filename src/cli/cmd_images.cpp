@@ -60,6 +60,19 @@ nlohmann::ordered_json differenceJson(const relief::compare::ImageDifference& d,
     return j;
 }
 
+// idiff's exit code for a verdict.
+Exit exitFor(relief::compare::Verdict v) {
+    using relief::compare::Verdict;
+    switch (v) {
+        case Verdict::Pass: return Exit::Ok;
+        case Verdict::Warning: return Exit::DiffWarning;
+        case Verdict::Failure: return Exit::DiffFailure;
+        case Verdict::NotComparable: return Exit::DiffNotComparable;
+        case Verdict::FileError: return Exit::DiffFileError;
+    }
+    return Exit::Internal;
+}
+
 // `relief diff`: idiff's metrics, thresholds, verdict and exit codes.
 int runDiff(const DiffOptions& o) {
     using relief::compare::Verdict;
@@ -69,17 +82,17 @@ int runDiff(const DiffOptions& o) {
         const std::string err = relief::compare::writeDifferenceImage(o.a, o.b, o.diffImage);
         if (!err.empty()) {
             std::cerr << "relief: error: " << err << '\n';
-            return 4;
+            return code(Exit::DiffFileError);
         }
     }
     if (o.json) {
         std::cout << differenceJson(d, o.t).dump(2) << '\n';
-        return static_cast<int>(d.verdict);
+        return code(exitFor(d.verdict));
     }
     if (d.verdict == Verdict::FileError || d.verdict == Verdict::NotComparable) {
         std::cerr << "relief: error: " << d.error << '\n';
         std::cout << relief::compare::verdictName(d.verdict) << '\n';
-        return static_cast<int>(d.verdict);
+        return code(exitFor(d.verdict));
     }
     std::cout << fmt::format("Comparing {} and {} ({} x {}, {} channels)\n", o.a, o.b, d.width,
                              d.height, d.channels);
@@ -99,7 +112,7 @@ int runDiff(const DiffOptions& o) {
     if (d.constantB) std::cout << "  note: " << o.b << " is a constant image (every pixel one colour)\n";
     if (!o.diffImage.empty()) std::cout << "  difference image: " << o.diffImage << '\n';
     std::cout << relief::compare::verdictName(d.verdict) << '\n';
-    return static_cast<int>(d.verdict);
+    return code(exitFor(d.verdict));
 }
 
 struct TestOptions {
@@ -145,7 +158,7 @@ int runTest(const TestOptions& o) {
     if (failed && !o.update)
         std::cout << fmt::format("to accept the new images: relief test {} --update\n", o.manifest);
     std::cout << fmt::format("{} passed, {} failed\n", results.size() - failed, failed);
-    return failed && !o.update ? 1 : 0;
+    return code(failed && !o.update ? Exit::TestCaseFailed : Exit::Ok);
 }
 
 struct SweepOptions {
@@ -165,55 +178,44 @@ int runSweep(const SweepOptions& o) {
         }
         variations.push_back({v.substr(0, eq), split(v.substr(eq + 1), ',')});
     }
-    relief::scene::SceneOverrides base;
-    if (!parseOverrides(o.common.sets, base)) return code(Exit::BadInput);
-    const auto combos = relief::figures::combinations(variations);
-    const std::string stem = fs::path(o.common.scene).stem().string();
-    const fs::path sheet = o.common.output.empty() ? fs::path("out") / (stem + "-sweep.png")
-                                                   : fs::path(o.common.output);
-    const fs::path stills = sheet.parent_path() / (sheet.stem().string() + "-stills");
-    fs::create_directories(stills);
-    std::vector<relief::figures::Tile> tiles;
-    for (size_t i = 0; i < combos.size(); ++i) {
-        std::string label;
-        for (const auto& [k, v] : combos[i])
-            label += fmt::format("{}{} = {}", label.empty() ? "" : ", ", k.substr(k.find('.') + 1), v);
-        relief::RenderJob job;
-        job.scenePath = o.common.scene;
-        job.overrides = base;
-        job.overrides.insert(job.overrides.end(), combos[i].begin(), combos[i].end());
-        job.png = stills / fmt::format("{:03}.png", i + 1);
-        job.templatesDir = findTemplates(o.common.templates);
-        job.threads = o.common.threads;
-        Progress progress(o.common.quiet);
-        progress.show(fmt::format("[{}/{}] {}", i + 1, combos.size(), label));
-        relief::Diagnostics diags;
-        const auto outcome = relief::renderSceneFile(job, diags, [&](const std::string& line) {
-            if (line.rfind("povray: Rendered", 0) == 0)
-                progress.show(fmt::format("[{}/{}] {}: {}", i + 1, combos.size(), label, line.substr(8)));
-        });
-        progress.done();
-        if (outcome.status != relief::JobStatus::Ok) {
-            printDiagnostics(diags, false);
-            if (outcome.status == relief::JobStatus::ToolFailed)
-                std::cerr << "relief: POV-Ray failed:\n" << outcome.render.error << '\n';
-            return code(outcome.status == relief::JobStatus::ToolFailed ? Exit::ToolFailed : Exit::BadInput);
+    relief::figures::SweepRequest request;
+    request.scenePath = o.common.scene;
+    if (!parseOverrides(o.common.sets, request.base)) return code(Exit::BadInput);
+    request.variations = variations;
+    request.sheet = o.common.output.empty()
+                        ? fs::path("out") / (fs::path(o.common.scene).stem().string() + "-sweep.png")
+                        : fs::path(o.common.output);
+    request.templatesDir = findTemplates(o.common.templates);
+    request.threads = o.common.threads;
+    request.columns = o.columns;
+    Progress progress(o.common.quiet);
+    using Kind = relief::figures::SweepEvent::Kind;
+    const auto result = relief::figures::runSweep(request, [&](const relief::figures::SweepEvent& e) {
+        const std::string still = fmt::format("[{}/{}] {}", e.index, e.total, e.label);
+        if (e.kind == Kind::Started) {
+            progress.show(still);
+        } else if (e.kind == Kind::Rendering) {
+            if (e.render->text.rfind("Rendered", 0) == 0)
+                progress.show(fmt::format("{}: {}", still, e.render->text), e.render->percent);
+        } else {
+            progress.done();
+            const bool ok = e.outcome->status == relief::JobStatus::Ok;
+            printDiagnostics(*e.diags, ok);
+            if (e.outcome->status == relief::JobStatus::ToolFailed)
+                std::cerr << "relief: POV-Ray failed:\n" << e.outcome->render.error << '\n';
+            if (ok && !o.common.quiet)
+                std::cerr << fmt::format("{} -> {} ({})\n", still, e.outcome->paths.png.string(),
+                                         e.outcome->compiled->certified);
         }
-        printDiagnostics(diags, true);
-        if (!o.common.quiet)
-            std::cerr << fmt::format("[{}/{}] {} -> {} ({})\n", i + 1, combos.size(), label,
-                                     outcome.paths.png.string(), outcome.certified);
-        tiles.push_back({outcome.paths.png, fmt::format("{}\n{}", label, outcome.certified)});
-    }
-    const int columns = o.columns > 0 ? o.columns
-                                      : (variations.empty() ? 1 : static_cast<int>(variations[0].values.size()));
-    const std::string err = relief::figures::writeContactSheet(tiles, columns, fs::path(o.common.scene).filename().string(), sheet);
-    if (!err.empty() && err.rfind("warning", 0) != 0) {
-        std::cerr << "relief: error: " << err << '\n';
+    });
+    if (result.status != relief::JobStatus::Ok)
+        return code(result.status == relief::JobStatus::ToolFailed ? Exit::ToolFailed : Exit::BadInput);
+    if (!result.sheetWritten) {
+        std::cerr << "relief: error: " << result.sheetMessage << '\n';
         return code(Exit::BadInput);
     }
-    if (!err.empty()) std::cerr << "relief: " << err << '\n';
-    std::cerr << "wrote " << sheet.string() << " (" << tiles.size() << " stills)\n";
+    if (!result.sheetMessage.empty()) std::cerr << "relief: " << result.sheetMessage << '\n';
+    std::cerr << "wrote " << request.sheet.string() << " (" << result.tiles.size() << " stills)\n";
     return code(Exit::Ok);
 }
 
@@ -236,7 +238,7 @@ void addImageCommands(CLI::App& app, std::vector<Command>& out) {
     diffCmd->add_option("--allowfailures", diff->t.allowFailures, "this many pixels may fail by any amount (default 0)");
     diffCmd->add_option("--diff-image", diff->diffImage, "write a heat map of the difference (black: identical)");
     diffCmd->add_flag("--json", diff->json, "print the metrics and the verdict as one JSON object");
-    out.push_back({diffCmd, [diff] { return runDiff(*diff); }, 4});  // idiff's code for bad arguments
+    out.push_back({diffCmd, [diff] { return runDiff(*diff); }, code(Exit::DiffFileError)});  // idiff's code for bad arguments
 
     auto test = std::make_shared<TestOptions>();
     CLI::App* testCmd = app.add_subcommand(

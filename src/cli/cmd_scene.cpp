@@ -6,79 +6,28 @@
 
 #include <fmt/format.h>
 
-#include "core/atomic_file.h"
 #include "pipeline.h"
 
 namespace relief::cli {
 
 namespace {
 
-// `relief compile`: stages 1-4.
-int runCompile(const CommonOptions& o, const std::string& dumpNet) {
+// `relief compile` (until the .pov) and `relief render` (until the PNG).
+int runScene(const CommonOptions& o, const std::string& dumpNet, relief::SceneJob::Until until) {
     relief::Diagnostics diags;
     Progress progress(o.quiet);
-    relief::scene::SceneOverrides overrides;
-    if (!parseOverrides(o.sets, overrides)) return code(Exit::BadInput);
-    progress.show("reading " + o.scene);
-    auto loaded = relief::loadScene(o.scene, diags, overrides);
-    if (!loaded) {
-        progress.done();
-        printDiagnostics(diags, false);
-        return code(Exit::BadInput);
-    }
-    relief::OutputPaths paths;
-    paths.pov = o.output.empty() ? fs::path("out") / (fs::path(o.scene).stem().string() + ".pov")
-                                 : fs::path(o.output);
-    paths.sidecar = paths.pov;
-    paths.sidecar.replace_extension(".json");
-    relief::CompileOptions copts;
-    copts.povPath = paths.pov;
-    copts.templatesDir = findTemplates(o.templates);
-    copts.dumpNetPath = dumpNet;
-    copts.threads = o.threads;
-    if (!o.quiet)
-        std::cerr << fmt::format("scheme {}: {}\n", loaded->schemeFamily,
-                                 relief::certifiedClass(loaded->report));
-    progress.show(fmt::format("compiling {} ({}, {})", o.scene, loaded->schemeFamily,
-                              relief::depthLabel(loaded->scene)));
-    ensureParent(paths.pov);
-    if (!dumpNet.empty()) ensureParent(dumpNet);
-    auto compiled = relief::compileScene(*loaded, copts, diags);
-    progress.done();
-    if (!compiled) {
-        printDiagnostics(diags, false);
-        return code(Exit::BadInput);
-    }
-    printDiagnostics(diags, true);  // warnings only
-    if (!o.quiet && compiled->autoDepth)
-        std::cerr << relief::autoDepthSummary(*compiled->autoDepth, compiled->scene.toleranceM) << '\n';
-    if (!o.quiet)
-        std::cerr << fmt::format("wrote {} ({} x {} vertices, {} triangles, {:.1f} MB)\n",
-                                 paths.pov.string(), compiled->refinedRows,
-                                 compiled->refinedCols,
-                                 2LL * (compiled->refinedRows - 1) * (compiled->refinedCols - 1),
-                                 compiled->povBytes / 1e6);
-    relief::writeFileAtomically(paths.sidecar, relief::sidecarJson(*compiled, paths, nullptr));
-    return code(Exit::Ok);
-}
-
-// `relief render`: compile, then POV-Ray.
-int runRender(const CommonOptions& o, const std::string& dumpNet) {
-    relief::Diagnostics diags;
-    Progress progress(o.quiet);
-    relief::RenderJob job;
+    relief::SceneJob job;
+    job.until = until;
     job.scenePath = o.scene;
     if (!parseOverrides(o.sets, job.overrides)) return code(Exit::BadInput);
-    job.png = o.output;
+    job.output = o.output;
     job.templatesDir = findTemplates(o.templates);
     job.dumpNetPath = dumpNet;
     job.threads = o.threads;
-    if (!job.png.empty()) ensureParent(job.png);
-    auto outcome = relief::renderSceneFile(job, diags, [&](const std::string& line) {
-        if (line.rfind("compiling ", 0) == 0 && !o.quiet) {
-            progress.done();
-        }
-        progress.show(line);
+    const auto outcome = relief::runSceneJob(job, diags, [&](const relief::ProgressEvent& e) {
+        // Each stage on a line of its own; the render's progress rewrites its line.
+        if (e.stage == relief::ProgressEvent::Stage::Compiling) progress.done();
+        progress.show(e);
     });
     progress.done();
     if (outcome.status == relief::JobStatus::BadInput) {
@@ -93,14 +42,17 @@ int runRender(const CommonOptions& o, const std::string& dumpNet) {
     }
     if (!o.quiet) {
         const auto& c = *outcome.compiled;
-        std::cerr << fmt::format("scheme {}: {}\n", outcome.schemeFamily, outcome.certified);
-        if (c.autoDepth) std::cerr << relief::autoDepthSummary(*c.autoDepth, c.scene.toleranceM) << '\n';
-        std::cerr << fmt::format("wrote {} ({} x {} vertices, {} triangles, {:.1f} MB)\n",
-                                 outcome.paths.pov.string(), c.refinedRows, c.refinedCols,
-                                 2LL * (c.refinedRows - 1) * (c.refinedCols - 1), c.povBytes / 1e6);
-        std::cerr << fmt::format("wrote {} ({} x {}; POV-Ray parse {:.2f} s, trace {:.2f} s)\n",
-                                 outcome.paths.png.string(), c.scene.width, c.scene.height,
-                                 outcome.render.parseSeconds, outcome.render.traceSeconds);
+        std::cerr << fmt::format("scheme {}: {}\n", c.schemeFamily, c.certified);
+        if (c.autoDepth)
+            std::cerr << relief::autoDepthSummary(*c.autoDepth, c.scene.subdivision.toleranceM) << '\n';
+        std::cerr << fmt::format("wrote {} ({} x {} vertices, {:.0f} triangles, {:.1f} MB)\n",
+                                 outcome.paths.pov.string(), c.estimate.rows, c.estimate.cols,
+                                 c.estimate.triangles, c.povBytes / 1e6);
+        if (until == relief::SceneJob::Until::Png)
+            std::cerr << fmt::format("wrote {} ({} x {}; POV-Ray parse {:.2f} s, trace {:.2f} s)\n",
+                                     outcome.paths.png.string(), c.scene.render.width,
+                                     c.scene.render.height, outcome.render.parseSeconds,
+                                     outcome.render.traceSeconds);
     }
     return code(Exit::Ok);
 }
@@ -132,12 +84,12 @@ void addSceneCommands(CLI::App& app, std::vector<Command>& out) {
     compile->add_option("--dump-net", o->dumpNet,
                         "also write the control net: .csv (x,y,z in the frame, metres) or .asc "
                         "(ESRI ASCII grid; needs net.spacing_m)");
-    out.push_back({compile, [o] { return runCompile(o->common, o->dumpNet); }});
+    out.push_back({compile, [o] { return runScene(o->common, o->dumpNet, relief::SceneJob::Until::Pov); }});
     CLI::App* render = app.add_subcommand(
         "render", "compile, then render the still with POV-Ray (.png, .pov and .json sidecar)");
     addCommon(render, "the PNG to write (default: [render] output, else out/<scene name>.png)");
     render->add_option("--dump-net", o->dumpNet, "also write the control net (.csv or .asc)");
-    out.push_back({render, [o] { return runRender(o->common, o->dumpNet); }});
+    out.push_back({render, [o] { return runScene(o->common, o->dumpNet, relief::SceneJob::Until::Png); }});
 }
 
 }  // namespace relief::cli

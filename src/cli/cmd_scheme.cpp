@@ -14,6 +14,7 @@
 #include "emit/svg.h"
 #include "pipeline.h"
 #include "subdiv/analysis.h"
+#include "subdiv/resolve.h"
 #include "subdiv/refine.h"
 
 namespace relief::cli {
@@ -25,6 +26,7 @@ struct CheckOptions {
     std::string preset;
     std::vector<std::string> params;
     bool json = false;
+    bool list = false;
 };
 
 std::string weightList(const std::vector<double>& w) {
@@ -34,61 +36,39 @@ std::string weightList(const std::vector<double>& w) {
 }
 
 
-struct ResolvedScheme {
-    std::string family;
-    relief::subdiv::Scheme scheme;
-    std::map<std::string, double> params;  ///< every parameter, defaults filled in
-};
-
-// --scheme / --preset / --param, as on the command line of check and curve.
-std::optional<ResolvedScheme> resolveScheme(const std::string& schemeName,
-                                            const std::string& presetName,
-                                            std::map<std::string, double> params) {
+// --scheme / --preset / --param, as on the command line of check and curve:
+// the spec resolveScheme takes, each key located at its option.
+std::optional<relief::subdiv::ResolvedScheme> resolveScheme(const std::string& schemeName,
+                                                            const std::string& presetName,
+                                                            const std::map<std::string, double>& params) {
+    relief::scene::SchemeSpec spec;
+    spec.name = schemeName;
+    spec.preset = presetName;
+    spec.params = params;
+    spec.allowNonconvergent = true;  // what the scheme gives is the answer, not a warning
+    spec.locs.keys["subdivision.scheme"] = {"--scheme", 0, 0};
+    spec.locs.keys["subdivision.preset"] = {"--preset", 0, 0};
+    for (const auto& [k, v] : params) spec.locs.keys["subdivision." + k] = {"--param " + k, 0, 0};
     relief::Diagnostics diags;
-    std::map<std::string, relief::SourceLoc> locs;
-    for (const auto& [k, v] : params) locs[k] = {"--param " + k, 0, 0};
-    ResolvedScheme out;
-    out.family = schemeName;
-    if (!presetName.empty()) {
-        std::map<std::string, double> familyParams;
-        if (!relief::subdiv::resolvePreset(presetName, {"--preset", 0, 0}, params, locs, diags,
-                                           out.family, familyParams)) {
-            printDiagnostics(diags, false);
-            return std::nullopt;
-        }
-        if (!schemeName.empty() && schemeName != out.family) {
-            std::cerr << fmt::format("relief: error: preset \"{}\" belongs to scheme \"{}\", not "
-                                     "\"{}\"\n",
-                                     presetName, out.family, schemeName);
-            return std::nullopt;
-        }
-        params = familyParams;
-        locs.clear();
-    } else if (schemeName.empty()) {
-        std::cerr << "relief: error: give --scheme NAME or --preset NAME\n";
-        return std::nullopt;
-    }
-    auto scheme = relief::subdiv::makeScheme(out.family, {"--scheme", 0, 0}, params, locs, diags,
-                                             &out.params);
-    if (!scheme) {
-        printDiagnostics(diags, false);
-        return std::nullopt;
-    }
-    printDiagnostics(diags, false);  // warnings
-    out.scheme = std::move(*scheme);
-    return out;
+    auto resolved = relief::subdiv::resolveScheme(spec, diags);
+    printDiagnostics(diags, false);  // errors, or warnings (caveats)
+    return resolved;
 }
 
 // `relief check`: what a scheme and its parameters give.
 int runCheck(const CheckOptions& o) {
     std::map<std::string, double> params;
     if (!parseParams(o.params, params)) return code(Exit::BadInput);
+    if (o.list) {
+        std::cout << relief::subdiv::schemeTableMarkdown();
+        return code(Exit::Ok);
+    }
     auto resolved = resolveScheme(o.scheme, o.preset, params);
     if (!resolved) return code(Exit::BadInput);
     const std::string& family = resolved->family;
     const relief::subdiv::Scheme* scheme = &resolved->scheme;
     const std::map<std::string, double>& resolvedParams = resolved->params;
-    const auto rep = relief::subdiv::analyzeScheme(*scheme);
+    const auto& rep = resolved->report;
     const auto notes = relief::subdiv::explainReport(rep, family, resolvedParams);
 
     if (o.json) {
@@ -222,7 +202,7 @@ int runCurve(const CurveOptions& o) {
                                      resolved->family);
             return code(Exit::BadInput);
         }
-        const auto report = relief::subdiv::analyzeScheme(resolved->scheme);
+        const auto& report = resolved->report;
         const auto refined =
             relief::subdiv::refineCurveLevels(resolved->scheme, control, polygon->closed, o.depth);
         relief::curves::CurveFile file{"polyline", polygon->closed, {}};
@@ -261,6 +241,13 @@ int runCurve(const CurveOptions& o) {
     return code(Exit::Ok);
 }
 
+// "dlg4, four-point-4p, ...", from the scheme table.
+std::string familyNames() {
+    std::string names;
+    for (const auto& f : relief::subdiv::schemeFamilies()) names += (names.empty() ? "" : ", ") + f.name;
+    return names + ", or mask (relief check --list)";
+}
+
 }  // namespace
 
 void addSchemeCommands(CLI::App& app, std::vector<Command>& out) {
@@ -268,12 +255,12 @@ void addSchemeCommands(CLI::App& app, std::vector<Command>& out) {
     CLI::App* checkCmd = app.add_subcommand(
         "check", "what a scheme and its parameters give: mask, interpolation, support, "
                  "reproduction, certified smoothness (difference-scheme test), Hölder estimate");
-    checkCmd->add_option("--scheme", check->scheme,
-                         "dlg4, four-point-4p, binary-3p, ternary-blend, ternary-4point, "
-                         "ternary-bspline");
+    checkCmd->add_option("--scheme", check->scheme, familyNames());
     checkCmd->add_option("--preset", check->preset, "a named special case, e.g. hassan, deslauriers-dubuc");
     checkCmd->add_option("--param", check->params, "KEY=VALUE (fractions such as 7/32 allowed); repeatable");
     checkCmd->add_flag("--json", check->json, "one JSON object");
+    checkCmd->add_flag("--list", check->list,
+                       "the scheme table (families, parameters, presets) as Markdown, as in docs/schemes.md");
     out.push_back({checkCmd, [check] { return runCheck(*check); }});
 
     auto curve = std::make_shared<CurveOptions>();

@@ -79,4 +79,15 @@ struct Grid {
     const Vec3& at(int r, int c) const { return points[static_cast<size_t>(r) * cols + c]; }
 };
 
+/// The size of the triangle mesh a rows x cols grid becomes: one vertex per
+/// node, two triangles per cell. The one formula the output budget, the
+/// mesh2 writer, the sidecar and the command line all use.
+struct MeshSize {
+    long long vertices = 0;
+    long long triangles = 0;
+};
+inline MeshSize gridMeshSize(long long rows, long long cols) {
+    return {rows * cols, rows > 1 && cols > 1 ? 2 * (rows - 1) * (cols - 1) : 0};
+}
+
 }  // namespace relief

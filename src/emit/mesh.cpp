@@ -7,11 +7,12 @@
 
 namespace relief::emit {
 
-Mesh buildMesh(const Grid& g, const scene::SceneDesc& scene) {
+Mesh buildMesh(const geo::GeoGrid& refined, const scene::LookSpec& look) {
+    const Grid& g = refined.grid;
     Mesh mesh;
     mesh.rows = g.rows;
     mesh.cols = g.cols;
-    mesh.exaggeration = scene.exaggeration;
+    mesh.exaggeration = look.exaggeration;
 
     double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300, zmin = 1e300, zmax = -1e300;
     for (const Vec3& p : g.points) {
@@ -27,7 +28,7 @@ Mesh buildMesh(const Grid& g, const scene::SceneDesc& scene) {
     mesh.originM = {std::round(0.5 * (xmin + xmax)), std::round(0.5 * (ymin + ymax)), 0};
 
     const double s = 1.0 / mesh.metresPerUnit;
-    const double zs = scene.exaggeration * s;
+    const double zs = look.exaggeration * s;
     mesh.positions.resize(g.points.size());
     for (size_t i = 0; i < g.points.size(); ++i) {
         const Vec3& p = g.points[i];
@@ -55,7 +56,7 @@ Mesh buildMesh(const Grid& g, const scene::SceneDesc& scene) {
     }
 
     // Palette over the true (not exaggerated) elevation range.
-    const auto stops = scene::resolveRamp(scene.ramp, zmin, zmax);
+    const auto stops = scene::resolveRamp(look.ramp, zmin, zmax);
     const double span = zmax > zmin ? zmax - zmin : 1.0;
     mesh.paletteColors.resize(kPaletteSize);
     for (int k = 0; k < kPaletteSize; ++k)

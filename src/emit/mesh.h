@@ -1,11 +1,13 @@
 #pragma once
-// Stage 4 of 5 (part 1). Input: the refined Grid (frame metres). Output: Mesh,
+// Stage 4 of 5 (part 1). Input: the refined GeoGrid (frame metres) and the
+// LookSpec. Output: Mesh,
 // in POV-Ray scene units and axes, with normals and an elevation palette.
 #include <array>
 #include <vector>
 
 #include "core/types.h"
-#include "scene/scene_desc.h"
+#include "geo/geo_grid.h"
+#include "scene/scene_spec.h"
 
 namespace relief::emit {
 
@@ -31,6 +33,6 @@ struct Mesh {
 /// Builds the mesh: centres the terrain on the origin, applies the vertical
 /// exaggeration, computes normals from the grid (central differences, one-sided
 /// at the edges) and maps each vertex's true elevation to the palette.
-Mesh buildMesh(const Grid& refined, const scene::SceneDesc& scene);
+Mesh buildMesh(const geo::GeoGrid& refined, const scene::LookSpec& look);
 
 }  // namespace relief::emit

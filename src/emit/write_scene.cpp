@@ -113,11 +113,10 @@ size_t writeMesh2(const Mesh& mesh, std::FILE* out) {
         p += sizeof close - 1;
         w->commit(p);
     }
-    const long long quads = static_cast<long long>(mesh.rows - 1) * (mesh.cols - 1);
     w->put("\n  }\n  face_indices {\n    ");
     {
         char* p = w->reserve(24);
-        w->commit(writeUnsigned(p, static_cast<std::uint64_t>(2 * quads)));
+        w->commit(writeUnsigned(p, static_cast<std::uint64_t>(gridMeshSize(mesh.rows, mesh.cols).triangles)));
     }
     const size_t cols = static_cast<size_t>(mesh.cols);
     auto face = [&](size_t a, size_t b, size_t c) {
@@ -151,8 +150,9 @@ size_t writeMesh2(const Mesh& mesh, std::FILE* out) {
     return w->total();
 }
 
-Bindings sceneBindings(const Mesh& mesh, const scene::SceneDesc& scene,
-                       const ParameterList& header) {
+Bindings sceneBindings(const Mesh& mesh, const scene::LookSpec& look,
+                       const scene::RenderSpec& render, const ParameterList& header) {
+    const scene::CameraSpec& camera = look.camera;
     Bindings b;
     std::string head;
     for (const auto& [key, value] : header) head += fmt::format("// {}: {}\n", key, value);
@@ -161,15 +161,15 @@ Bindings sceneBindings(const Mesh& mesh, const scene::SceneDesc& scene,
     const Vec3 lo = mesh.boundsMin, hi = mesh.boundsMax;
     const Vec3 target{0.5 * (lo.x + hi.x), 0.5 * (lo.y + hi.y), 0.5 * (lo.z + hi.z)};
     const double radius = 0.5 * length(hi - lo);
-    const double aspect = static_cast<double>(scene.width) / scene.height;
-    const Vec3 back = direction(scene.cameraAzimuthDeg, scene.cameraElevationDeg);
+    const double aspect = static_cast<double>(render.width) / render.height;
+    const Vec3 back = direction(camera.azimuthDeg, camera.elevationDeg);
     // Camera basis: `right` is horizontal, `up` completes it (POV-Ray's `angle`
     // is the horizontal field of view).
     const Vec3 right = {back.z, 0, -back.x};
     const double rightLen = length(right);
     const Vec3 r = (1.0 / rightLen) * right;
     const Vec3 u = cross(r, back);  // left-handed axes: this points up
-    const double tanH = std::tan(0.5 * scene.fovDeg * kDeg);
+    const double tanH = std::tan(0.5 * camera.fovDeg * kDeg);
     const double tanV = tanH / aspect;
     // Nearest distance at which all eight corners of the bounding box are in view,
     // plus a 6 % margin.
@@ -182,15 +182,15 @@ Bindings sceneBindings(const Mesh& mesh, const scene::SceneDesc& scene,
     }
     fitDistance *= 1.06;
     const double distance =
-        scene.cameraDistanceM > 0 ? scene.cameraDistanceM / mesh.metresPerUnit : fitDistance;
+        camera.distanceM > 0 ? camera.distanceM / mesh.metresPerUnit : fitDistance;
     const Vec3 eye = target + distance * back;
     b["camera_location"].text = vec(eye);
     b["camera_look_at"].text = vec(target);
-    if (scene.projection == scene::Projection::Perspective) {
+    if (camera.projection == scene::Projection::Perspective) {
         b["camera_projection"].text = std::string("perspective");
         b["camera_right"].text = fmt::format("x*{}", num(aspect));
         b["camera_up"].text = std::string("y");
-        b["camera_angle"].text = fmt::format("angle {}", num(scene.fovDeg));
+        b["camera_angle"].text = fmt::format("angle {}", num(camera.fovDeg));
     } else {
         const double h = 2.1 * radius;
         b["camera_projection"].text = "orthographic";
@@ -198,7 +198,7 @@ Bindings sceneBindings(const Mesh& mesh, const scene::SceneDesc& scene,
         b["camera_up"].text = fmt::format("y*{}", num(h));
         b["camera_angle"].text = "";
     }
-    const Vec3 sunDir = direction(scene.sunAzimuthDeg, scene.sunAltitudeDeg);
+    const Vec3 sunDir = direction(look.sunAzimuthDeg, look.sunAltitudeDeg);
     b["sun_position"].text = vec(target + (100.0 * radius) * sunDir);
     b["scene_center"].text = vec(target);
     b["mesh"].writer = [&mesh](std::FILE* out) { writeMesh2(mesh, out); };
@@ -219,8 +219,9 @@ std::optional<Template> loadSceneTemplate(const std::filesystem::path& templates
 }
 
 bool writeScene(const std::filesystem::path& out, const Template& tmpl, const Mesh& mesh,
-                const scene::SceneDesc& scene, const ParameterList& header, Diagnostics& diags) {
-    const Bindings bindings = sceneBindings(mesh, scene, header);
+                const scene::LookSpec& look, const scene::RenderSpec& render,
+                const ParameterList& header, Diagnostics& diags) {
+    const Bindings bindings = sceneBindings(mesh, look, render, header);
     if (!checkTemplate(tmpl, bindings, diags)) return false;
     AtomicFile file(out);
     renderTemplate(tmpl, bindings, file.stream());

@@ -1,5 +1,5 @@
 #pragma once
-// Stage 4 of 5 (part 2). Input: Mesh and SceneDesc. Output: a POV-Ray scene
+// Stage 4 of 5 (part 2). Input: Mesh, LookSpec and RenderSpec. Output: a POV-Ray scene
 // (.pov) from templates/scene.pov.in with the mesh as a `mesh2`. The same
 // inputs give byte-identical output: every number goes through the
 // locale-free writers of core/number_format.h.
@@ -12,7 +12,7 @@
 #include "core/diagnostics.h"
 #include "emit/mesh.h"
 #include "emit/template.h"
-#include "scene/scene_desc.h"
+#include "scene/scene_spec.h"
 
 namespace relief::emit {
 
@@ -25,8 +25,8 @@ using ParameterList = std::vector<std::pair<std::string, std::string>>;
 size_t writeMesh2(const Mesh& mesh, std::FILE* out);
 
 /// The template's bindings: header, camera, sun, sky and the mesh.
-Bindings sceneBindings(const Mesh& mesh, const scene::SceneDesc& scene,
-                       const ParameterList& header);
+Bindings sceneBindings(const Mesh& mesh, const scene::LookSpec& look,
+                       const scene::RenderSpec& render, const ParameterList& header);
 
 /// Loads `<templatesDir>/scene.pov.in`.
 std::optional<Template> loadSceneTemplate(const std::filesystem::path& templatesDir,
@@ -34,6 +34,7 @@ std::optional<Template> loadSceneTemplate(const std::filesystem::path& templates
 
 /// Checks bindings, then writes the .pov atomically (temp file + rename).
 bool writeScene(const std::filesystem::path& out, const Template& tmpl, const Mesh& mesh,
-                const scene::SceneDesc& scene, const ParameterList& header, Diagnostics& diags);
+                const scene::LookSpec& look, const scene::RenderSpec& render,
+                const ParameterList& header, Diagnostics& diags);
 
 }  // namespace relief::emit

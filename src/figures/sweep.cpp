@@ -99,3 +99,57 @@ std::string writeContactSheet(const std::vector<Tile>& tiles, int columns, const
 }
 
 }  // namespace relief::figures
+
+namespace relief::figures {
+
+SweepResult runSweep(const SweepRequest& request, const std::function<void(const SweepEvent&)>& onEvent) {
+    SweepResult result;
+    const auto combos = combinations(request.variations);
+    const fs::path stills = request.sheet.parent_path() / (request.sheet.stem().string() + "-stills");
+    fs::create_directories(stills);
+    auto emit = [&](SweepEvent e) {
+        if (onEvent) onEvent(e);
+    };
+    for (size_t i = 0; i < combos.size(); ++i) {
+        std::string label;
+        for (const auto& [k, v] : combos[i])
+            label += fmt::format("{}{} = {}", label.empty() ? "" : ", ", k.substr(k.find('.') + 1), v);
+        SceneJob job;
+        job.scenePath = request.scenePath;
+        job.overrides = request.base;
+        job.overrides.insert(job.overrides.end(), combos[i].begin(), combos[i].end());
+        job.output = stills / fmt::format("{:03}.png", i + 1);
+        job.templatesDir = request.templatesDir;
+        job.threads = request.threads;
+        SweepEvent event{SweepEvent::Kind::Started, i + 1, combos.size(), label};
+        emit(event);
+        Diagnostics diags;
+        const JobOutcome outcome = runSceneJob(job, diags, [&](const ProgressEvent& p) {
+            if (p.stage != ProgressEvent::Stage::Rendering) return;
+            SweepEvent e = event;
+            e.kind = SweepEvent::Kind::Rendering;
+            e.render = &p;
+            emit(e);
+        });
+        SweepEvent done = event;
+        done.kind = SweepEvent::Kind::Finished;
+        done.outcome = &outcome;
+        done.diags = &diags;
+        emit(done);
+        if (outcome.status != JobStatus::Ok) {
+            result.status = outcome.status;
+            return result;
+        }
+        result.tiles.push_back({outcome.paths.png, fmt::format("{}\n{}", label, outcome.compiled->certified)});
+    }
+    const int columns = request.columns > 0 ? request.columns
+                        : request.variations.empty()
+                            ? 1
+                            : static_cast<int>(request.variations[0].values.size());
+    result.sheetMessage = writeContactSheet(result.tiles, columns,
+                                            request.scenePath.filename().string(), request.sheet);
+    result.sheetWritten = result.sheetMessage.empty() || result.sheetMessage.rfind("warning", 0) == 0;
+    return result;
+}
+
+}  // namespace relief::figures

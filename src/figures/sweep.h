@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/diagnostics.h"
+#include "pipeline.h"
 
 namespace relief::figures {
 
@@ -31,5 +32,36 @@ std::string writeContactSheet(const std::vector<Tile>& tiles, int columns, const
 /// Every combination of the variations' values, first variation fastest.
 std::vector<std::vector<std::pair<std::string, std::string>>> combinations(
     const std::vector<Variation>& variations);
+
+struct SweepRequest {
+    std::filesystem::path scenePath;
+    scene::SceneOverrides base;          ///< applied to every still, before the variation
+    std::vector<Variation> variations;
+    std::filesystem::path sheet;         ///< the contact sheet; the stills go to <sheet>-stills/
+    std::filesystem::path templatesDir;
+    int threads = 0;
+    int columns = 0;                     ///< 0: the first variation's count
+};
+
+/// What the sweep is doing: a still started, its render's progress, or it finished.
+struct SweepEvent {
+    enum class Kind { Started, Rendering, Finished } kind = Kind::Started;
+    size_t index = 0, total = 0;  ///< 1-based still number, and how many
+    std::string label;            ///< "omega = 0.02, lambda = 1/16"
+    const ProgressEvent* render = nullptr;   ///< Rendering
+    const JobOutcome* outcome = nullptr;     ///< Finished
+    const Diagnostics* diags = nullptr;      ///< Finished: the still's warnings (or errors)
+};
+
+struct SweepResult {
+    JobStatus status = JobStatus::Ok;  ///< of the first still that failed, else Ok
+    std::vector<Tile> tiles;
+    std::string sheetMessage;  ///< "" or writeContactSheet's message ("warning: ..." is not an error)
+    bool sheetWritten = false;
+};
+
+/// Renders one still per combination (stopping at the first that fails: its
+/// diagnostics come with its Finished event), then writes the contact sheet.
+SweepResult runSweep(const SweepRequest& request, const std::function<void(const SweepEvent&)>& onEvent);
 
 }  // namespace relief::figures

@@ -19,15 +19,7 @@ namespace relief::geo {
 using GeographicLib::GeographicErr;
 using GeographicLib::UTMUPS;
 
-std::string Frame::describe() const {
-    if (kind == scene::FrameKind::Utm)
-        return utmZone == 0 ? fmt::format("UPS {}", northp ? "north" : "south")
-                            : fmt::format("UTM zone {}{}", utmZone, northp ? "N" : "S");
-    return fmt::format("local tangent plane at lat {} lon {}", formatShortest(originLatDeg),
-                       formatShortest(originLonDeg));
-}
-
-std::optional<Frame> chooseFrame(const scene::SceneDesc& scene,
+std::optional<Frame> chooseFrame(const scene::FrameSpec& spec,
                                  const std::vector<GeoSample>& samples, Diagnostics& diags) {
     double latMin = 90, latMax = -90, lonMin = 180, lonMax = -180;
     for (const auto& s : samples) {
@@ -39,24 +31,24 @@ std::optional<Frame> chooseFrame(const scene::SceneDesc& scene,
     const double latC = 0.5 * (latMin + latMax);
     const double lonC = 0.5 * (lonMin + lonMax);
     Frame f;
-    f.kind = scene.frame;
+    f.kind = spec.kind;
     if (f.kind == scene::FrameKind::Local) {
         f.originLatDeg = latC;
         f.originLonDeg = lonC;
         return f;
     }
-    if (scene.utmZone == "auto") {
+    if (spec.utmZone == "auto") {
         f.utmZone = UTMUPS::StandardZone(latC, lonC);
         f.northp = latC >= 0;
         return f;
     }
     try {
-        UTMUPS::DecodeZone(scene.utmZone, f.utmZone, f.northp);
+        UTMUPS::DecodeZone(spec.utmZone, f.utmZone, f.northp);
     } catch (const GeographicErr&) {
-        diags.error(scene.utmZoneLoc,
+        diags.error(spec.locs.at("frame.zone"),
                     fmt::format("frame.zone = \"{}\" is not a UTM zone; write a number 1-60 and "
                                 "a hemisphere, e.g. \"60S\", or \"auto\"",
-                                scene.utmZone));
+                                spec.utmZone));
         return std::nullopt;
     }
     return f;
@@ -162,9 +154,10 @@ constexpr double kNoData = -1.0e30;
 
 }  // namespace
 
-std::optional<ControlNet> gridSamples(const scene::SceneDesc& scene, const Frame& frame,
-                                      const std::vector<FramePoint>& points, Diagnostics& diags) {
-    const std::string csv = scene.samplesPathAsWritten;
+std::optional<ControlNet> gridSamples(const scene::NetSpec& spec, const std::string& samplesName,
+                                      const Frame& frame, const std::vector<FramePoint>& points,
+                                      Diagnostics& diags) {
+    const std::string& csv = samplesName;
     if (points.size() < 4) {
         diags.error({csv, 0, 0}, fmt::format("only {} distinct sample point(s); at least 4 are "
                                              "needed to build a surface",
@@ -179,26 +172,26 @@ std::optional<ControlNet> gridSamples(const scene::SceneDesc& scene, const Frame
         xmin = std::min(xmin, fp.p.x), xmax = std::max(xmax, fp.p.x);
         ymin = std::min(ymin, fp.p.y), ymax = std::max(ymax, fp.p.y);
     }
-    if (scene.extentM) {
-        const auto& e = *scene.extentM;
+    if (spec.extentM) {
+        const auto& e = *spec.extentM;
         xmin = e[0], ymin = e[1], xmax = e[2], ymax = e[3];
     }
     const double width = xmax - xmin, height = ymax - ymin;
-    int rows = scene.netRows, cols = scene.netCols;
-    if (scene.netSpacingM > 0) {
+    int rows = spec.rows, cols = spec.cols;
+    if (spec.spacingM > 0) {
         // The largest net with this spacing inside the extent, centred in it.
-        cols = static_cast<int>(std::floor(width / scene.netSpacingM + 1e-9)) + 1;
-        rows = static_cast<int>(std::floor(height / scene.netSpacingM + 1e-9)) + 1;
+        cols = static_cast<int>(std::floor(width / spec.spacingM + 1e-9)) + 1;
+        rows = static_cast<int>(std::floor(height / spec.spacingM + 1e-9)) + 1;
         if (rows < 4 || cols < 4) {
-            diags.error(scene.netLoc,
+            diags.error(spec.locs.at("net"),
                         fmt::format("net.spacing_m = {} m gives only {} x {} nodes over the "
                                     "{} x {} m extent; at least 4 x 4 are needed: use a smaller "
                                     "spacing",
-                                    formatShortest(scene.netSpacingM), rows, cols,
+                                    formatShortest(spec.spacingM), rows, cols,
                                     formatShortest(width), formatShortest(height)));
             return std::nullopt;
         }
-        net.dx = net.dy = scene.netSpacingM;
+        net.dx = net.dy = spec.spacingM;
         net.x0 = xmin + 0.5 * (width - (cols - 1) * net.dx);
         net.y0 = ymin + 0.5 * (height - (rows - 1) * net.dy);
     } else {
@@ -219,7 +212,7 @@ std::optional<ControlNet> gridSamples(const scene::SceneDesc& scene, const Frame
     }
     const std::string noData = fmt::format("{}", kNoData);
     std::string algorithm;
-    switch (scene.gridding) {
+    switch (spec.gridding) {
         case scene::Gridding::Linear: algorithm = "linear:radius=0:nodata=" + noData; break;
         case scene::Gridding::InverseDistance:
             algorithm = "invdist:power=2:smoothing=0:nodata=" + noData;
@@ -256,13 +249,14 @@ std::optional<ControlNet> gridSamples(const scene::SceneDesc& scene, const Frame
     return net;
 }
 
-std::optional<ControlNet> normalize(const scene::SceneDesc& scene,
+std::optional<ControlNet> normalize(const scene::FrameSpec& frameSpec, const scene::NetSpec& net,
+                                    const std::string& samplesName,
                                     const std::vector<GeoSample>& samples, Diagnostics& diags) {
-    auto frame = chooseFrame(scene, samples, diags);
+    auto frame = chooseFrame(frameSpec, samples, diags);
     if (!frame) return std::nullopt;
     auto points = projectSamples(*frame, samples, diags);
     if (diags.hasErrors()) return std::nullopt;
-    return gridSamples(scene, *frame, points, diags);
+    return gridSamples(net, samplesName, *frame, points, diags);
 }
 
 std::string netToCsv(const ControlNet& net) {

@@ -1,6 +1,6 @@
 #pragma once
-// Stage 2 of 5. Input: SceneDesc and its samples (WGS84 lon/lat/elev).
-// Output: ControlNet, a rectangular lattice in a projected frame (metres,
+// Stage 2 of 5. Input: FrameSpec, NetSpec and the samples (WGS84
+// lon/lat/elev, geo/samples.h). Output: ControlNet, a GeoGrid (metres,
 // x = east, y = north, z = up) ready for subdivision.
 #include <optional>
 #include <string>
@@ -9,19 +9,10 @@
 #include "core/diagnostics.h"
 #include "core/types.h"
 #include "geo/samples.h"
-#include "scene/scene_desc.h"
+#include "geo/geo_grid.h"
+#include "scene/scene_spec.h"
 
 namespace relief::geo {
-
-/// The projected frame the net lives in.
-struct Frame {
-    scene::FrameKind kind = scene::FrameKind::Utm;
-    int utmZone = 0;           ///< 1..60 (0 = UPS), for Utm
-    bool northp = true;        ///< hemisphere, for Utm
-    double originLatDeg = 0;   ///< tangent point, for Local
-    double originLonDeg = 0;
-    std::string describe() const;  ///< e.g. "UTM zone 60S" or "local tangent plane at ..."
-};
 
 /// A point already in the frame (metres), with the CSV line it came from.
 struct FramePoint {
@@ -29,11 +20,8 @@ struct FramePoint {
     SourceLoc loc;
 };
 
-struct ControlNet {
-    Frame frame;
-    Grid grid;          ///< rows x cols; row 0 south, column 0 west; z in metres
-    double x0 = 0, y0 = 0;  ///< position of node (0, 0) in the frame, metres
-    double dx = 0, dy = 0;  ///< node spacing, metres
+/// The control net: the samples gridded onto a GeoGrid, and how.
+struct ControlNet : GeoGrid {
     size_t sampleCount = 0;
     size_t filledOutsideHull = 0;  ///< nodes set by the nearest-sample fill (linear gridding)
 };
@@ -47,7 +35,7 @@ bool geodeticToFrame(const Frame& frame, double latDeg, double lonDeg, double he
 
 /// Chooses the frame for these samples (UTM zone of their centre, unless the
 /// scene forces one; or the local tangent plane at their centre).
-std::optional<Frame> chooseFrame(const scene::SceneDesc& scene,
+std::optional<Frame> chooseFrame(const scene::FrameSpec& spec,
                                  const std::vector<GeoSample>& samples, Diagnostics& diags);
 
 /// Projects samples into the frame with GeographicLib. UTM: x = easting,
@@ -60,11 +48,14 @@ std::vector<FramePoint> projectSamples(const Frame& frame, const std::vector<Geo
 /// Grids the projected samples onto the rectangular net with GDAL's
 /// GDALGridCreate. Linear (Delaunay) interpolation leaves nodes outside the
 /// samples' convex hull empty; those are filled with the nearest sample.
-std::optional<ControlNet> gridSamples(const scene::SceneDesc& scene, const Frame& frame,
-                                      const std::vector<FramePoint>& points, Diagnostics& diags);
+/// `samplesName` names the samples in messages.
+std::optional<ControlNet> gridSamples(const scene::NetSpec& spec, const std::string& samplesName,
+                                      const Frame& frame, const std::vector<FramePoint>& points,
+                                      Diagnostics& diags);
 
 /// Whole stage: chooseFrame, projectSamples, gridSamples.
-std::optional<ControlNet> normalize(const scene::SceneDesc& scene,
+std::optional<ControlNet> normalize(const scene::FrameSpec& frame, const scene::NetSpec& net,
+                                    const std::string& samplesName,
                                     const std::vector<GeoSample>& samples, Diagnostics& diags);
 
 /// The net as CSV `x,y,z` (metres in the frame, row 0 south first).

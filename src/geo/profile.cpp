@@ -31,17 +31,20 @@ std::vector<ProfilePoint> geodesicProfile(const Frame& frame, double lat1, doubl
     return out;
 }
 
-std::optional<double> sampleLattice(const Grid& grid, double x0, double y0, double dx, double dy,
-                                    double x, double y) {
-    const double u = (x - x0) / dx, v = (y - y0) / dy;
-    const double eps = 1e-9;
-    if (u < -eps || v < -eps || u > grid.cols - 1 + eps || v > grid.rows - 1 + eps) return std::nullopt;
-    const int c = std::clamp(static_cast<int>(std::floor(u)), 0, grid.cols - 2);
-    const int r = std::clamp(static_cast<int>(std::floor(v)), 0, grid.rows - 2);
-    const double fu = std::clamp(u - c, 0.0, 1.0), fv = std::clamp(v - r, 0.0, 1.0);
-    const double z00 = grid.at(r, c).z, z01 = grid.at(r, c + 1).z, z10 = grid.at(r + 1, c).z,
-                 z11 = grid.at(r + 1, c + 1).z;
-    return (1 - fv) * ((1 - fu) * z00 + fu * z01) + fv * ((1 - fu) * z10 + fu * z11);
+std::optional<std::vector<double>> heightsAlong(const GeoGrid& grid,
+                                                const std::vector<ProfilePoint>& profile,
+                                                size_t& outside) {
+    std::vector<double> z;
+    z.reserve(profile.size());
+    for (size_t i = 0; i < profile.size(); ++i) {
+        const auto h = grid.sample(profile[i].x, profile[i].y);
+        if (!h) {
+            outside = i;
+            return std::nullopt;
+        }
+        z.push_back(*h);
+    }
+    return z;
 }
 
 }  // namespace relief::geo

@@ -5,6 +5,7 @@
 
 #include "core/diagnostics.h"
 #include "core/types.h"
+#include "geo/geo_grid.h"
 #include "geo/normalize.h"
 
 namespace relief::geo {
@@ -21,9 +22,11 @@ struct ProfilePoint {
 std::vector<ProfilePoint> geodesicProfile(const Frame& frame, double lat1, double lon1, double lat2,
                                           double lon2, int count);
 
-/// Height of a regular lattice (node (r, c) at x0 + c dx, y0 + r dy) at (x, y)
-/// by bilinear interpolation; nullopt outside it.
-std::optional<double> sampleLattice(const Grid& grid, double x0, double y0, double dx, double dy,
-                                    double x, double y);
+/// The heights of `grid` at each point of `profile` (bilinear, GeoGrid::sample),
+/// the profile already in the grid's frame. nullopt when a point is outside
+/// the grid; `outside` is then its index.
+std::optional<std::vector<double>> heightsAlong(const GeoGrid& grid,
+                                                const std::vector<ProfilePoint>& profile,
+                                                size_t& outside);
 
 }  // namespace relief::geo

@@ -7,6 +7,8 @@
 #include <GeographicLib/Geodesic.hpp>
 #include <GeographicLib/GeodesicLine.hpp>
 
+#include "core/number_format.h"
+#include "emit/svg.h"
 #include "geo/profile.h"
 
 namespace relief::measure {
@@ -15,9 +17,7 @@ namespace {
 
 using Box = curves::Bounds2;
 
-Box latticeBox(const Lattice& l) {
-    return {l.x0, l.y0, l.x0 + (l.grid->cols - 1) * l.dx, l.y0 + (l.grid->rows - 1) * l.dy};
-}
+Box gridBox(const geo::GeoGrid& g) { return {g.x0, g.y0, g.xMax(), g.yMax()}; }
 
 bool sameFrame(const geo::Frame& p, const geo::Frame& q) {
     return p.kind == q.kind && (p.kind == scene::FrameKind::Utm
@@ -43,9 +43,9 @@ void geodetic(const geo::Frame& frame, curves::Point2 p, double z, double& lat, 
 // The part of a's box that b covers: b's corners carried into a's frame,
 // where b's rectangle may be turned a little (another frame); the box inside it.
 Box overlap(const FramedSurface& a, const FramedSurface& b) {
-    const Box ba = latticeBox(a.lattice), bb = latticeBox(b.lattice);
-    const auto sw = carry(b.frame, a.frame, {bb.xmin, bb.ymin}, 0.0), se = carry(b.frame, a.frame, {bb.xmax, bb.ymin}, 0.0);
-    const auto nw = carry(b.frame, a.frame, {bb.xmin, bb.ymax}, 0.0), ne = carry(b.frame, a.frame, {bb.xmax, bb.ymax}, 0.0);
+    const Box ba = gridBox(*a.grid), bb = gridBox(*b.grid);
+    const auto sw = carry(b.frame(), a.frame(), {bb.xmin, bb.ymin}, 0.0), se = carry(b.frame(), a.frame(), {bb.xmax, bb.ymin}, 0.0);
+    const auto nw = carry(b.frame(), a.frame(), {bb.xmin, bb.ymax}, 0.0), ne = carry(b.frame(), a.frame(), {bb.xmax, bb.ymax}, 0.0);
     return {std::max({ba.xmin, sw.x, nw.x}), std::max({ba.ymin, sw.y, se.y}),
             std::min({ba.xmax, se.x, ne.x}), std::min({ba.ymax, nw.y, ne.y})};
 }
@@ -70,8 +70,8 @@ std::vector<ProfileLine> defaultProfiles(const FramedSurface& a, const FramedSur
     auto add = [&](const char* name, double x1, double y1, double x2, double y2) {
         ProfileLine l{name};
         double h;
-        if (geo::frameToGeodetic(a.frame, {x1, y1, 0}, l.lat1, l.lon1, h) &&
-            geo::frameToGeodetic(a.frame, {x2, y2, 0}, l.lat2, l.lon2, h))
+        if (geo::frameToGeodetic(a.frame(), {x1, y1, 0}, l.lat1, l.lon1, h) &&
+            geo::frameToGeodetic(a.frame(), {x2, y2, 0}, l.lat2, l.lon2, h))
             out.push_back(l);
     };
     add("west-east", o.xmin + ix, cy, o.xmax - ix, cy);
@@ -85,8 +85,8 @@ std::vector<double> defaultLevels(const FramedSurface& a, const FramedSurface& b
         for (const auto& p : g.points) lo = std::min(lo, p.z), hi = std::max(hi, p.z);
         return std::pair{lo, hi};
     };
-    const auto [loA, hiA] = range(*a.lattice.grid);
-    const auto [loB, hiB] = range(*b.lattice.grid);
+    const auto [loA, hiA] = range(a.grid->grid);
+    const auto [loB, hiB] = range(b.grid->grid);
     return niceLevels(std::max(loA, loB), std::min(hiA, hiB), 5);
 }
 
@@ -107,20 +107,19 @@ std::optional<GeometryComparison> compareGeometry(const FramedSurface& a, const 
         ProfileComparison pc;
         pc.line = line;
         for (const FramedSurface* s : {&a, &b}) {
-            const auto pts = geo::geodesicProfile(s->frame, line.lat1, line.lon1, line.lat2, line.lon2, samples);
+            const auto pts = geo::geodesicProfile(s->frame(), line.lat1, line.lon1, line.lat2, line.lon2, samples);
             auto& curve = s == &a ? pc.a : pc.b;
-            for (const auto& p : pts) {
-                const Lattice& l = s->lattice;
-                const auto z = geo::sampleLattice(*l.grid, l.x0, l.y0, l.dx, l.dy, p.x, p.y);
-                if (!z) {
-                    diags.error({s->name, 0, 0},
-                                fmt::format("profile {} leaves surface {} {:.0f} m from its start "
-                                            "(lat {:.6f}, lon {:.6f}); choose points both surfaces cover",
-                                            line.name, s == &a ? "a" : "b", p.distanceM, p.latDeg, p.lonDeg));
-                    return std::nullopt;
-                }
-                curve.push_back({p.distanceM, *z});
+            size_t outside = 0;
+            const auto z = geo::heightsAlong(*s->grid, pts, outside);
+            if (!z) {
+                const auto& p = pts[outside];
+                diags.error({s->name, 0, 0},
+                            fmt::format("profile {} leaves surface {} {:.0f} m from its start "
+                                        "(lat {:.6f}, lon {:.6f}); choose points both surfaces cover",
+                                        line.name, s == &a ? "a" : "b", p.distanceM, p.latDeg, p.lonDeg));
+                return std::nullopt;
             }
+            for (size_t i = 0; i < pts.size(); ++i) curve.push_back({pts[i].distanceM, (*z)[i]});
             pc.lengthM = pts.back().distanceM;
             if (s == &a)
                 for (const auto& p : pts) pc.path.push_back({p.x, p.y});
@@ -134,17 +133,17 @@ std::optional<GeometryComparison> compareGeometry(const FramedSurface& a, const 
     }
 
     std::string error;
-    const auto linesA = contourLines(a.lattice, levels, error);
-    auto linesB = error.empty() ? contourLines(b.lattice, levels, error) : linesA;
+    const auto linesA = contourLines(*a.grid, levels, error);
+    auto linesB = error.empty() ? contourLines(*b.grid, levels, error) : linesA;
     if (!error.empty()) {
         diags.error({a.name, 0, 0}, "contour lines: " + error);
         return std::nullopt;
     }
-    if (!sameFrame(a.frame, b.frame))
+    if (!sameFrame(a.frame(), b.frame()))
         for (auto& set : linesB)
             for (auto& curve : set)
                 for (auto& seg : curve.segments)
-                    for (auto& p : seg.control) p = carry(b.frame, a.frame, p, levels[&set - linesB.data()]);
+                    for (auto& p : seg.control) p = carry(b.frame(), a.frame(), p, levels[&set - linesB.data()]);
     // Only where both surfaces are: a line outside the other's area has nothing to match.
     for (size_t i = 0; i < levels.size(); ++i) {
         ContourComparison cc;
@@ -158,10 +157,54 @@ std::optional<GeometryComparison> compareGeometry(const FramedSurface& a, const 
         cc.b = std::move(lb);
         cc.where = locate(cc.h);
         if (std::isfinite(cc.h.H))
-            geodetic(a.frame, cc.where.point, cc.level, cc.where.latDeg, cc.where.lonDeg);
+            geodetic(a.frame(), cc.where.point, cc.level, cc.where.latDeg, cc.where.lonDeg);
         out.contours.push_back(std::move(cc));
     }
     return out;
 }
+
+std::string formatDistance(double m) {
+    if (!std::isfinite(m)) return "infinite";
+    return std::fabs(m) >= 10000 ? fmt::format("{:.2f} km", m / 1000) : fmt::format("{:.3f} m", m);
+}
+
+std::string comparisonMapSvg(const GeometryComparison& r, const std::string& a,
+                             const std::string& b, const std::string& frame) {
+    using emit::SvgCurve;
+    auto lines = [](const curves::CurveSet& set) {
+        std::vector<SvgCurve> out;
+        for (const auto& c : set) {
+            SvgCurve s{"", {}, c.closed};
+            for (const auto& seg : c.segments) s.points.push_back(seg.control.front());
+            if (!c.segments.empty() && !c.closed) s.points.push_back(c.segments.back().control.back());
+            out.push_back(std::move(s));
+        }
+        return out;
+    };
+    // One colour per level; a solid, b dashed.
+    static constexpr const char* kLevelColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd",
+                                                    "#ff7f0e", "#8c564b", "#e377c2", "#17becf"};
+    std::vector<emit::SvgLayer> layers{{"profiles", {}, "#888", true}};
+    std::vector<emit::SvgMarker> markers;
+    std::string levels;
+    for (size_t i = 0; i < r.contours.size(); ++i) {
+        const auto& c = r.contours[i];
+        const std::string level = formatShortest(c.level) + " m";
+        layers.push_back({level + ", a", lines(c.a), kLevelColours[i % 8], false});
+        layers.push_back({level + ", b", lines(c.b), kLevelColours[i % 8], true});
+        levels += (levels.empty() ? "" : ", ") + formatShortest(c.level);
+        if (std::isfinite(c.h.H) && c.h.H > 0)
+            markers.push_back({c.where.point, c.where.foot, fmt::format("{}: H = {}", level, formatDistance(c.h.H))});
+    }
+    auto& profiles = layers.front();
+    for (const auto& p : r.profiles) profiles.lines.push_back({"", p.path, false});
+    emit::SvgAxes axes{true, 1, fmt::format("x (m, {})", frame), "y (m)"};
+    if (layers.size() > 1) layers[1].label += " (" + a + ")";
+    if (layers.size() > 2) layers[2].label += " (" + b + ")";
+    return emit::plotSvg(fmt::format("contour lines at {} m (a solid, b dashed); circles: where H is reached",
+                                             levels),
+                                 layers, markers, axes);
+}
+
 
 }  // namespace relief::measure

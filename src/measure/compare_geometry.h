@@ -14,11 +14,11 @@
 
 namespace relief::measure {
 
-/// One refined surface and the frame it lives in.
+/// One refined surface (its grid carries its frame), named for messages.
 struct FramedSurface {
-    std::string name;  ///< for messages ("a", or the scene file)
-    geo::Frame frame;
-    Lattice lattice;
+    std::string name;  ///< "a", or the scene file
+    const geo::GeoGrid* grid = nullptr;
+    const geo::Frame& frame() const { return grid->frame; }
 };
 
 /// A geodesic between two points, WGS84 degrees.
@@ -72,5 +72,14 @@ std::optional<GeometryComparison> compareGeometry(const FramedSurface& a, const 
                                                   const std::vector<ProfileLine>& profiles,
                                                   const std::vector<double>& levels, int samples,
                                                   Diagnostics& diags);
+
+/// "1.234 m", "12.35 km" (from 10 km), or "infinite".
+std::string formatDistance(double m);
+
+/// A map (SVG) of a comparison: both surfaces' contour lines in a's frame
+/// (one colour per level, a solid, b dashed), the profiles, and a marker from
+/// each level's witness to its nearest point on the other surface.
+std::string comparisonMapSvg(const GeometryComparison& comparison, const std::string& nameA,
+                             const std::string& nameB, const std::string& frame);
 
 }  // namespace relief::measure

@@ -20,12 +20,12 @@ using Dataset = std::unique_ptr<void, DatasetCloser>;
 
 }  // namespace
 
-std::vector<curves::CurveSet> contourLines(const Lattice& lat, const std::vector<double>& levels,
+std::vector<curves::CurveSet> contourLines(const geo::GeoGrid& lat, const std::vector<double>& levels,
                                            std::string& error) {
     std::vector<curves::CurveSet> out(levels.size());
     if (levels.empty()) return out;
     GDALAllRegister();
-    const Grid& g = *lat.grid;
+    const Grid& g = lat.grid;
     // The raster: GDAL's row 0 is north, so rows are flipped; the pixel
     // centres are the nodes.
     Dataset raster(GDALCreate(GDALGetDriverByName("MEM"), "", g.cols, g.rows, 1, GDT_Float64, nullptr));

@@ -3,24 +3,17 @@
 #include <string>
 #include <vector>
 
-#include "core/types.h"
 #include "curves/hausdorff.h"
+#include "geo/geo_grid.h"
 
 namespace relief::measure {
-
-/// A regular lattice in a frame: node (r, c) at (x0 + c dx, y0 + r dy),
-/// row 0 south; heights in grid.at(r, c).z.
-struct Lattice {
-    const Grid* grid = nullptr;
-    double x0 = 0, y0 = 0, dx = 1, dy = 1;
-};
 
 /// The contour lines at each level (GDALContourGenerate on an in-memory
 /// raster whose pixel centres are the nodes; marching squares, linear along
 /// cell edges), in the frame's metres: one polyline per line, closed when it
 /// closes on itself. result[i] holds levels[i]'s lines (empty when the
 /// surface does not reach it). `error` is set when GDAL fails.
-std::vector<curves::CurveSet> contourLines(const Lattice& lattice, const std::vector<double>& levels,
+std::vector<curves::CurveSet> contourLines(const geo::GeoGrid& grid, const std::vector<double>& levels,
                                            std::string& error);
 
 /// The parts of polylines inside the box [xmin, xmax] x [ymin, ymax] (each

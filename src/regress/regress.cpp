@@ -156,14 +156,14 @@ CaseResult runCase(const TestCase& c, const RunOptions& o, int povThreads) {
     const auto t0 = std::chrono::steady_clock::now();
     const fs::path images = o.reportDir / "images";
     r.newImage = images / (c.name + ".new.png");
-    RenderJob job;
+    SceneJob job;
     job.scenePath = c.scene;
     job.overrides = {{"render.width", std::to_string(c.width)}, {"render.height", std::to_string(c.height)}};
-    job.png = r.newImage;
+    job.output = r.newImage;
     job.templatesDir = o.templatesDir;
     job.threads = povThreads;
     Diagnostics diags;
-    const RenderOutcome outcome = renderSceneFile(job, diags, nullptr);
+    const JobOutcome outcome = runSceneJob(job, diags, nullptr);
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (outcome.status != JobStatus::Ok) {
         r.status = CaseStatus::Error;

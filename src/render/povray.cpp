@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
+#include <cstdio>
 #include <deque>
 #include <regex>
 
@@ -46,6 +47,15 @@ public:
 private:
     std::filesystem::path dir_;
 };
+
+// "Rendered 5120 of 480000 pixels (1%)" -> 1; -1 without a percentage.
+int tracedPercent(const std::string& line) {
+    const auto open = line.rfind('(');
+    if (open == std::string::npos) return -1;
+    int pct = -1;
+    if (std::sscanf(line.c_str() + open, "(%d%%)", &pct) != 1) return -1;
+    return pct;
+}
 
 double parseSeconds(const std::string& log, const char* label) {
     // "  Parse Time:       0 hours  0 minutes  1 seconds (1.234 seconds)"
@@ -176,12 +186,15 @@ RenderResult renderPov(const RenderRequest& req, const ProgressFn& progress) {
             }
             if (current.empty()) continue;
             if (progress) {
-                if (current.rfind("Rendered ", 0) == 0 || std::regex_search(current, parsing))
-                    progress(current);
+                using Phase = RenderProgress::Phase;
+                if (current.rfind("Rendered ", 0) == 0)
+                    progress({Phase::Tracing, current, tracedPercent(current)});
+                else if (std::regex_search(current, parsing))
+                    progress({Phase::Parsing, current, -1});
                 else if (current.find("[Parsing...]") != std::string::npos)
-                    progress("parsing the scene");
+                    progress({Phase::Parsing, "parsing the scene", -1});
                 else if (current.find("[Rendering...]") != std::string::npos)
-                    progress("tracing");
+                    progress({Phase::Tracing, "tracing", -1});
             }
             lastLines.push_back(current);
             if (lastLines.size() > 200) lastLines.pop_front();

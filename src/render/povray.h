@@ -28,8 +28,13 @@ struct RenderResult {
     std::vector<std::string> command;  ///< the povray command line, for the record
 };
 
-/// A progress line such as "Parsing 120K tokens" or "Rendered 5120 of 480000 pixels (1%)".
-using ProgressFn = std::function<void(const std::string&)>;
+/// What POV-Ray reports as it goes.
+struct RenderProgress {
+    enum class Phase { Parsing, Tracing } phase = Phase::Parsing;
+    std::string text;  ///< e.g. "parsing the scene", "Parsing 120K tokens", "Rendered 5120 of 480000 pixels (1%)"
+    int percent = -1;  ///< of the pixels traced, 0..100; -1 when POV-Ray gives none
+};
+using ProgressFn = std::function<void(const RenderProgress&)>;
 
 /// Runs povray. The PNG is written without its render date, so the same scene
 /// gives the same bytes; it appears at `png` only when the render succeeded.

@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-#include "scene/scene_desc.h"
+#include "scene/scene_spec.h"
 
 namespace relief::scene {
 

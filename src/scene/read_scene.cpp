@@ -18,6 +18,13 @@
 
 namespace relief::scene {
 
+SourceLoc KeyLocations::at(const std::string& qualifiedKey) const {
+    if (auto k = keys.find(qualifiedKey); k != keys.end()) return k->second;
+    const auto dot = qualifiedKey.find('.');
+    if (auto sec = sections.find(qualifiedKey.substr(0, dot)); sec != sections.end()) return sec->second;
+    return {file, 0, 0};
+}
+
 namespace {
 
 SourceLoc locOf(const std::string& file, const toml::source_region& r) {
@@ -46,6 +53,14 @@ public:
             Diagnostics& diags, SourceLoc sectionLoc)
         : table_(table), name_(std::move(name)), file_(file), diags_(diags),
           sectionLoc_(std::move(sectionLoc)) {}
+
+    /// Records the section's and every key's location (the value's) in `locs`.
+    void recordLocations(KeyLocations& locs) const {
+        locs.file = file_;
+        locs.sections[name_] = sectionLoc_;
+        if (!table_) return;
+        for (auto&& [k, v] : *table_) locs.keys[qualified(std::string(k.str()))] = locOf(file_, v.source());
+    }
 
     bool present() const { return table_ != nullptr; }
     const SourceLoc& loc() const { return sectionLoc_; }
@@ -228,7 +243,7 @@ bool applyOverrides(toml::table& root, const SceneOverrides& overrides, Diagnost
 
 }  // namespace
 
-std::optional<SceneDesc> readScene(const std::filesystem::path& path, Diagnostics& diags,
+std::optional<SceneSpec> readScene(const std::filesystem::path& path, Diagnostics& diags,
                                    const SceneOverrides& overrides) {
     const std::string file = path.string();
     std::string text;
@@ -250,7 +265,7 @@ std::optional<SceneDesc> readScene(const std::filesystem::path& path, Diagnostic
 
     if (!applyOverrides(root, overrides, diags)) return std::nullopt;
 
-    SceneDesc scene;
+    SceneSpec scene;
     scene.sceneFile = path;
     scene.overrides = overrides;
     {
@@ -274,10 +289,16 @@ std::optional<SceneDesc> readScene(const std::filesystem::path& path, Diagnostic
         SourceLoc loc = t ? locOf(file, t->source()) : SourceLoc{file, 0, 0};
         return Section(t, name, file, diags, loc);
     };
+    // A section whose key locations go to `locs`.
+    auto sectionInto = [&](const std::string& name, KeyLocations& locs) {
+        Section s = section(name);
+        s.recordLocations(locs);
+        return s;
+    };
 
     // [samples]
     {
-        Section s = section("samples");
+        Section s = sectionInto("samples", scene.samples.locs);
         if (!s.present()) {
             diags.error({file, 0, 0}, "missing section [samples]: give path = \"data.csv\" "
                                       "(columns lon,lat,elev)");
@@ -285,14 +306,13 @@ std::optional<SceneDesc> readScene(const std::filesystem::path& path, Diagnostic
             s.require("path", "the CSV file of samples (columns lon,lat,elev), relative to the "
                               "scene file");
             if (auto p = s.string("path")) {
-                scene.samplesPathAsWritten = *p;
-                scene.samplesPath = path.parent_path() / *p;
-                scene.samplesLoc = s.keyLoc("path");
+                scene.samples.pathAsWritten = *p;
+                scene.samples.path = path.parent_path() / *p;
                 std::error_code ec;
-                if (!std::filesystem::is_regular_file(scene.samplesPath, ec))
+                if (!std::filesystem::is_regular_file(scene.samples.path, ec))
                     s.error("path", fmt::format("samples.path: file \"{}\" not found (looked "
                                                 "for {}; the path is relative to the scene file)",
-                                                *p, scene.samplesPath.string()));
+                                                *p, scene.samples.path.string()));
             }
         }
         s.finish();
@@ -300,13 +320,12 @@ std::optional<SceneDesc> readScene(const std::filesystem::path& path, Diagnostic
 
     // [frame]
     {
-        Section s = section("frame");
+        Section s = sectionInto("frame", scene.frame.locs);
         if (auto k = s.choice("kind", {"utm", "local"}))
-            scene.frame = *k == "utm" ? FrameKind::Utm : FrameKind::Local;
+            scene.frame.kind = *k == "utm" ? FrameKind::Utm : FrameKind::Local;
         if (auto z = s.string("zone")) {
-            scene.utmZone = *z;
-            scene.utmZoneLoc = s.keyLoc("zone");
-            if (scene.frame == FrameKind::Local)
+            scene.frame.utmZone = *z;
+            if (scene.frame.kind == FrameKind::Local)
                 s.error("zone", "frame.zone is only used with kind = \"utm\"; remove it");
         }
         s.finish();
@@ -314,24 +333,23 @@ std::optional<SceneDesc> readScene(const std::filesystem::path& path, Diagnostic
 
     // [net]
     {
-        Section s = section("net");
-        scene.netLoc = s.loc();
+        Section s = sectionInto("net", scene.net.locs);
         auto rows = s.integer("rows", 4, 100000, "nodes");
         auto cols = s.integer("cols", 4, 100000, "nodes");
         auto spacing = s.number("spacing_m", 0, 1e7, "m", true);
         if (spacing && (s.find("rows") || s.find("cols")))
             s.error("spacing_m", "give either net.spacing_m or net.rows and net.cols, not both");
         else if (spacing)
-            scene.netSpacingM = *spacing;
+            scene.net.spacingM = *spacing;
         else if (rows && cols) {
-            scene.netRows = *rows;
-            scene.netCols = *cols;
+            scene.net.rows = *rows;
+            scene.net.cols = *cols;
         } else if (s.find("rows") || s.find("cols")) {
             if (!s.find("rows") || !s.find("cols"))
                 diags.error(s.loc(), "net: give both rows and cols (or spacing_m alone)");
         } else {
-            scene.netRows = 64;  // default: 64 x 64 nodes over the samples' extent
-            scene.netCols = 64;
+            scene.net.rows = 64;  // default: 64 x 64 nodes over the samples' extent
+            scene.net.cols = 64;
         }
         s.markKnown("extent_m");
         if (const toml::node* e = s.find("extent_m")) {
@@ -347,10 +365,10 @@ std::optional<SceneDesc> readScene(const std::filesystem::path& path, Diagnostic
             else if (!(ext[2] > ext[0] && ext[3] > ext[1]))
                 s.error("extent_m", "net.extent_m needs xmin < xmax and ymin < ymax (metres)");
             else
-                scene.extentM = ext;
+                scene.net.extentM = ext;
         }
         if (auto g = s.choice("gridding", {"linear", "invdist", "nearest"}))
-            scene.gridding = *g == "linear"    ? Gridding::Linear
+            scene.net.gridding = *g == "linear"    ? Gridding::Linear
                              : *g == "invdist" ? Gridding::InverseDistance
                                                : Gridding::Nearest;
         s.finish();
@@ -358,53 +376,46 @@ std::optional<SceneDesc> readScene(const std::filesystem::path& path, Diagnostic
 
     // [vertical]
     {
-        Section s = section("vertical");
+        Section s = sectionInto("vertical", scene.look.locs);
         if (auto e = s.number("exaggeration", 0, 100, "(unitless factor)", true))
-            scene.exaggeration = *e;
+            scene.look.exaggeration = *e;
         s.finish();
     }
 
     // [subdivision]: the scheme's own parameters are checked by the subdiv stage.
     {
-        Section s = section("subdivision");
-        if (auto n = s.string("scheme")) {
-            scene.scheme = *n;
-            scene.schemeLoc = s.keyLoc("scheme");
-        } else {
-            scene.schemeLoc = s.loc();
-            if (s.find("preset")) scene.scheme = "";  // the preset names the scheme
-        }
-        scene.depthLoc = s.keyLoc("depth");
+        SubdivisionSpec& sub = scene.subdivision;
+        SchemeSpec& scheme = sub.scheme;
+        Section s = sectionInto("subdivision", sub.locs);
+        if (auto n = s.string("scheme"))
+            scheme.name = *n;
+        else if (s.find("preset"))
+            scheme.name = "";  // the preset names the scheme
         if (const toml::node* d = s.find("depth"); d && d->value_exact<std::string>()) {
             s.markKnown("depth");
             if (*d->value_exact<std::string>() == "auto")
-                scene.depthAuto = true;
+                sub.depthAuto = true;
             else
                 s.error("depth", fmt::format("subdivision.depth must be an integer number of levels in "
                                              "[0, {}] or \"auto\" (with tolerance_m)", kMaxDepth));
         } else if (auto n = s.integer("depth", 0, kMaxDepth, "levels")) {
-            scene.depth = *n;
+            sub.depth = *n;
         }
-        scene.toleranceLoc = s.keyLoc("tolerance_m");
-        if (auto t = s.number("tolerance_m", 0, 1e6, "m", true)) scene.toleranceM = *t;
-        if (scene.depthAuto && scene.toleranceM <= 0 && !s.find("tolerance_m"))
+        if (auto t = s.number("tolerance_m", 0, 1e6, "m", true)) sub.toleranceM = *t;
+        if (sub.depthAuto && sub.toleranceM <= 0 && !s.find("tolerance_m"))
             s.error("depth", "subdivision.depth = \"auto\" needs subdivision.tolerance_m, the "
                              "largest change in metres one more level may make (e.g. "
                              "tolerance_m = 1)");
-        if (!scene.depthAuto && s.find("tolerance_m"))
-            diags.warning(scene.toleranceLoc, "subdivision.tolerance_m is ignored: it is used "
-                                              "only with depth = \"auto\"");
-        if (auto p = s.string("preset")) {
-            scene.preset = *p;
-            scene.presetLoc = s.keyLoc("preset");
-        }
-        if (auto b = s.boolean("allow_nonconvergent")) scene.allowNonconvergent = *b;
-        if (auto a = s.integer("arity", 2, 3, "(2 = binary, 3 = ternary)")) scene.maskArity = *a;
+        if (!sub.depthAuto && s.find("tolerance_m"))
+            diags.warning(s.keyLoc("tolerance_m"), "subdivision.tolerance_m is ignored: it is used "
+                                                   "only with depth = \"auto\"");
+        if (auto p = s.string("preset")) scheme.preset = *p;
+        if (auto b = s.boolean("allow_nonconvergent")) scheme.allowNonconvergent = *b;
+        if (auto a = s.integer("arity", 2, 3, "(2 = binary, 3 = ternary)")) scheme.maskArity = *a;
         if (auto f = s.integer("mask_first", -1000, 1000, "(exponent of the first coefficient)"))
-            scene.maskFirst = *f;
+            scheme.maskFirst = *f;
         s.markKnown("mask");
         if (const toml::node* m = s.find("mask")) {
-            scene.maskLoc = locOf(file, m->source());
             const toml::array* a = m->as_array();
             bool ok = a && !a->empty();
             for (size_t i = 0; ok && i < a->size(); ++i) {
@@ -412,17 +423,18 @@ std::optional<SceneDesc> readScene(const std::filesystem::path& path, Diagnostic
                 if (!v) {
                     if (auto str = (*a)[i].value_exact<std::string>()) v = parseFraction(*str);
                 }
-                if (v && std::isfinite(*v)) scene.mask.push_back(*v);
+                if (v && std::isfinite(*v)) scheme.mask.push_back(*v);
                 else ok = false;
             }
             if (!ok)
                 s.error("mask", "subdivision.mask must be a list of numbers or fractions (the "
                                 "coefficients a_k of the scheme's symbol)");
         }
-        const bool isMask = scene.scheme == "mask";
-        if (isMask && (scene.mask.empty() || scene.maskArity == 0) && !diags.hasErrors())
-            diags.error(scene.schemeLoc, "scheme = \"mask\" needs subdivision.arity (2 or 3) and "
-                                         "subdivision.mask = [a_k, ...]");
+        const bool isMask = scheme.name == "mask";
+        if (isMask && (scheme.mask.empty() || scheme.maskArity == 0) && !diags.hasErrors())
+            diags.error(sub.locs.at("subdivision.scheme"),
+                        "scheme = \"mask\" needs subdivision.arity (2 or 3) and "
+                        "subdivision.mask = [a_k, ...]");
         if (!isMask && (s.find("mask") || s.find("arity") || s.find("mask_first")))
             diags.error(s.keyLoc(s.find("mask") ? "mask" : s.find("arity") ? "arity" : "mask_first"),
                         "subdivision.mask, arity and mask_first are only used with scheme = \"mask\"");
@@ -434,6 +446,9 @@ std::optional<SceneDesc> readScene(const std::filesystem::path& path, Diagnostic
                     key == "arity" || key == "mask_first" || key == "allow_nonconvergent")
                     continue;
                 s.markKnown(key);
+                // A parameter is reported at its key, not its value: the value may be fine
+                // and the name wrong.
+                sub.locs.keys["subdivision." + key] = locOf(file, k.source());
                 std::optional<double> value;
                 if (auto i = v.value_exact<int64_t>()) value = static_cast<double>(*i);
                 else if (auto d = v.value_exact<double>()) value = *d;
@@ -445,34 +460,35 @@ std::optional<SceneDesc> readScene(const std::filesystem::path& path, Diagnostic
                                             key));
                     continue;
                 }
-                scene.schemeParams[key] = *value;
-                scene.schemeParamLocs[key] = locOf(file, k.source());
+                scheme.params[key] = *value;
             }
         }
+        scheme.locs = sub.locs;
         s.finish();
     }
 
     // [limits]
     {
-        Section s = section("limits");
-        if (auto v = s.number("max_triangles", 1, 1e10, "triangles")) scene.maxTriangles = *v;
-        if (auto v = s.number("max_sdl_mb", 0.001, 1e6, "MB")) scene.maxSdlMB = *v;
-        if (auto v = s.number("max_parse_s", 0.001, 1e6, "s")) scene.maxParseS = *v;
+        Section s = sectionInto("limits", scene.limits.locs);
+        if (auto v = s.number("max_triangles", 1, 1e10, "triangles")) scene.limits.maxTriangles = *v;
+        if (auto v = s.number("max_sdl_mb", 0.001, 1e6, "MB")) scene.limits.maxSdlMB = *v;
+        if (auto v = s.number("max_parse_s", 0.001, 1e6, "s")) scene.limits.maxParseS = *v;
         s.finish();
     }
 
     // [texture]
     {
-        Section s = section("texture");
+        Section s = sectionInto("texture", scene.look.locs);
+        ColorRamp& ramp = scene.look.ramp;
         std::vector<std::string> ramps = rampPresetNames();
         ramps.push_back("custom");
-        if (auto r = s.choice("ramp", ramps)) scene.ramp.preset = *r;
+        if (auto r = s.choice("ramp", ramps)) ramp.preset = *r;
         s.markKnown("stops");
         const toml::node* stopsNode = s.find("stops");
-        if (stopsNode && scene.ramp.preset != "custom") {
+        if (stopsNode && ramp.preset != "custom") {
             s.error("stops", "texture.stops is only used with ramp = \"custom\"; add "
                              "ramp = \"custom\" or remove the stops");
-        } else if (scene.ramp.preset == "custom") {
+        } else if (ramp.preset == "custom") {
             const toml::array* a = stopsNode ? stopsNode->as_array() : nullptr;
             if (!a || a->size() < 2) {
                 diags.error(stopsNode ? locOf(file, stopsNode->source()) : s.loc(),
@@ -494,13 +510,13 @@ std::optional<SceneDesc> readScene(const std::filesystem::path& path, Diagnostic
                         continue;
                     }
                     stop.elevM = *e;
-                    if (!scene.ramp.stops.empty() && stop.elevM <= scene.ramp.stops.back().elevM)
+                    if (!ramp.stops.empty() && stop.elevM <= ramp.stops.back().elevM)
                         diags.error(locOf(file, item.source()),
                                     fmt::format("texture.stops: elev_m = {} m must be above the "
                                                 "previous stop ({} m); list stops bottom to top",
                                                 formatShortest(stop.elevM),
-                                                formatShortest(scene.ramp.stops.back().elevM)));
-                    scene.ramp.stops.push_back(stop);
+                                                formatShortest(ramp.stops.back().elevM)));
+                    ramp.stops.push_back(stop);
                 }
             }
         }
@@ -509,40 +525,41 @@ std::optional<SceneDesc> readScene(const std::filesystem::path& path, Diagnostic
 
     // [lighting]
     {
-        Section s = section("lighting");
+        Section s = sectionInto("lighting", scene.look.locs);
         if (auto v = s.number("sun_azimuth_deg", 0, 360, "degrees (compass bearing)", false, true))
-            scene.sunAzimuthDeg = *v;
+            scene.look.sunAzimuthDeg = *v;
         if (auto v = s.number("sun_altitude_deg", 0, 90, "degrees", true))
-            scene.sunAltitudeDeg = *v;
+            scene.look.sunAltitudeDeg = *v;
         s.finish();
     }
 
     // [camera]
     {
-        Section s = section("camera");
+        Section s = sectionInto("camera", scene.look.locs);
+        CameraSpec& camera = scene.look.camera;
         if (auto v = s.number("azimuth_deg", 0, 360, "degrees (compass bearing)", false, true))
-            scene.cameraAzimuthDeg = *v;
+            camera.azimuthDeg = *v;
         if (auto v = s.number("elevation_deg", 0, 90, "degrees", true))
-            scene.cameraElevationDeg = *v;
-        if (auto v = s.number("distance_m", 0, 1e8, "m", true)) scene.cameraDistanceM = *v;
-        if (auto v = s.number("fov_deg", 1, 170, "degrees")) scene.fovDeg = *v;
+            camera.elevationDeg = *v;
+        if (auto v = s.number("distance_m", 0, 1e8, "m", true)) camera.distanceM = *v;
+        if (auto v = s.number("fov_deg", 1, 170, "degrees")) camera.fovDeg = *v;
         if (auto p = s.choice("projection", {"perspective", "orthographic"}))
-            scene.projection =
+            camera.projection =
                 *p == "perspective" ? Projection::Perspective : Projection::Orthographic;
         s.finish();
     }
 
     // [render]
     {
-        Section s = section("render");
-        if (auto v = s.integer("width", 16, 16384, "pixels")) scene.width = *v;
-        if (auto v = s.integer("height", 16, 16384, "pixels")) scene.height = *v;
-        if (auto v = s.boolean("antialias")) scene.antialias = *v;
+        Section s = sectionInto("render", scene.render.locs);
+        if (auto v = s.integer("width", 16, 16384, "pixels")) scene.render.width = *v;
+        if (auto v = s.integer("height", 16, 16384, "pixels")) scene.render.height = *v;
+        if (auto v = s.boolean("antialias")) scene.render.antialias = *v;
         if (auto v = s.string("output")) {
             if (v->size() < 5 || v->substr(v->size() - 4) != ".png")
                 s.error("output", fmt::format("render.output = \"{}\" must name a .png file", *v));
             else
-                scene.output = *v;
+                scene.render.output = *v;
         }
         s.finish();
     }

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "core/diagnostics.h"
-#include "scene/scene_desc.h"
+#include "scene/scene_spec.h"
 
 namespace relief::scene {
 
@@ -19,7 +19,7 @@ namespace relief::scene {
 /// reported at once).
 /// `overrides` (section.key = value, see SceneOverrides) are applied on top
 /// of the file before validation.
-std::optional<SceneDesc> readScene(const std::filesystem::path& path, Diagnostics& diags,
+std::optional<SceneSpec> readScene(const std::filesystem::path& path, Diagnostics& diags,
                                    const SceneOverrides& overrides = {});
 
 /// Parses a number written as a TOML float/integer or as a string fraction

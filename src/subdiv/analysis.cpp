@@ -242,63 +242,11 @@ SchemeReport analyzeScheme(const Scheme& scheme, int maxL) {
 
 namespace relief::subdiv {
 
-namespace {
-bool near(double a, double b) { return std::fabs(a - b) < 1e-12; }
-std::string holds(bool b) { return b ? "holds" : "fails"; }
-}  // namespace
-
 std::vector<std::string> explainReport(const SchemeReport& rep, const std::string& family,
                                        const std::map<std::string, double>& p) {
     std::vector<std::string> notes;
-    auto P = [&](const char* k) { return p.at(k); };
-    // The papers' theorems pair each equality (sigma^(k+1) divides the symbol)
-    // with a one-step norm inequality; the equalities are reported here, the
-    // norm tests in the report's difference tests.
-    if (family == "four-point-4p") {
-        const double l = P("lambda"), mu = P("mu"), nu = P("nu"), w = P("omega");
-        const bool c1 = near(mu - l + 4 * w - 8 * w * nu, 0);
-        const bool c2 = c1 && near(l, 1.0 / 8 - 4 * w * nu);
-        notes.push_back(fmt::format("paper 001, Theorem 2 (C1) equality mu - lambda + 4 omega - 8 omega nu "
-                                    "= 0: {}; Theorem 3 (C2) equality lambda = 1/8 - 4 omega nu: {}",
-                                    holds(c1), holds(c2)));
-        if (near(l, 1.0 / 80) && near(mu, 1.0 / 16) && near(nu, 0.5) && near(w, 1.0 / 32))
-            notes.push_back(fmt::format("paper 001 Fig. 2(b)'s caption says C2, but its printed "
-                                        "parameters give only C{}; lambda = mu = 1/16 (same "
-                                        "omega) is C2 and is almost certainly what was meant",
-                                        rep.smoothness));
-        if (!near(l, mu) || !near(nu, 0.5))
-            notes.push_back("not symmetric (lambda != mu or nu != 1/2): the limit shifts by about "
-                            "(mu - lambda) of an interval per level");
-    } else if (family == "binary-3p") {
-        const double l = P("lambda"), mu = P("mu"), w = P("omega");
-        const bool c2 = near(4 * l - 2 * w + mu, 1.0 / 8);
-        const bool c4 = near(w, 4 * l + 1.0 / 32) && near(mu, 4 * l + 3.0 / 16);
-        notes.push_back(fmt::format("paper 000, Theorem 3 (C2 family) 4 lambda - 2 omega + mu = "
-                                    "1/8: {}; Theorem 4 (C4) omega = 4 lambda + 1/32, mu = 4 "
-                                    "lambda + 3/16, -1/64 < lambda < 3/64: {}",
-                                    holds(c2), holds(c4 && l > -1.0 / 64 && l < 3.0 / 64)));
-        if (c4 && rep.smoothness > 4)
-            notes.push_back(fmt::format("the certificate proves C{} here, more than Theorem 4's C4",
-                                        rep.smoothness));
-        if (near(l, 0) && near(mu, 0) && near(w, 1.0 / 16))
-            notes.push_back("omega = +1/16 is not the classic 4-point in this paper's sign "
-                            "convention (that is omega = -1/16)");
-    } else if (family == "ternary-blend") {
-        const double a = P("alpha"), b = P("beta"), g = P("gamma");
-        const bool c2 = near(g, a - b + 1.0 / 9);
-        const bool c3 = c2 && near(b, 5.0 / 81 + 2 * a / 3) && a > -7.0 / 27 && a < -4.0 / 27;
-        notes.push_back(fmt::format("paper 004: C2 equality gamma = alpha - beta + 1/9: {}; C3 "
-                                    "equalities, also beta = 5/81 + 2 alpha/3 with -7/27 < alpha < -4/27: {}",
-                                    holds(c2), holds(c3)));
-    } else if (family == "ternary-4point") {
-        const double t = P("theta");
-        notes.push_back(fmt::format("paper 004: C2 for 3/5 < theta < 2/3: {}",
-                                    holds(t > 0.6 && t < 2.0 / 3)));
-    } else if (family == "ternary-bspline") {
-        const double e = P("eta");
-        notes.push_back(fmt::format("paper 004: C2 for 0 < eta < 1/9: {}",
-                                    holds(e > 0 && e < 1.0 / 9)));
-    }
+    if (const SchemeFamily* row = findSchemeFamily(family); row && row->paperConditions)
+        notes = row->paperConditions(p, rep.smoothness);
     if (rep.smoothness > rep.smoothnessByPaperTest)
         notes.push_back(fmt::format(
             "the papers' one-step test (L = 1) proves {}; the certificate needs L = {} to prove C{}",

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "core/number_format.h"
+#include "core/types.h"
 
 namespace relief::subdiv {
 
@@ -14,8 +15,9 @@ OutputEstimate estimateOutput(const Scheme& scheme, int rows, int cols, int dept
         e.rows = scheme.refinedCount(e.rows);
         e.cols = scheme.refinedCount(e.cols);
     }
-    e.vertices = static_cast<double>(e.rows) * static_cast<double>(e.cols);
-    e.triangles = 2.0 * static_cast<double>(e.rows - 1) * static_cast<double>(e.cols - 1);
+    const MeshSize size = gridMeshSize(e.rows, e.cols);
+    e.vertices = static_cast<double>(size.vertices);
+    e.triangles = static_cast<double>(size.triangles);
     e.sdlBytes = e.vertices * kSdlBytesPerVertex + e.triangles * kSdlBytesPerTriangle;
     e.parseSeconds = e.triangles * kParseSecondsPerTriangle;
     return e;

@@ -81,24 +81,32 @@ Scheme ternaryBSpline(double eta) {
             Boundary::PointReflection};
 }
 
+namespace {
+bool near(double a, double b) { return std::fabs(a - b) < 1e-12; }
+const char* holds(bool b) { return b ? "holds" : "fails"; }
+}  // namespace
+
 const std::vector<SchemeFamily>& schemeFamilies() {
     static const std::vector<SchemeFamily> families{
         {"dlg4",
          "classic Dyn-Levin-Gregory 4-point interpolating scheme (w = 1/16: C1)",
+         "Dyn, Levin and Gregory (1987)",
          {{"w", 1.0 / 16, -1, 1, "tension"}},
-         [](const std::map<std::string, double>& p) { return dlgFourPoint(p.at("w")); },
+         [](const SchemeParams& p) { return dlgFourPoint(p.at("w")); },
+         nullptr,
          nullptr},
         {"four-point-4p",
          "four-parameter four-point scheme of paper 001 (lambda = mu = 0, nu = 1/2: classic "
          "4-point with w = omega)",
+         "paper 001",
          {{"lambda", 0, 0, 1, "shift of the old point towards its left neighbour"},
           {"mu", 0, 0, 1, "shift of the old point towards its right neighbour"},
           {"nu", 0.5, 0, 1, "offset parameter of d_i"},
           {"omega", 1.0 / 16, -1, 1, "tension"}},
-         [](const std::map<std::string, double>& p) {
+         [](const SchemeParams& p) {
              return fourPoint4p(p.at("lambda"), p.at("mu"), p.at("nu"), p.at("omega"));
          },
-         [](const std::map<std::string, double>& p) {
+         [](const SchemeParams& p) {
              std::vector<std::string> w;
              if (p.at("lambda") != p.at("mu") || p.at("nu") != 0.5)
                  w.push_back(fmt::format(
@@ -111,39 +119,99 @@ const std::vector<SchemeFamily>& schemeFamilies() {
                  w.push_back("four-point-4p: lambda + mu > 1 is outside the paper's range "
                              "0 < lambda + mu <= 1");
              return w;
+         },
+         [](const SchemeParams& p, int smoothness) {
+             // Each theorem pairs an equality (sigma^(k+1) divides the symbol)
+             // with a one-step norm inequality; the equalities are reported
+             // here, the norm tests in the report's difference tests.
+             const double l = p.at("lambda"), mu = p.at("mu"), nu = p.at("nu"), w = p.at("omega");
+             const bool c1 = near(mu - l + 4 * w - 8 * w * nu, 0);
+             const bool c2 = c1 && near(l, 1.0 / 8 - 4 * w * nu);
+             std::vector<std::string> notes{fmt::format(
+                 "paper 001, Theorem 2 (C1) equality mu - lambda + 4 omega - 8 omega nu = 0: {}; "
+                 "Theorem 3 (C2) equality lambda = 1/8 - 4 omega nu: {}",
+                 holds(c1), holds(c2))};
+             if (near(l, 1.0 / 80) && near(mu, 1.0 / 16) && near(nu, 0.5) && near(w, 1.0 / 32))
+                 notes.push_back(fmt::format("paper 001 Fig. 2(b)'s caption says C2, but its printed "
+                                             "parameters give only C{}; lambda = mu = 1/16 (same "
+                                             "omega) is C2 and is almost certainly what was meant",
+                                             smoothness));
+             if (!near(l, mu) || !near(nu, 0.5))
+                 notes.push_back("not symmetric (lambda != mu or nu != 1/2): the limit shifts by "
+                                 "about (mu - lambda) of an interval per level");
+             return notes;
          }},
         {"binary-3p",
          "three-parameter binary 9-point scheme of paper 000 (lambda = mu = 0, omega = -1/16: "
          "classic 4-point; omega = 4 lambda + 1/32, mu = 4 lambda + 3/16: C4)",
+         "paper 000",
          {{"lambda", 0, -1, 1, "weight of the second neighbours of an old point"},
           {"mu", 0, -1, 1, "weight of the first neighbours of an old point"},
           {"omega", -1.0 / 16, -1, 1, "outer weight of the new point (sign opposite paper 001)"}},
-         [](const std::map<std::string, double>& p) {
+         [](const SchemeParams& p) {
              return binary3p(p.at("lambda"), p.at("mu"), p.at("omega"));
          },
-         nullptr},
+         nullptr,
+         [](const SchemeParams& p, int smoothness) {
+             const double l = p.at("lambda"), mu = p.at("mu"), w = p.at("omega");
+             const bool c2 = near(4 * l - 2 * w + mu, 1.0 / 8);
+             const bool c4 = near(w, 4 * l + 1.0 / 32) && near(mu, 4 * l + 3.0 / 16);
+             std::vector<std::string> notes{fmt::format(
+                 "paper 000, Theorem 3 (C2 family) 4 lambda - 2 omega + mu = 1/8: {}; Theorem 4 "
+                 "(C4) omega = 4 lambda + 1/32, mu = 4 lambda + 3/16, -1/64 < lambda < 3/64: {}",
+                 holds(c2), holds(c4 && l > -1.0 / 64 && l < 3.0 / 64))};
+             if (c4 && smoothness > 4)
+                 notes.push_back(fmt::format(
+                     "the certificate proves C{} here, more than Theorem 4's C4", smoothness));
+             if (near(l, 0) && near(mu, 0) && near(w, 1.0 / 16))
+                 notes.push_back("omega = +1/16 is not the classic 4-point in this paper's sign "
+                                 "convention (that is omega = -1/16)");
+             return notes;
+         }},
         {"ternary-blend",
          "ternary blending scheme of paper 004 (interpolating when alpha = 0; presets for its "
          "special cases)",
+         "paper 004",
          {{"alpha", 0, -1, 1, "weight of the neighbours of an old point"},
           {"beta", 5.0 / 81, -1, 1, "outer weight next to the old point"},
           {"gamma", 4.0 / 81, -1, 1, "outer weight on the far side"}},
-         [](const std::map<std::string, double>& p) {
+         [](const SchemeParams& p) {
              return ternaryBlend(p.at("alpha"), p.at("beta"), p.at("gamma"));
          },
-         nullptr},
+         nullptr,
+         [](const SchemeParams& p, int) {
+             const double a = p.at("alpha"), b = p.at("beta"), g = p.at("gamma");
+             const bool c2 = near(g, a - b + 1.0 / 9);
+             const bool c3 = c2 && near(b, 5.0 / 81 + 2 * a / 3) && a > -7.0 / 27 && a < -4.0 / 27;
+             return std::vector<std::string>{fmt::format(
+                 "paper 004: C2 equality gamma = alpha - beta + 1/9: {}; C3 equalities, also beta "
+                 "= 5/81 + 2 alpha/3 with -7/27 < alpha < -4/27: {}",
+                 holds(c2), holds(c3))};
+         }},
         {"ternary-4point",
          "4-point ternary interpolating scheme of paper 004 (C2 for 3/5 < theta < 2/3; the "
          "1-9 interpolating surface)",
+         "paper 004",
          {{"theta", 19.0 / 30, -3, 3, "shape parameter"}},
-         [](const std::map<std::string, double>& p) { return ternaryFourPoint(p.at("theta")); },
-         nullptr},
+         [](const SchemeParams& p) { return ternaryFourPoint(p.at("theta")); },
+         nullptr,
+         [](const SchemeParams& p, int) {
+             const double t = p.at("theta");
+             return std::vector<std::string>{
+                 fmt::format("paper 004: C2 for 3/5 < theta < 2/3: {}", holds(t > 0.6 && t < 2.0 / 3))};
+         }},
         {"ternary-bspline",
          "parametric cubic B-spline ternary scheme of paper 004 (eta = 1/27: cubic B-spline; C2 "
          "for 0 < eta < 1/9)",
+         "paper 004",
          {{"eta", 1.0 / 27, -1, 1, "shape parameter"}},
-         [](const std::map<std::string, double>& p) { return ternaryBSpline(p.at("eta")); },
-         nullptr},
+         [](const SchemeParams& p) { return ternaryBSpline(p.at("eta")); },
+         nullptr,
+         [](const SchemeParams& p, int) {
+             const double e = p.at("eta");
+             return std::vector<std::string>{
+                 fmt::format("paper 004: C2 for 0 < eta < 1/9: {}", holds(e > 0 && e < 1.0 / 9))};
+         }},
     };
     return families;
 }
@@ -186,59 +254,6 @@ const Preset* findPreset(const std::string& name) {
     for (const auto& p : presets())
         if (p.name == name) return &p;
     return nullptr;
-}
-
-bool resolvePreset(const std::string& presetName, const SourceLoc& loc,
-                   const std::map<std::string, double>& presetParams,
-                   const std::map<std::string, SourceLoc>& paramLocs, Diagnostics& diags,
-                   std::string& familyName, std::map<std::string, double>& familyParams) {
-    const Preset* preset = findPreset(presetName);
-    if (!preset) {
-        std::vector<std::string> names;
-        std::string list;
-        for (const auto& p : presets()) {
-            names.push_back(p.name);
-            list += (list.empty() ? "" : ", ") + p.name;
-        }
-        const std::string best = closestMatch(presetName, names);
-        diags.error(loc, fmt::format("unknown preset \"{}\"{}; known: {}", presetName,
-                                     best.empty() ? "" : " (did you mean \"" + best + "\"?)",
-                                     list));
-        return false;
-    }
-    std::map<std::string, double> own;
-    bool ok = true;
-    for (const auto& [key, value] : presetParams) {
-        const auto spec = std::find_if(preset->params.begin(), preset->params.end(),
-                                       [&](const ParamSpec& s) { return s.name == key; });
-        if (spec == preset->params.end()) {
-            const auto it = paramLocs.find(key);
-            diags.error(it == paramLocs.end() ? loc : it->second,
-                        fmt::format("preset \"{}\" fixes every parameter of \"{}\"{}; remove "
-                                    "\"{}\" or use scheme = \"{}\" instead",
-                                    presetName, preset->family,
-                                    preset->params.empty() ? "" : " but " + preset->params[0].name,
-                                    key, preset->family));
-            ok = false;
-        }
-    }
-    for (const auto& spec : preset->params) {
-        const auto it = presetParams.find(spec.name);
-        const double v = it == presetParams.end() ? spec.defaultValue : it->second;
-        if (!(v >= spec.lo && v <= spec.hi)) {
-            const auto locIt = paramLocs.find(spec.name);
-            diags.error(locIt == paramLocs.end() ? loc : locIt->second,
-                        fmt::format("{} = {} is outside [{}, {}] for preset \"{}\"", spec.name,
-                                    formatShortest(v), formatShortest(spec.lo),
-                                    formatShortest(spec.hi), presetName));
-            ok = false;
-        }
-        own[spec.name] = v;
-    }
-    if (!ok) return false;
-    familyName = preset->family;
-    familyParams = preset->familyParams(own);
-    return true;
 }
 
 std::optional<Scheme> schemeFromMask(int arity, int first, const std::vector<double>& mask,
@@ -285,64 +300,27 @@ const SchemeFamily* findSchemeFamily(const std::string& name) {
     return nullptr;
 }
 
-std::optional<Scheme> makeScheme(const std::string& name, const SourceLoc& nameLoc,
-                                 const std::map<std::string, double>& params,
-                                 const std::map<std::string, SourceLoc>& paramLocs,
-                                 Diagnostics& diags,
-                                 std::map<std::string, double>* resolvedParams) {
-    const SchemeFamily* family = findSchemeFamily(name);
-    if (!family) {
-        std::vector<std::string> names;
-        std::string list;
-        for (const auto& f : schemeFamilies()) {
-            names.push_back(f.name);
-            list += (list.empty() ? "" : ", ") + ("\"" + f.name + "\"");
-        }
-        const std::string best = closestMatch(name, names);
-        diags.error(nameLoc, fmt::format("unknown subdivision scheme \"{}\"{}; known: {}, or "
-                                         "\"mask\" with arity and mask (or a preset)",
-                                         name,
-                                         best.empty() ? "" : " (did you mean \"" + best + "\"?)",
-                                         list));
-        return std::nullopt;
-    }
-    auto locOf = [&](const std::string& key) {
-        auto it = paramLocs.find(key);
-        return it == paramLocs.end() ? nameLoc : it->second;
+std::string schemeTableMarkdown() {
+    auto range = [](const ParamSpec& p) {
+        return fmt::format("{} = {} in [{}, {}]", p.name, formatShortest(p.defaultValue),
+                           formatShortest(p.lo), formatShortest(p.hi));
     };
-    std::vector<std::string> paramNames;
-    for (const auto& p : family->params) paramNames.push_back(p.name);
-
-    bool ok = true;
-    for (const auto& [key, value] : params) {
-        if (std::find(paramNames.begin(), paramNames.end(), key) != paramNames.end()) continue;
-        const std::string best = closestMatch(key, paramNames);
-        std::string expected;
-        for (const auto& n : paramNames) expected += (expected.empty() ? "" : ", ") + n;
-        diags.error(locOf(key),
-                    fmt::format("unknown parameter \"{}\" for scheme \"{}\"{}; it takes: {}", key,
-                                name, best.empty() ? "" : " (did you mean \"" + best + "\"?)",
-                                expected));
-        ok = false;
+    std::string out = "| scheme | source | parameters (default, range) | what it is |\n|---|---|---|---|\n";
+    for (const auto& f : schemeFamilies()) {
+        std::string params;
+        for (const auto& p : f.params) params += (params.empty() ? "" : "; ") + range(p);
+        out += fmt::format("| `{}` | {} | {} | {} |\n", f.name, f.source, params, f.description);
     }
-    std::map<std::string, double> resolved;
-    for (const auto& spec : family->params) {
-        auto it = params.find(spec.name);
-        const double v = it == params.end() ? spec.defaultValue : it->second;
-        if (!(v >= spec.lo && v <= spec.hi)) {
-            diags.error(locOf(spec.name),
-                        fmt::format("{} = {} is outside [{}, {}] for scheme \"{}\" ({})",
-                                    spec.name, formatShortest(v), formatShortest(spec.lo),
-                                    formatShortest(spec.hi), name, spec.meaning));
-            ok = false;
-        }
-        resolved[spec.name] = v;
+    out += "| `mask` | your own | `arity` (2 or 3), `mask` = [a_k, ...], `mask_first` | any "
+           "binary or ternary scheme from its symbol's coefficients |\n";
+    out += "\n| preset | scheme | own parameters (default, range) | what it is |\n|---|---|---|---|\n";
+    for (const auto& p : presets()) {
+        std::string params;
+        for (const auto& q : p.params) params += (params.empty() ? "" : "; ") + range(q);
+        out += fmt::format("| `{}` | `{}` | {} | {} |\n", p.name, p.family,
+                           params.empty() ? "none" : params, p.description);
     }
-    if (!ok) return std::nullopt;
-    if (family->caveats)
-        for (auto& w : family->caveats(resolved)) diags.warning(nameLoc, std::move(w));
-    if (resolvedParams) *resolvedParams = resolved;
-    return family->build(resolved);
+    return out;
 }
 
 }  // namespace relief::subdiv

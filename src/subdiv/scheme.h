@@ -2,7 +2,9 @@
 // Stage 3 of 5 (part 1): subdivision schemes as data. A scheme is its arity,
 // one rule (a weight list and where it starts) per child position, and a named
 // boundary rule; one generic refiner (refine.h) applies any of them. Masks and
-// their derivations: ../shared/docs/schemes.md (from the source papers).
+// their derivations: docs/schemes.md (from the source papers). A scheme spec
+// from a scene or the command line becomes a Scheme in one place only:
+// resolveScheme (subdiv/resolve.h).
 #include <functional>
 #include <map>
 #include <optional>
@@ -51,26 +53,28 @@ struct ParamSpec {
     std::string meaning;
 };
 
+using SchemeParams = std::map<std::string, double>;
+
+/// A row of the scheme table. Adding a scheme is adding a row here (and its
+/// tests); docs/schemes.md says how.
 struct SchemeFamily {
     std::string name;
     std::string description;
+    std::string source;  ///< where it comes from, e.g. "paper 001"
     std::vector<ParamSpec> params;
-    std::function<Scheme(const std::map<std::string, double>&)> build;
+    std::function<Scheme(const SchemeParams&)> build;
     /// Warnings for parameter values that work but surprise (e.g. asymmetry).
-    std::function<std::vector<std::string>(const std::map<std::string, double>&)> caveats;
+    std::function<std::vector<std::string>(const SchemeParams&)> caveats;
+    /// The source paper's own (sufficient) conditions for these parameters,
+    /// which hold and which fail, as notes for `relief check`; `smoothness` is
+    /// the certified class (-1: convergence not proven), for notes that
+    /// compare the paper's claim with the certificate.
+    std::function<std::vector<std::string>(const SchemeParams&, int smoothness)> paperConditions;
 };
 
 const std::vector<SchemeFamily>& schemeFamilies();
 const SchemeFamily* findSchemeFamily(const std::string& name);
 
-/// Looks up the family, checks the parameter names (with suggestions) and
-/// ranges, fills in defaults, and builds the scheme. `params` maps name to
-/// value; `paramLocs` gives each one's source location for diagnostics.
-std::optional<Scheme> makeScheme(const std::string& name, const SourceLoc& nameLoc,
-                                 const std::map<std::string, double>& params,
-                                 const std::map<std::string, SourceLoc>& paramLocs,
-                                 Diagnostics& diags,
-                                 std::map<std::string, double>* resolvedParams = nullptr);
 
 // The families, also callable directly (tests, benchmarks).
 Scheme dlgFourPoint(double w);                                             // w = 1/16: classic
@@ -93,17 +97,14 @@ struct Preset {
 const std::vector<Preset>& presets();
 const Preset* findPreset(const std::string& name);
 
-/// Resolves a preset into its family's name and parameters, checking the
-/// preset's own parameters. Reports unknown names with a suggestion.
-bool resolvePreset(const std::string& presetName, const SourceLoc& loc,
-                   const std::map<std::string, double>& presetParams,
-                   const std::map<std::string, SourceLoc>& paramLocs, Diagnostics& diags,
-                   std::string& familyName, std::map<std::string, double>& familyParams);
-
 /// A user's own scheme from its mask (symbol coefficients a_k, k = first, first+1, ...):
 /// P'_{m i + r} = sum_l a_{m i + r - m l} P_l. Reports masks whose child
 /// positions do not each sum to 1 (then the scheme cannot converge).
 std::optional<Scheme> schemeFromMask(int arity, int first, const std::vector<double>& mask,
                                      const SourceLoc& loc, Diagnostics& diags);
+
+/// The scheme table as Markdown (families with their parameters, then
+/// presets): `relief check --list`, and the table in docs/schemes.md.
+std::string schemeTableMarkdown();
 
 }  // namespace relief::subdiv

@@ -57,9 +57,9 @@ Grid tiltedPlane() {
 }
 
 TEST(Mesh, NormalsOfATiltedPlaneAndSceneUnits) {
-    scene::SceneDesc desc;
-    desc.exaggeration = 2;
-    const Mesh m = buildMesh(tiltedPlane(), desc);
+    scene::LookSpec look;
+    look.exaggeration = 2;
+    const Mesh m = buildMesh({{}, tiltedPlane(), 300000, 5900000, 100, 100}, look);
     EXPECT_EQ(m.metresPerUnit, 10.0);  // 300 m extent -> 10 m per unit
     // Height rises 20 (exaggerated) per 100 m east: normal ~ (-0.2, 1, 0) normalised.
     const double n = std::sqrt(1 + 0.04);
@@ -75,8 +75,7 @@ TEST(Mesh, NormalsOfATiltedPlaneAndSceneUnits) {
 }
 
 TEST(Mesh2, WriterOutputShape) {
-    scene::SceneDesc desc;
-    const Mesh m = buildMesh(tiltedPlane(), desc);
+    const Mesh m = buildMesh({{}, tiltedPlane(), 300000, 5900000, 100, 100}, {});
     char* data = nullptr;
     size_t size = 0;
     std::FILE* f = open_memstream(&data, &size);

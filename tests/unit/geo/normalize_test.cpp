@@ -59,11 +59,11 @@ TEST(Normalize, FullGridReproducesItsHeightsAtCoincidentNodes) {
         }
     for (auto gridding : {scene::Gridding::Linear, scene::Gridding::InverseDistance,
                           scene::Gridding::Nearest}) {
-        scene::SceneDesc desc;
-        desc.netSpacingM = step;
-        desc.gridding = gridding;
+        scene::NetSpec netSpec;
+        netSpec.spacingM = step;
+        netSpec.gridding = gridding;
         Diagnostics diags;
-        auto net = normalize(desc, samples, diags);
+        auto net = normalize({}, netSpec, "grid.csv", samples, diags);
         ASSERT_TRUE(net) << (diags.all().empty() ? "" : formatDiagnostic(diags.all()[0]));
         EXPECT_EQ(net->frame.utmZone, zone);
         ASSERT_EQ(net->grid.rows, rows);
@@ -92,17 +92,18 @@ TEST(Normalize, LinearGriddingOfAPlaneAndFillOutsideHull) {
         lc.Reverse(x, y, 0, lat, lon, h);
         samples.push_back({lon, lat, 0.0, {"p.csv", i + 2, 1}});
     }
-    scene::SceneDesc desc;
-    desc.frame = scene::FrameKind::Utm;
-    desc.netRows = 15;
-    desc.netCols = 20;
+    scene::FrameSpec frameSpec;
+    frameSpec.kind = scene::FrameKind::Utm;
+    scene::NetSpec netSpec;
+    netSpec.rows = 15;
+    netSpec.cols = 20;
     Diagnostics diags;
     // Heights: a plane in UTM coordinates.
-    auto frame = chooseFrame(desc, samples, diags);
+    auto frame = chooseFrame(frameSpec, samples, diags);
     ASSERT_TRUE(frame);
     auto pts = projectSamples(*frame, samples, diags);
     for (auto& p : pts) p.p.z = 0.01 * p.p.x - 0.02 * p.p.y;
-    auto net = gridSamples(desc, *frame, pts, diags);
+    auto net = gridSamples(netSpec, "p.csv", *frame, pts, diags);
     ASSERT_TRUE(net);
     EXPECT_GT(net->filledOutsideHull, 0u);
     int inside = 0;
@@ -141,15 +142,14 @@ TEST(Normalize, ScatteredVolcanoSamplesMatchTheFullGrid) {
     const auto some = readSamples(data + "volcano_samples_1000_seed20251124.csv", "samples.csv", diags);
     ASSERT_EQ(full.size(), 5307u);
     ASSERT_EQ(some.size(), 1000u);
-    scene::SceneDesc desc;
-    desc.netSpacingM = 20;
-    auto reference = normalize(desc, full, diags);
+    scene::NetSpec netSpec;
+    netSpec.spacingM = 20;
+    auto reference = normalize({}, netSpec, "volcano_full.csv", full, diags);
     ASSERT_TRUE(reference);
     EXPECT_EQ(reference->frame.describe(), "UTM zone 60S");
-    desc.extentM = std::array<double, 4>{reference->x0, reference->y0,
-                                         reference->x0 + (reference->grid.cols - 1) * 20.0,
-                                         reference->y0 + (reference->grid.rows - 1) * 20.0};
-    auto sparse = normalize(desc, some, diags);
+    netSpec.extentM = std::array<double, 4>{reference->x0, reference->y0, reference->xMax(),
+                                            reference->yMax()};
+    auto sparse = normalize({}, netSpec, "samples.csv", some, diags);
     ASSERT_TRUE(sparse);
     ASSERT_EQ(sparse->grid.points.size(), reference->grid.points.size());
     double sumSq = 0, maxAbs = 0;
@@ -190,13 +190,30 @@ TEST(Profile, GeodesicSpacingAndBilinearPlane) {
         g.Inverse(line[i - 1].latDeg, line[i - 1].lonDeg, line[i].latDeg, line[i].lonDeg, d);
         EXPECT_NEAR(d, s12 / 10, 1e-6);
     }
-    Grid plane;
-    plane.rows = 4;
-    plane.cols = 5;
+    GeoGrid plane;
+    plane.grid.rows = 4;
+    plane.grid.cols = 5;
+    plane.dx = 10, plane.dy = 20;
     for (int r = 0; r < 4; ++r)
-        for (int c = 0; c < 5; ++c) plane.points.push_back({10.0 * c, 20.0 * r, 3 + 0.5 * c - 0.25 * r});
-    EXPECT_NEAR(*sampleLattice(plane, 0, 0, 10, 20, 17.5, 31), 3 + 0.5 * 1.75 - 0.25 * 1.55, 1e-12);
-    EXPECT_FALSE(sampleLattice(plane, 0, 0, 10, 20, 41, 10));
+        for (int c = 0; c < 5; ++c) plane.grid.points.push_back({10.0 * c, 20.0 * r, 3 + 0.5 * c - 0.25 * r});
+    EXPECT_NEAR(*plane.sample(17.5, 31), 3 + 0.5 * 1.75 - 0.25 * 1.55, 1e-12);
+    EXPECT_DOUBLE_EQ(*plane.sample(40, 60), 3 + 0.5 * 4 - 0.25 * 3);  // the far corner is inside
+    EXPECT_FALSE(plane.sample(41, 10));
+    EXPECT_FALSE(plane.sample(5, -1));
+    // Along a profile: every point's height, or the first point outside.
+    std::vector<ProfilePoint> cut{{0, 0, 0, 5, 10}, {5, 0, 0, 25, 10}, {9, 0, 0, 45, 10}};
+    size_t outside = 99;
+    EXPECT_FALSE(heightsAlong(plane, cut, outside));
+    EXPECT_EQ(outside, 2u);
+    cut.pop_back();
+    const auto z = heightsAlong(plane, cut, outside);
+    ASSERT_TRUE(z);
+    EXPECT_NEAR((*z)[1], 3 + 0.5 * 2.5 - 0.25 * 0.5, 1e-12);
+    // A refined grid keeps the frame and the extent; its spacing shrinks.
+    const GeoGrid finer = plane.refined(Grid{10, 13, {}}, 3);
+    EXPECT_DOUBLE_EQ(finer.dx, 10.0 / 3);
+    EXPECT_DOUBLE_EQ(finer.xMax(), plane.xMax());
+    EXPECT_DOUBLE_EQ(finer.yMax(), plane.yMax());
 }
 
 }  // namespace

@@ -83,16 +83,17 @@ TEST(AutoDepth, MountainRatesMatchSmoothness) {
         Diagnostics diags;
         const auto loaded = loadScene(std::string(RELIEF_SOURCE_DIR) + "/scenes/" + k.scene, diags);
         ASSERT_TRUE(loaded) << k.scene;
-        const auto samples = geo::readSamples(loaded->scene.samplesPath, "", diags);
-        const auto net = geo::normalize(loaded->scene, samples, diags);
+        const auto& spec = loaded->scene;
+        const auto samples = geo::readSamples(spec.samples.path, "", diags);
+        const auto net = geo::normalize(spec.frame, spec.net, "", samples, diags);
         ASSERT_TRUE(net);
-        const auto choice = chooseDepth(loaded->scheme, *net, k.tolerance, 8);
+        const auto choice = chooseDepth(loaded->resolved.scheme, *net, k.tolerance, 8);
         ASSERT_TRUE(choice.reached) << k.scene;
         EXPECT_EQ(choice.depth, k.levels) << k.scene;
         for (size_t l = 1; l < choice.levels.size(); ++l)
             EXPECT_LT(choice.levels[l].distanceM, choice.levels[l - 1].distanceM) << k.scene;
-        const double predicted = std::min(loaded->report.holder, 2.0);
-        rates[i++] = fittedRate(choice, loaded->scheme.arity, 1);
+        const double predicted = std::min(loaded->resolved.report.holder, 2.0);
+        rates[i++] = fittedRate(choice, loaded->resolved.scheme.arity, 1);
         EXPECT_NEAR(rates[i - 1], predicted, 0.2) << k.scene;
     }
     EXPECT_GT(rates[0] - rates[1], 1.0);  // gentle converges much faster than sharp

@@ -20,8 +20,7 @@ Grid ramp(double x0, double slope, double lift) {
 }
 
 TEST(Contours, PlaneGivesStraightLinesAtTheRightPlace) {
-    const Grid g = ramp(0, 1.0, 0);  // z = x - x0
-    const Lattice l{&g, 300000, 6000000, 10, 10};
+    const geo::GeoGrid l{{}, ramp(0, 1.0, 0), 300000, 6000000, 10, 10};  // z = x - x0
     std::string error;
     const auto sets = contourLines(l, {55, 200, 1000}, error);
     ASSERT_TRUE(error.empty()) << error;
@@ -71,12 +70,12 @@ TEST(Contours, NiceLevels) {
 // Two ramps 3 m apart vertically (slope 1): their contour lines are 3 m apart
 // horizontally (to GDAL's 1e-6 m); along the profiles, 3 m at the ends.
 TEST(CompareGeometry, RampsLiftedByThreeMetres) {
-    const Grid ga = ramp(0, 1.0, 0), gb = ramp(0, 1.0, 3.0);
     geo::Frame utm;
     utm.utmZone = 60;
     utm.northp = false;
-    const FramedSurface a{"a", utm, {&ga, 300000, 6000000, 10, 10}};
-    const FramedSurface b{"b", utm, {&gb, 300000, 6000000, 10, 10}};
+    const geo::GeoGrid ga{utm, ramp(0, 1.0, 0), 300000, 6000000, 10, 10};
+    const geo::GeoGrid gb{utm, ramp(0, 1.0, 3.0), 300000, 6000000, 10, 10};
+    const FramedSurface a{"a", &ga}, b{"b", &gb};
     const auto profiles = defaultProfiles(a, b);
     ASSERT_EQ(profiles.size(), 2u);
     const auto levels = defaultLevels(a, b);

@@ -27,13 +27,44 @@ TEST(ReadScene, MinimalSceneGetsDefaults) {
     auto s = readScene(dir / "s.toml", diags);
     ASSERT_TRUE(s);
     EXPECT_FALSE(diags.hasErrors());
-    EXPECT_EQ(s->samplesPath, dir / "s.csv");
-    EXPECT_EQ(s->frame, FrameKind::Utm);
-    EXPECT_EQ(s->netRows, 64);
-    EXPECT_EQ(s->scheme, "dlg4");
-    EXPECT_EQ(s->depth, 3);
-    EXPECT_EQ(s->width, 800);
-    EXPECT_EQ(s->ramp.preset, "terrain");
+    EXPECT_EQ(s->samples.path, dir / "s.csv");
+    EXPECT_EQ(s->frame.kind, FrameKind::Utm);
+    EXPECT_EQ(s->net.rows, 64);
+    EXPECT_EQ(s->subdivision.scheme.name, "dlg4");
+    EXPECT_EQ(s->subdivision.depth, 3);
+    EXPECT_EQ(s->render.width, 800);
+    EXPECT_EQ(s->look.ramp.preset, "terrain");
+    std::filesystem::remove_all(dir);
+}
+
+// Every key's location is kept in the spec of the stage that reads it, so that
+// stage can report a problem at the key; absent keys fall back to their
+// section, then to the file.
+TEST(ReadScene, EachSpecKeepsTheLocationOfEveryKey) {
+    const auto dir = std::filesystem::temp_directory_path() / "relief-scene-locs-test";
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir / "s.csv") << "lon,lat,elev\n";
+    std::ofstream(dir / "s.toml") << "[samples]\npath = \"s.csv\"\n"
+                                     "[net]\nspacing_m = 20\n"
+                                     "[subdivision]\nscheme = \"four-point-4p\"\n  omega = \"3/64\"\n"
+                                     "[camera]\nfov_deg = 30\n";
+    Diagnostics diags;
+    const auto s = readScene(dir / "s.toml", diags);
+    ASSERT_TRUE(s);
+    ASSERT_FALSE(diags.hasErrors());
+    auto expectAt = [](const SourceLoc& loc, int line, int column) {
+        EXPECT_EQ(loc.line, line);
+        EXPECT_EQ(loc.column, column);
+        EXPECT_NE(loc.file.find("s.toml"), std::string::npos);
+    };
+    expectAt(s->samples.locs.at("samples.path"), 2, 8);
+    expectAt(s->net.locs.at("net.spacing_m"), 4, 13);
+    expectAt(s->net.locs.at("net.gridding"), 3, 1);            // absent: the [net] header
+    expectAt(s->subdivision.scheme.locs.at("subdivision.scheme"), 6, 10);
+    expectAt(s->subdivision.scheme.locs.at("subdivision.omega"), 7, 3);  // a parameter: its key
+    expectAt(s->look.locs.at("camera.fov_deg"), 9, 11);
+    expectAt(s->render.locs.at("render.width"), 0, 0);         // no [render]: the file
+    EXPECT_DOUBLE_EQ(s->subdivision.scheme.params.at("omega"), 3.0 / 64);
     std::filesystem::remove_all(dir);
 }
 

@@ -1,4 +1,5 @@
 #include "subdiv/analysis.h"
+#include "subdiv/resolve.h"
 
 #include <gtest/gtest.h>
 
@@ -9,12 +10,14 @@ namespace {
 
 Scheme preset(const std::string& name, std::map<std::string, double> own = {}) {
     Diagnostics d;
-    std::string family;
-    std::map<std::string, double> params;
-    EXPECT_TRUE(resolvePreset(name, {}, own, {}, d, family, params)) << name;
-    auto s = makeScheme(family, {}, params, {}, d);
+    scene::SchemeSpec spec;
+    spec.name = "";
+    spec.preset = name;
+    spec.params = std::move(own);
+    spec.allowNonconvergent = true;
+    auto s = resolveScheme(spec, d);
     EXPECT_TRUE(s) << name;
-    return *s;
+    return s->scheme;
 }
 
 void expectSameSymbol(const Scheme& a, const Scheme& b) {
@@ -26,7 +29,7 @@ void expectSameSymbol(const Scheme& a, const Scheme& b) {
         EXPECT_NEAR(sa.coeffs[i], sb.coeffs[i], 1e-15) << a.name << " vs " << b.name << " at " << i;
 }
 
-// Every row of the table in shared/docs/schemes.md.
+// Every row of the table in docs/schemes.md.
 struct Row {
     const char* what;
     Scheme scheme;

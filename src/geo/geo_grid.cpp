@@ -1,0 +1,43 @@
+#include "geo/geo_grid.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "core/number_format.h"
+
+namespace relief::geo {
+
+std::string Frame::describe() const {
+    if (kind == scene::FrameKind::Utm)
+        return utmZone == 0 ? fmt::format("UPS {}", northp ? "north" : "south")
+                            : fmt::format("UTM zone {}{}", utmZone, northp ? "N" : "S");
+    return fmt::format("local tangent plane at lat {} lon {}", formatShortest(originLatDeg),
+                       formatShortest(originLonDeg));
+}
+
+std::optional<double> GeoGrid::sample(double x, double y) const {
+    const double u = (x - x0) / dx, v = (y - y0) / dy;
+    const double eps = 1e-9;  // points on the edge, up to rounding, are inside
+    if (u < -eps || v < -eps || u > grid.cols - 1 + eps || v > grid.rows - 1 + eps) return std::nullopt;
+    const int c = std::clamp(static_cast<int>(std::floor(u)), 0, grid.cols - 2);
+    const int r = std::clamp(static_cast<int>(std::floor(v)), 0, grid.rows - 2);
+    const double fu = std::clamp(u - c, 0.0, 1.0), fv = std::clamp(v - r, 0.0, 1.0);
+    const double z00 = grid.at(r, c).z, z01 = grid.at(r, c + 1).z, z10 = grid.at(r + 1, c).z,
+                 z11 = grid.at(r + 1, c + 1).z;
+    return (1 - fv) * ((1 - fu) * z00 + fu * z01) + fv * ((1 - fu) * z10 + fu * z11);
+}
+
+GeoGrid GeoGrid::refined(Grid nodes, double factor) const {
+    GeoGrid out;
+    out.frame = frame;
+    out.grid = std::move(nodes);
+    out.x0 = x0;
+    out.y0 = y0;
+    out.dx = dx / factor;
+    out.dy = dy / factor;
+    return out;
+}
+
+}  // namespace relief::geo

@@ -1,0 +1,158 @@
+#pragma once
+// Stage 1 of 5. Input: a scene file (TOML). Output: SceneSpec, one typed spec
+// per stage, every value validated, defaults filled in, and the source location
+// of every key kept in the spec that holds it, so the stage that finds a
+// problem reports it at the key that caused it.
+//
+//   [samples]                  -> SamplesSpec      geo::readSamples
+//   [frame]                    -> FrameSpec        geo::normalize
+//   [net]                      -> NetSpec          geo::normalize
+//   [subdivision]              -> SubdivisionSpec  subdiv::resolveScheme, the depth
+//   [vertical] [texture] [lighting] [camera] -> LookSpec   emit
+//   [render]                   -> RenderSpec       emit (aspect), render
+//   [limits]                   -> LimitsSpec       the output budget
+#include <array>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/source_loc.h"
+
+namespace relief::scene {
+
+/// The deepest subdivision a scene may ask for (and depth = "auto" may choose).
+inline constexpr int kMaxDepth = 8;
+
+/// Where the keys of a spec were written: `section.key` -> location. A key
+/// the file does not give falls back to its section's header, then the file.
+struct KeyLocations {
+    std::string file;                               ///< the scene file, as given
+    std::map<std::string, SourceLoc> sections;      ///< "net" -> the [net] header
+    std::map<std::string, SourceLoc> keys;          ///< "net.spacing_m" -> the key
+    /// The location of `qualifiedKey` ("section.key"), else of its section, else the file.
+    SourceLoc at(const std::string& qualifiedKey) const;
+    bool has(const std::string& qualifiedKey) const { return keys.count(qualifiedKey) > 0; }
+};
+
+enum class FrameKind { Utm, Local };
+enum class Gridding { Linear, InverseDistance, Nearest };
+enum class Projection { Perspective, Orthographic };
+
+struct ColorStop {
+    double elevM;       ///< metres above the WGS84 ellipsoid datum of the samples
+    double r, g, b;     ///< linear 0..1 components of an sRGB colour
+};
+
+struct ColorRamp {
+    std::string preset;            ///< name, or "custom"
+    std::vector<ColorStop> stops;  ///< custom stops (sorted by elevM), empty for presets
+};
+
+/// `section.key` = value pairs applied on top of a scene file (relief sweep's
+/// --vary, relief test's resolution, --set). Values are typed as TOML would:
+/// an integer, a float, true/false, else a string (fractions such as "7/32"
+/// stay strings, which every numeric key accepts).
+using SceneOverrides = std::vector<std::pair<std::string, std::string>>;
+
+/// [samples]: where the elevation samples are.
+struct SamplesSpec {
+    std::filesystem::path path;   ///< resolved against the scene file's folder
+    std::string pathAsWritten;    ///< for messages and the .pov header
+    KeyLocations locs;
+};
+
+/// [frame]: the projected frame the net is built in.
+struct FrameSpec {
+    FrameKind kind = FrameKind::Utm;
+    std::string utmZone = "auto";  ///< "auto" or e.g. "60S"
+    KeyLocations locs;
+};
+
+/// [net]: the rectangular control net the samples are gridded onto.
+struct NetSpec {
+    int rows = 0, cols = 0;        ///< 0 when spacing is given
+    double spacingM = 0;           ///< 0 when rows/cols are given
+    std::optional<std::array<double, 4>> extentM;  ///< xmin, ymin, xmax, ymax in the frame
+    Gridding gridding = Gridding::Linear;
+    KeyLocations locs;
+};
+
+/// The scheme as the user named it: a family and parameters, a preset, or a
+/// mask. subdiv::resolveScheme turns it into a Scheme. Keys (for `locs`):
+/// "subdivision.scheme", ".preset", ".mask", and one per parameter.
+struct SchemeSpec {
+    std::string name = "dlg4";     ///< family, "mask", or "" when a preset names it
+    std::map<std::string, double> params;  ///< as written (missing ones: the family's defaults)
+    std::string preset;            ///< a named special case ("hassan"), or ""
+    int maskArity = 0;             ///< name = "mask": the user's own mask
+    std::optional<int> maskFirst;  ///< exponent of the first mask coefficient (default: centred)
+    std::vector<double> mask;
+    bool allowNonconvergent = false;
+    KeyLocations locs;
+};
+
+/// [subdivision]: the scheme and how deep to refine.
+struct SubdivisionSpec {
+    SchemeSpec scheme;
+    int depth = 3;                 ///< ignored when depthAuto
+    bool depthAuto = false;        ///< depth = "auto": the smallest depth whose last
+                                   ///< level moves the rows and columns by <= toleranceM
+    double toleranceM = 0;
+    KeyLocations locs;
+};
+
+/// [limits]: the output budget, checked before refining.
+struct LimitsSpec {
+    double maxTriangles = 20e6;
+    double maxSdlMB = 2048;
+    double maxParseS = 120;
+    KeyLocations locs;
+};
+
+/// [camera]
+struct CameraSpec {
+    double azimuthDeg = 200;    ///< compass bearing of the camera from the terrain centre
+    double elevationDeg = 35;   ///< above the horizontal
+    double distanceM = 0;       ///< 0: fit the terrain in view
+    double fovDeg = 40;
+    Projection projection = Projection::Perspective;
+};
+
+/// How the terrain looks: [vertical], [texture], [lighting], [camera].
+struct LookSpec {
+    double exaggeration = 1.0;
+    ColorRamp ramp{"terrain", {}};
+    double sunAzimuthDeg = 315;   ///< compass bearing the light comes from
+    double sunAltitudeDeg = 45;
+    CameraSpec camera;
+    KeyLocations locs;
+};
+
+/// [render]: the still.
+struct RenderSpec {
+    int width = 800;
+    int height = 600;
+    bool antialias = true;
+    std::string output;  ///< "" = out/<scene stem>.png
+    KeyLocations locs;
+};
+
+/// The whole scene file: one spec per stage, and where it came from.
+struct SceneSpec {
+    std::filesystem::path sceneFile;  ///< as given
+    std::string sceneSha1;            ///< hash of the scene file's bytes
+    SceneOverrides overrides;         ///< applied on top of the file
+
+    SamplesSpec samples;
+    FrameSpec frame;
+    NetSpec net;
+    SubdivisionSpec subdivision;
+    LookSpec look;
+    RenderSpec render;
+    LimitsSpec limits;
+};
+
+}  // namespace relief::scene
