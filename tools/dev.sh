@@ -20,10 +20,11 @@ esac
 
 # openimageio-tools: Debian 12's OpenImageIO CMake config names its command-line tools
 # (/usr/bin/iconvert, ...) as imported targets, so find_package fails without them.
+# locales: the definitions the tests build a decimal-comma locale from.
 packages=(cmake make g++ pkg-config
           libgeographiclib-dev libgdal-dev libopenimageio-dev openimageio-tools libtomlplusplus-dev
           libcli11-dev libfmt-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev
-          povray chromium fonts-dejavu-core)
+          povray chromium fonts-dejavu-core locales)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -10,6 +10,8 @@
 #include <OpenImageIO/imagebufalgo.h>
 #include <fmt/format.h>
 
+#include "core/atomic_file.h"
+
 namespace relief::compare {
 
 const char* verdictName(Verdict v) {
@@ -127,16 +129,9 @@ std::string writeDifferenceImage(const std::filesystem::path& a, const std::file
     }
     if (maxValue > 0) largest = OIIO::ImageBufAlgo::mul(largest, 1.0f / maxValue);
     OIIO::ImageBuf heat = OIIO::ImageBufAlgo::color_map(largest, 0, "inferno");
-    std::filesystem::path temp = out;
-    temp += fmt::format(".tmp-{}{}", ::getpid(), out.extension().string());
-    if (!heat.write(temp.string(), OIIO::TypeDesc::UINT8)) {
-        std::error_code ec;
-        std::filesystem::remove(temp, ec);
-        return fmt::format("cannot write {}: {}", out.string(), heat.geterror());
-    }
-    std::error_code ec;
-    std::filesystem::rename(temp, out, ec);
-    return ec ? fmt::format("cannot rename into {}: {}", out.string(), ec.message()) : "";
+    return writeThroughTemporary(out, [&](const std::filesystem::path& temp) {
+        return heat.write(temp.string(), OIIO::TypeDesc::UINT8) ? std::string() : heat.geterror();
+    });
 }
 
 }  // namespace relief::compare

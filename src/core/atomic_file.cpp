@@ -58,6 +58,22 @@ void writeFileAtomically(const std::filesystem::path& path, std::string_view byt
     f.commit();
 }
 
+std::string writeThroughTemporary(const std::filesystem::path& path,
+                                  const std::function<std::string(const std::filesystem::path&)>& write) {
+    std::filesystem::path temp = path;
+    temp += fmt::format(".tmp-{}{}", ::getpid(), path.extension().string());
+    std::string error = write(temp);
+    std::error_code ec;
+    if (error.empty()) {
+        std::filesystem::rename(temp, path, ec);
+        if (ec) error = fmt::format("cannot rename into {}: {}", path.string(), ec.message());
+    } else {
+        error = fmt::format("cannot write {}: {}", path.string(), error);
+    }
+    if (!error.empty()) std::filesystem::remove(temp, ec);
+    return error;
+}
+
 std::string readFile(const std::filesystem::path& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw std::runtime_error(fmt::format("cannot read {}: {}", path.string(),

@@ -3,6 +3,7 @@
 // destination's folder and is renamed into place only when complete.
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <string_view>
 
@@ -34,6 +35,14 @@ private:
 
 /// Writes `bytes` to `path` atomically.
 void writeFileAtomically(const std::filesystem::path& path, std::string_view bytes);
+
+/// For writers that take a path rather than bytes (an image library's):
+/// `write` writes the temporary file it is given (in the destination's folder,
+/// with the destination's extension, so formats are told by it) and returns ""
+/// or its error; the file is renamed into place only on success, and removed
+/// otherwise. Returns "" or the error, naming `path`.
+std::string writeThroughTemporary(const std::filesystem::path& path,
+                                  const std::function<std::string(const std::filesystem::path&)>& write);
 
 /// Reads a whole file; throws std::runtime_error naming the path on failure.
 std::string readFile(const std::filesystem::path& path);

@@ -6,6 +6,8 @@
 #include <OpenImageIO/imagebufalgo.h>
 #include <fmt/format.h>
 
+#include "core/atomic_file.h"
+
 namespace relief::figures {
 
 namespace fs = std::filesystem;
@@ -85,16 +87,10 @@ std::string writeContactSheet(const std::vector<Tile>& tiles, int columns, const
             OIIO::ImageBufAlgo::paste(sheet, x, y + tileH, 0, 0, strip);
         }
     }
-    fs::path temp = out;
-    temp += fmt::format(".tmp-{}.png", ::getpid());
-    if (!sheet.write(temp.string(), OIIO::TypeDesc::UINT8)) {
-        std::error_code ec;
-        fs::remove(temp, ec);
-        return fmt::format("cannot write {}: {}", out.string(), sheet.geterror());
-    }
-    std::error_code ec;
-    fs::rename(temp, out, ec);
-    if (ec) return fmt::format("cannot rename into {}: {}", out.string(), ec.message());
+    const std::string error = writeThroughTemporary(out, [&](const fs::path& temp) {
+        return sheet.write(temp.string(), OIIO::TypeDesc::UINT8) ? std::string() : sheet.geterror();
+    });
+    if (!error.empty()) return error;
     return font.empty() ? "warning: no DejaVu Sans font (apt-get install fonts-dejavu-core): labels left out" : "";
 }
 

@@ -7,6 +7,8 @@
 #include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
 
+#include "core/atomic_file.h"
+
 namespace relief::render {
 
 std::string writeCanonicalPng(const std::filesystem::path& in, const std::filesystem::path& out) {
@@ -19,23 +21,13 @@ std::string writeCanonicalPng(const std::filesystem::path& in, const std::filesy
     OIIO::ImageSpec spec(src.width, src.height, src.nchannels, OIIO::TypeDesc::UINT8);
     input->close();
 
-    std::filesystem::path temp = out;
-    temp += fmt::format(".tmp-{}.png", ::getpid());
-    auto output = OIIO::ImageOutput::create(temp.string());
-    if (!output || !output->open(temp.string(), spec) ||
-        !output->write_image(OIIO::TypeDesc::UINT8, pixels.data()) || !output->close()) {
-        std::error_code ec;
-        std::filesystem::remove(temp, ec);
-        return fmt::format("cannot write {}: {}", out.string(),
-                           output ? output->geterror() : OIIO::geterror());
-    }
-    std::error_code ec;
-    std::filesystem::rename(temp, out, ec);
-    if (ec) {
-        std::filesystem::remove(temp, ec);
-        return fmt::format("cannot rename into {}: {}", out.string(), ec.message());
-    }
-    return "";
+    return writeThroughTemporary(out, [&](const std::filesystem::path& temp) {
+        auto output = OIIO::ImageOutput::create(temp.string());
+        if (!output || !output->open(temp.string(), spec) ||
+            !output->write_image(OIIO::TypeDesc::UINT8, pixels.data()) || !output->close())
+            return output ? output->geterror() : OIIO::geterror();
+        return std::string();
+    });
 }
 
 }  // namespace relief::render

@@ -1,6 +1,10 @@
 #include <gtest/gtest.h>
 
 #include <clocale>
+#include <cstdio>
+#include <cstdlib>
+#include <locale>
+#include <sstream>
 #include <string>
 
 #include "core/diagnostics.h"
@@ -34,12 +38,38 @@ TEST(NumberFormat, UnsignedAndLocaleFree) {
     EXPECT_EQ(std::string(buf, writeUnsigned(buf, 0)), "0");
     EXPECT_EQ(std::string(buf, writeUnsigned(buf, 18446744073709551615ull)),
               "18446744073709551615");
-    // A locale with a decimal comma, if installed, changes nothing.
-    if (std::setlocale(LC_ALL, "de_DE.UTF-8")) {
-        EXPECT_EQ(fixed(1.25, 2), "1.25");
-        EXPECT_EQ(formatShortest(0.5), "0.5");
-        std::setlocale(LC_ALL, "C");
-    }
+}
+
+// A C locale with a decimal comma changes nothing. The test set-up builds
+// de_DE.UTF-8 into the build tree (tests/CMakeLists.txt, LOCPATH), so this runs
+// everywhere; the locale's comma is checked first, so the test cannot pass vacuously.
+TEST(NumberFormat, LocaleFreeUnderADecimalCommaCLocale) {
+    ASSERT_NE(std::setlocale(LC_ALL, "de_DE.UTF-8"), nullptr)
+        << "de_DE.UTF-8 missing: LOCPATH=" << (std::getenv("LOCPATH") ? std::getenv("LOCPATH") : "");
+    ASSERT_STREQ(std::localeconv()->decimal_point, ",");
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.2f", 1.25);
+    EXPECT_STREQ(buf, "1,25");  // what printf would have written into a .pov
+    EXPECT_EQ(fixed(1.25, 2), "1.25");
+    EXPECT_EQ(formatShortest(0.5), "0.5");
+    EXPECT_EQ(formatShortest(-1234.5678), "-1234.5678");
+    std::setlocale(LC_ALL, "C");
+}
+
+// The same for the C++ global locale, with a numpunct of its own.
+TEST(NumberFormat, LocaleFreeUnderADecimalCommaCxxLocale) {
+    struct Comma : std::numpunct<char> {
+        char do_decimal_point() const override { return ','; }
+        char do_thousands_sep() const override { return '.'; }
+        std::string do_grouping() const override { return "\3"; }
+    };
+    const std::locale previous = std::locale::global(std::locale(std::locale::classic(), new Comma));
+    std::ostringstream probe;
+    probe << 1234.5;
+    EXPECT_EQ(probe.str(), "1.234,5");  // the locale is in force
+    EXPECT_EQ(fixed(1234.5, 1), "1234.5");
+    EXPECT_EQ(formatShortest(1234.5), "1234.5");
+    std::locale::global(previous);
 }
 
 TEST(Diagnostics, FormatsLocation) {

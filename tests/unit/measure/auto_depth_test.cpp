@@ -79,9 +79,9 @@ TEST(AutoDepth, MountainRatesMatchSmoothness) {
     };
     double rates[2];
     int i = 0;
-    for (const Case& k : {Case{"mountain-gentle.toml", 1.0, 6}, Case{"mountain-sharp.toml", 40.0, 7}}) {
+    for (const Case& k : {Case{"mountains-gentle.toml", 1.0, 6}, Case{"mountains-sharp.toml", 40.0, 7}}) {
         Diagnostics diags;
-        const auto loaded = loadScene(std::string(RELIEF_SOURCE_DIR) + "/scenes/" + k.scene, diags);
+        const auto loaded = loadScene(std::string(RELIEF_SOURCE_DIR) + "/tests/data/scenes/" + k.scene, diags);
         ASSERT_TRUE(loaded) << k.scene;
         const auto& spec = loaded->scene;
         const auto samples = geo::readSamples(spec.samples.path, "", diags);

@@ -8,6 +8,7 @@
 #include <tuple>
 
 #include "reference/naive_four_point.h"
+#include "reference/naive_schemes.h"
 #include "subdiv/budget.h"
 #include "subdiv/row_kernels.h"
 
@@ -153,8 +154,15 @@ TEST(Refine, FusedLevelEqualsTwoPassesOnWideAndTallNets) {
 // The AVX-512, AVX2 and plain kernels compute the same sums in the same order
 // (the one-sweep row pass adds exact zeros, and every row pass writes a zero
 // as +0): a refined grid has the same bits on any x86-64 (so has a .pov).
+// Restores the best kernels when it goes out of scope, however the test leaves
+// (an ASSERT returns early), so no later test runs on the wrong kernels.
+struct KernelIsaGuard {
+    ~KernelIsaGuard() { useKernelIsa(bestKernelIsa()); }
+};
+
 TEST(Refine, VectorKernelsGiveTheSameBitsAsPlainOnes) {
     if (bestKernelIsa() == KernelIsa::Baseline) GTEST_SKIP() << "this CPU has no AVX2";
+    const KernelIsaGuard restore;
     for (const Scheme& s : kernelSchemes())
         for (auto [rows, cols, zeros] : {std::tuple{7, 301, false}, std::tuple{150, 9, false},
                                          std::tuple{7, 301, true}}) {
@@ -173,7 +181,6 @@ TEST(Refine, VectorKernelsGiveTheSameBitsAsPlainOnes) {
                     << s.name << " " << rows << " x " << cols << (zeros ? " zeros" : "")
                     << " kernels " << static_cast<int>(isa);
             }
-            useKernelIsa(bestKernelIsa());
         }
 }
 
@@ -210,6 +217,35 @@ TEST(Refine, TableRefinerMatchesNaiveFourPointLoop) {
     ASSERT_EQ(fast.cols, slow.cols);
     for (size_t i = 0; i < fast.points.size(); ++i)
         ASSERT_LT(length(fast.points[i] - slow.points[i]), 1e-9) << i;
+}
+
+// Every family, interpolating and approximating, binary and ternary, against
+// its own point-by-point reference written from the paper's formulas, with
+// parameters away from the special cases (so a wrong weight shows).
+TEST(Refine, TableRefinerMatchesNaiveLoopForEveryFamily) {
+    struct Case {
+        const char* name;
+        Scheme scheme;
+        reference::NaiveCurve naive;
+    };
+    const std::vector<Case> cases{
+        {"dlg4", dlgFourPoint(0.07), [](const std::vector<Vec3>& p) { return reference::naiveFourPointCurve(p, 0.07); }},
+        {"four-point-4p", fourPoint4p(0.11, 0.05, 0.4, 0.045), reference::naiveFourPoint4p(0.11, 0.05, 0.4, 0.045)},
+        {"binary-3p", binary3p(0.01, 0.23, 0.07), reference::naiveBinary3p(0.01, 0.23, 0.07)},
+        {"ternary-blend", ternaryBlend(-2.0 / 27, 1.0 / 81, 2.0 / 81), reference::naiveTernaryBlend(-2.0 / 27, 1.0 / 81, 2.0 / 81)},
+        {"ternary-4point", ternaryFourPoint(19.0 / 30), reference::naiveTernaryFourPoint(19.0 / 30)},
+        {"ternary-bspline", ternaryBSpline(0.05), reference::naiveTernaryBSpline(0.05)},
+    };
+    ASSERT_EQ(cases.size(), schemeFamilies().size());  // a new family needs its reference here
+    const Grid net = randomNet(9, 12, 4);
+    for (const Case& c : cases) {
+        const Grid fast = refineGrid(c.scheme, net, 2, 2);
+        const Grid slow = reference::naiveGrid(net, c.naive, 2);
+        ASSERT_EQ(fast.rows, slow.rows) << c.name;
+        ASSERT_EQ(fast.cols, slow.cols) << c.name;
+        for (size_t i = 0; i < fast.points.size(); ++i)
+            ASSERT_LT(length(fast.points[i] - slow.points[i]), 1e-9) << c.name << " at " << i;
+    }
 }
 
 TEST(Refine, ThreadCountDoesNotChangeTheResult) {

@@ -1,0 +1,47 @@
+#include "regress/regress.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+namespace relief::regress {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Defaults apply to every case, a case overrides them, and every problem is
+// reported at its line.
+TEST(Manifest, DefaultsOverridesAndErrorsAtTheirLines) {
+    const fs::path dir = fs::temp_directory_path() / "relief-manifest-test";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    std::ofstream(dir / "s.toml") << "[samples]\npath = \"x.csv\"\n";
+    std::ofstream(dir / "m.toml") << "[defaults]\nwidth = 200\nfail = 0.01\n"
+                                     "[[case]]\nname = \"a\"\nscene = \"s.toml\"\nreferences = \"ref\"\n"
+                                     "[[case]]\nname = \"b\"\nscene = \"s.toml\"\nreferences = \"ref\"\nwidth = 64\n";
+    Diagnostics diags;
+    const auto m = readManifest(dir / "m.toml", diags);
+    ASSERT_TRUE(m) << (diags.all().empty() ? "" : formatDiagnostic(diags.all()[0]));
+    ASSERT_EQ(m->cases.size(), 2u);
+    EXPECT_EQ(m->cases[0].width, 200);
+    EXPECT_EQ(m->cases[1].width, 64);
+    EXPECT_DOUBLE_EQ(m->cases[1].thresholds.fail, 0.01);
+    EXPECT_EQ(m->cases[0].scene, dir / "s.toml");
+
+    std::ofstream(dir / "bad.toml") << "[[case]]\nname = \"a\"\nscene = \"s.toml\"\nreferences = \"ref\"\n"
+                                       "[[case]]\nname = \"a\"\nscene = \"missing.toml\"\nreferences = \"ref\"\n";
+    Diagnostics bad;
+    EXPECT_FALSE(readManifest(dir / "bad.toml", bad));
+    ASSERT_EQ(bad.errorCount(), 2);  // the duplicate name and the missing scene
+    for (const auto& d : bad.all()) EXPECT_GE(d.loc.line, 5) << d.message;
+    fs::remove_all(dir);
+}
+
+TEST(Manifest, StatusNames) {
+    EXPECT_STREQ(statusName(CaseStatus::Pass), "PASS");
+    EXPECT_STREQ(statusName(CaseStatus::Fail), "FAIL");
+}
+
+}  // namespace
+}  // namespace relief::regress
