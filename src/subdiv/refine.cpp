@@ -88,10 +88,9 @@ std::vector<Taps> nonzeroTaps(const Scheme& scheme) {
 // a weighted sum of whole shifted copies of the (ghost-extended) row, seen as
 // flat doubles, so combineRows runs it as wide contiguous loops; the rules'
 // new points are then interleaved into the refined row (m points per coarse
-// point). Measured against refineLine<3> (per point, three doubles at a time)
-// in the same benchmark run, 257^2 -> 2049^2 on 2 threads: 9-point binary-3p
-// 9.4 -> 7.6 ms, 4-point dlg4 7.2 -> 6.4 ms. Working on pieces of 64 to 256
-// coarse points (the rules' results in L1) measured no faster. Where the CPU
+// point). Whole rows keep the loops long and contiguous, which is faster than
+// refining point by point; pieces of 64 to 256 coarse points (to keep the
+// rules' results in L1) measured no faster (bench/RESULTS.md). Where the CPU
 // has AVX-512, the papers' schemes skip both steps (RowSweep, row_kernels.h).
 struct RowScratch {
     std::vector<double> extended;  ///< ghosts before, the row, ghosts after (x, y, z each)

@@ -68,8 +68,8 @@ void sumBaseline(double* out, const double* const* in, const double* w, size_t n
 // before and after, so that no output line is ever read into the cache.
 // Measured in the same run against ordinary stores (257^2 refined to depth 3
 // or 2, 1 thread): dlg4 11.0 -> 8.6 ms, binary-3p 14.0 -> 12.0 ms, ternary
-// blend 11.7 -> 9.2 ms. (Session 2 measured no gain: its A/B runs timed the
-// plain variant first after a 100 MB copy, which leaves the caches cold.)
+// blend 11.7 -> 9.2 ms. An A/B comparison must time each variant after a
+// warm-up: one timed straight after a 100 MB copy starts with cold caches.
 template <int Taps, bool Stream>
 __attribute__((target("avx2"))) void sumAvx2(double* out, const double* const* in,
                                              const double* w, size_t n) {
