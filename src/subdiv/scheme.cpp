@@ -84,6 +84,15 @@ Scheme ternaryBSpline(double eta) {
 namespace {
 bool near(double a, double b) { return std::fabs(a - b) < 1e-12; }
 const char* holds(bool b) { return b ? "holds" : "fails"; }
+
+// Paper 004's condition "C2 for lo < param < hi" (`range` as the paper writes it).
+auto paper004C2Between(std::string param, double lo, double hi, std::string range) {
+    return [=](const SchemeParams& p, int) {
+        const double v = p.at(param);
+        return std::vector<std::string>{
+            fmt::format("paper 004: C2 for {}: {}", range, holds(v > lo && v < hi))};
+    };
+}
 }  // namespace
 
 const std::vector<SchemeFamily>& schemeFamilies() {
@@ -195,11 +204,7 @@ const std::vector<SchemeFamily>& schemeFamilies() {
          {{"theta", 19.0 / 30, -3, 3, "shape parameter"}},
          [](const SchemeParams& p) { return ternaryFourPoint(p.at("theta")); },
          nullptr,
-         [](const SchemeParams& p, int) {
-             const double t = p.at("theta");
-             return std::vector<std::string>{
-                 fmt::format("paper 004: C2 for 3/5 < theta < 2/3: {}", holds(t > 0.6 && t < 2.0 / 3))};
-         }},
+         paper004C2Between("theta", 0.6, 2.0 / 3, "3/5 < theta < 2/3")},
         {"ternary-bspline",
          "parametric cubic B-spline ternary scheme of paper 004 (eta = 1/27: cubic B-spline; C2 "
          "for 0 < eta < 1/9)",
@@ -207,11 +212,7 @@ const std::vector<SchemeFamily>& schemeFamilies() {
          {{"eta", 1.0 / 27, -1, 1, "shape parameter"}},
          [](const SchemeParams& p) { return ternaryBSpline(p.at("eta")); },
          nullptr,
-         [](const SchemeParams& p, int) {
-             const double e = p.at("eta");
-             return std::vector<std::string>{
-                 fmt::format("paper 004: C2 for 0 < eta < 1/9: {}", holds(e > 0 && e < 1.0 / 9))};
-         }},
+         paper004C2Between("eta", 0, 1.0 / 9, "0 < eta < 1/9")},
     };
     return families;
 }
