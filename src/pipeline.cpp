@@ -51,10 +51,6 @@ std::string autoDepthSummary(const measure::DepthChoice& choice, double toleranc
                        choice.depth, steps, formatShortest(toleranceM));
 }
 
-std::string certifiedClass(const subdiv::SchemeReport& r) {
-    return r.smoothness < 0 ? fmt::format("convergence not proven (Hölder ~{:.2f})", r.holder)
-                            : fmt::format("C{} (Hölder ~{:.2f})", r.smoothness, r.holder);
-}
 
 namespace {
 
@@ -96,7 +92,7 @@ emit::ParameterList describe(const scene::SceneSpec& s, const geo::ControlNet& n
     add("subdivision.scheme", scheme.family);
     if (!sub.scheme.preset.empty()) add("subdivision.preset", sub.scheme.preset);
     add("subdivision.params", params);
-    add("subdivision.certified", certifiedClass(scheme.report));
+    add("subdivision.certified", subdiv::certifiedClass(scheme.report));
     add("subdivision.boundary", "point reflection");
     add("subdivision.depth", sub.depthAuto ? fmt::format("{} (auto, tolerance_m = {})", depth,
                                                          formatShortest(sub.toleranceM))
@@ -165,7 +161,7 @@ std::optional<CompileResult> compileScene(const LoadedScene& loaded,
     const auto t0 = Clock::now();
     const emit::Mesh mesh = emit::buildMesh(surface->refined, spec.look);
     result.schemeFamily = loaded.resolved.family;
-    result.certified = certifiedClass(loaded.resolved.report);
+    result.certified = subdiv::certifiedClass(loaded.resolved.report);
     result.arity = loaded.resolved.scheme.arity;
     result.holder = loaded.resolved.report.holder;
     result.metresPerUnit = mesh.metresPerUnit;

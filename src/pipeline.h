@@ -46,9 +46,6 @@ std::string depthLabel(const scene::SubdivisionSpec& subdivision);
 /// For depth = "auto": "depth 4 chosen: level 1 moved the terrain 220 m, ..., 4: 4.1 m <= 5 m".
 std::string autoDepthSummary(const measure::DepthChoice& choice, double toleranceM);
 
-/// "C1 (Hölder ~1.68)" or "convergence not proven (...)".
-std::string certifiedClass(const subdiv::SchemeReport& report);
-
 /// The output budget of a scene's [limits].
 subdiv::Budget budgetOf(const scene::LimitsSpec& limits);
 

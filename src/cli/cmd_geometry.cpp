@@ -12,9 +12,9 @@
 #include "curves/curve_file.h"
 #include "curves/hausdorff.h"
 #include "emit/svg.h"
-#include "geo/profile.h"
 #include "core/number_format.h"
 #include "measure/compare_geometry.h"
+#include "measure/profile.h"
 #include "pipeline.h"
 
 namespace relief::cli {
@@ -99,24 +99,11 @@ int runProfile(const ProfileOptions& o) {
         printDiagnostics(diags, false);
         return code(Exit::BadInput);
     }
-    const auto& net = surface->net;
-    const auto line = relief::geo::geodesicProfile(net.frame, lat1, lon1, lat2, lon2, o.samples);
-    size_t outside = 0;
-    const auto zr = relief::geo::heightsAlong(surface->refined, line, outside);
-    const auto zc = zr ? relief::geo::heightsAlong(net, line, outside) : std::nullopt;
-    if (!zr || !zc) {
-        const auto& p = line[outside];
-        std::cerr << fmt::format("relief: error: the profile leaves the net {:.0f} m from the start "
-                                 "(lat {:.6f}, lon {:.6f}); the net covers x {:.0f}..{:.0f} m, y "
-                                 "{:.0f}..{:.0f} m in {}: choose points inside it\n",
-                                 p.distanceM, p.latDeg, p.lonDeg, net.x0, net.xMax(), net.y0,
-                                 net.yMax(), net.frame.describe());
+    const auto profile = relief::measure::cutProfile(surface->net, surface->refined, lon1, lat1, lon2,
+                                                     lat2, o.samples, {}, diags);
+    if (!profile) {
+        printDiagnostics(diags, false);
         return code(Exit::BadInput);
-    }
-    relief::curves::CurveFile refined{"polyline", false, {}}, control{"polyline", false, {}};
-    for (size_t i = 0; i < line.size(); ++i) {
-        refined.points.push_back({line[i].distanceM, (*zr)[i]});
-        control.points.push_back({line[i].distanceM, (*zc)[i]});
     }
     const std::string stem = fs::path(o.common.scene).stem().string();
     const fs::path svg = o.common.output.empty() ? fs::path("out") / (stem + "-profile.svg") : fs::path(o.common.output);
@@ -124,27 +111,19 @@ int runProfile(const ProfileOptions& o) {
     curveRefined.replace_extension(".json");
     curveNet.replace_filename(svg.stem().string() + "-net.json");
     ensureParent(svg);
-    double zmin = 1e300, zmax = -1e300;
-    for (const auto& p : refined.points) zmin = std::min(zmin, p.y), zmax = std::max(zmax, p.y);
-    const double length = line.back().distanceM;
-    // Plot: relief about a third of the length unless asked otherwise.
-    const double ve = o.exaggeration > 0 ? o.exaggeration
-                                         : std::max(1.0, std::round(0.3 * length / std::max(zmax - zmin, 1e-9)));
-    relief::emit::SvgAxes axes{true, ve, "distance along the geodesic (m)", "elevation (m)"};
-    const std::string title = fmt::format("{}: profile, {:.0f} m, vertical exaggeration {:g}",
-                                          fs::path(o.common.scene).filename().string(), length, ve);
-    relief::writeFileAtomically(
-        svg, relief::emit::curvesSvg(title, {"control net (bilinear)", control.points, false},
-                                     {{fmt::format("refined: {} depth {} ({})", loaded->resolved.family,
-                                                   surface->depth, relief::certifiedClass(loaded->resolved.report)),
-                                       refined.points, false}},
-                                     axes));
-    relief::writeFileAtomically(curveRefined, relief::curves::curveFileJson(refined));
-    relief::writeFileAtomically(curveNet, relief::curves::curveFileJson(control));
+    double exaggeration = 0;
+    const std::string refinedLabel =
+        fmt::format("refined: {} depth {} ({})", loaded->resolved.family, surface->depth,
+                    relief::subdiv::certifiedClass(loaded->resolved.report));
+    relief::writeFileAtomically(svg, relief::measure::profileSvg(*profile,
+                                                                 fs::path(o.common.scene).filename().string(),
+                                                                 refinedLabel, o.exaggeration, exaggeration));
+    relief::writeFileAtomically(curveRefined, relief::curves::curveFileJson(profile->refined));
+    relief::writeFileAtomically(curveNet, relief::curves::curveFileJson(profile->control));
     std::cerr << fmt::format("wrote {}, {} (refined) and {} (control net): {} points over {:.1f} m, "
                              "elevation {:.1f}..{:.1f} m\n",
-                             svg.string(), curveRefined.string(), curveNet.string(), line.size(), length,
-                             zmin, zmax);
+                             svg.string(), curveRefined.string(), curveNet.string(), profile->line.size(),
+                             profile->lengthM, profile->zMinM, profile->zMaxM);
     return code(Exit::Ok);
 }
 
@@ -220,7 +199,7 @@ int runCompareGeometry(const CompareGeometryOptions& o) {
         std::cerr << "wrote " << o.map << '\n';
     }
     auto describe = [](const relief::LoadedScene& l, const relief::Surface& s) {
-        return fmt::format("{}, depth {}, {}", l.resolved.family, s.depth, relief::certifiedClass(l.resolved.report));
+        return fmt::format("{}, depth {}, {}", l.resolved.family, s.depth, relief::subdiv::certifiedClass(l.resolved.report));
     };
     double worstProfile = 0, worstContour = 0;
     for (const auto& p : result->profiles) worstProfile = std::max(worstProfile, p.h.H);

@@ -11,7 +11,7 @@
 #include "core/atomic_file.h"
 #include "core/number_format.h"
 #include "curves/curve_file.h"
-#include "emit/svg.h"
+#include "figures/curve_figure.h"
 #include "pipeline.h"
 #include "subdiv/analysis.h"
 #include "subdiv/resolve.h"
@@ -38,9 +38,8 @@ std::string weightList(const std::vector<double>& w) {
 
 // --scheme / --preset / --param, as on the command line of check and curve:
 // the spec resolveScheme takes, each key located at its option.
-std::optional<relief::subdiv::ResolvedScheme> resolveScheme(const std::string& schemeName,
-                                                            const std::string& presetName,
-                                                            const std::map<std::string, double>& params) {
+relief::scene::SchemeSpec schemeSpec(const std::string& schemeName, const std::string& presetName,
+                                     const std::map<std::string, double>& params) {
     relief::scene::SchemeSpec spec;
     spec.name = schemeName;
     spec.preset = presetName;
@@ -49,8 +48,14 @@ std::optional<relief::subdiv::ResolvedScheme> resolveScheme(const std::string& s
     spec.locs.keys["subdivision.scheme"] = {"--scheme", 0, 0};
     spec.locs.keys["subdivision.preset"] = {"--preset", 0, 0};
     for (const auto& [k, v] : params) spec.locs.keys["subdivision." + k] = {"--param " + k, 0, 0};
+    return spec;
+}
+
+std::optional<relief::subdiv::ResolvedScheme> resolveScheme(const std::string& schemeName,
+                                                            const std::string& presetName,
+                                                            const std::map<std::string, double>& params) {
     relief::Diagnostics diags;
-    auto resolved = relief::subdiv::resolveScheme(spec, diags);
+    auto resolved = relief::subdiv::resolveScheme(schemeSpec(schemeName, presetName, params), diags);
     printDiagnostics(diags, false);  // errors, or warnings (caveats)
     return resolved;
 }
@@ -180,53 +185,21 @@ int runCurve(const CurveOptions& o) {
         sets.push_back(base);
         labels.push_back("");
     }
-    if (polygon->type != "polyline") {
-        std::cerr << "relief: error: " << o.polygon << ": relief curve refines a control polygon "
-                  << "(\"type\": \"polyline\"), not a " << polygon->type << "\n";
-        return code(Exit::BadInput);
-    }
-    std::vector<relief::Vec3> control;
-    for (const auto& p : polygon->points) control.push_back({p.x, p.y, 0});
-
-    relief::emit::SvgCurve controlCurve{"control polygon", polygon->points, polygon->closed};
-    std::vector<relief::emit::SvgCurve> curves;
-    std::vector<relief::curves::CurveFile> refinedFiles;
-    for (size_t i = 0; i < sets.size(); ++i) {
-        auto resolved = resolveScheme(o.scheme.scheme, o.scheme.preset, sets[i]);
-        if (!resolved) return code(Exit::BadInput);
-        if (!polygon->closed &&
-            static_cast<int>(control.size()) < relief::subdiv::minPoints(resolved->scheme)) {
-            std::cerr << fmt::format("relief: error: {}: an open polygon needs at least {} points "
-                                     "for {}\n",
-                                     o.polygon, relief::subdiv::minPoints(resolved->scheme),
-                                     resolved->family);
-            return code(Exit::BadInput);
-        }
-        const auto& report = resolved->report;
-        const auto refined =
-            relief::subdiv::refineCurveLevels(resolved->scheme, control, polygon->closed, o.depth);
-        relief::curves::CurveFile file{"polyline", polygon->closed, {}};
-        for (const auto& v : refined) file.points.push_back({v.x, v.y});
-        std::string label = resolved->family;
-        if (!labels[i].empty()) label += ": " + labels[i];
-        else {
-            std::string p;
-            for (const auto& [k, v] : resolved->params)
-                p += fmt::format("{}{} = {}", p.empty() ? "" : ", ", k, relief::formatShortest(v));
-            if (!p.empty()) label += ": " + p;
-        }
-        label += fmt::format(" ({})", relief::certifiedClass(report));
-        curves.push_back({label, file.points, polygon->closed});
-        refinedFiles.push_back(std::move(file));
-    }
+    std::vector<relief::figures::CurveVariant> variants;
+    for (size_t i = 0; i < sets.size(); ++i)
+        variants.push_back({labels[i], schemeSpec(o.scheme.scheme, o.scheme.preset, sets[i])});
+    const std::string title =
+        o.title.empty() ? fmt::format("{} refined {} times", fs::path(o.polygon).filename().string(), o.depth)
+                        : o.title;
+    const auto figure = relief::figures::curveFigure(*polygon, o.polygon, variants, o.depth, title, diags);
+    printDiagnostics(diags, figure.has_value());
+    if (!figure) return code(Exit::BadInput);
+    const auto& refinedFiles = figure->refined;
     const fs::path svgPath = o.output.empty()
                                  ? fs::path("out") / (fs::path(o.polygon).stem().string() + ".svg")
                                  : fs::path(o.output);
     ensureParent(svgPath);
-    const std::string title =
-        o.title.empty() ? fmt::format("{} refined {} times", fs::path(o.polygon).filename().string(), o.depth)
-                        : o.title;
-    relief::writeFileAtomically(svgPath, relief::emit::curvesSvg(title, controlCurve, curves));
+    relief::writeFileAtomically(svgPath, figure->svg);
     std::cerr << "wrote " << svgPath.string() << '\n';
     if (!o.points.empty()) {
         for (size_t i = 0; i < refinedFiles.size(); ++i) {

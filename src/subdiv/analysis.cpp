@@ -263,4 +263,9 @@ std::vector<std::string> explainReport(const SchemeReport& rep, const std::strin
     return notes;
 }
 
+std::string certifiedClass(const SchemeReport& r) {
+    return r.smoothness < 0 ? fmt::format("convergence not proven (Hölder ~{:.2f})", r.holder)
+                            : fmt::format("C{} (Hölder ~{:.2f})", r.smoothness, r.holder);
+}
+
 }  // namespace relief::subdiv

@@ -70,4 +70,7 @@ namespace relief::subdiv {
 std::vector<std::string> explainReport(const SchemeReport& report, const std::string& family,
                                        const std::map<std::string, double>& params);
 
+/// "C1 (Hölder ~1.68)" or "convergence not proven (Hölder ~0.00)".
+std::string certifiedClass(const SchemeReport& report);
+
 }  // namespace relief::subdiv

@@ -1,0 +1,54 @@
+#include "figures/curve_figure.h"
+
+#include <fmt/format.h>
+
+#include "core/number_format.h"
+#include "emit/svg.h"
+#include "subdiv/refine.h"
+#include "subdiv/resolve.h"
+
+namespace relief::figures {
+
+std::optional<CurveFigure> curveFigure(const curves::CurveFile& polygon, const std::string& polygonName,
+                                       const std::vector<CurveVariant>& variants, int depth,
+                                       const std::string& title, Diagnostics& diags) {
+    if (polygon.type != "polyline") {
+        diags.error({polygonName, 0, 0},
+                    fmt::format("relief curve refines a control polygon (\"type\": \"polyline\"), not a {}",
+                                polygon.type));
+        return std::nullopt;
+    }
+    std::vector<Vec3> control;
+    for (const auto& p : polygon.points) control.push_back({p.x, p.y, 0});
+    CurveFigure figure;
+    std::vector<emit::SvgCurve> drawn;
+    for (const CurveVariant& variant : variants) {
+        const auto resolved = subdiv::resolveScheme(variant.scheme, diags);
+        if (!resolved) return std::nullopt;
+        if (!polygon.closed && static_cast<int>(control.size()) < subdiv::minPoints(resolved->scheme)) {
+            diags.error({polygonName, 0, 0}, fmt::format("an open polygon needs at least {} points for {}",
+                                                         subdiv::minPoints(resolved->scheme),
+                                                         resolved->family));
+            return std::nullopt;
+        }
+        const auto refined = subdiv::refineCurveLevels(resolved->scheme, control, polygon.closed, depth);
+        curves::CurveFile file{"polyline", polygon.closed, {}};
+        for (const auto& v : refined) file.points.push_back({v.x, v.y});
+        std::string label = resolved->family;
+        if (!variant.label.empty()) {
+            label += ": " + variant.label;
+        } else {
+            std::string p;
+            for (const auto& [k, v] : resolved->params)
+                p += fmt::format("{}{} = {}", p.empty() ? "" : ", ", k, formatShortest(v));
+            if (!p.empty()) label += ": " + p;
+        }
+        label += fmt::format(" ({})", subdiv::certifiedClass(resolved->report));
+        drawn.push_back({label, file.points, polygon.closed});
+        figure.refined.push_back(std::move(file));
+    }
+    figure.svg = emit::curvesSvg(title, {"control polygon", polygon.points, polygon.closed}, drawn);
+    return figure;
+}
+
+}  // namespace relief::figures
