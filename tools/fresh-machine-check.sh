@@ -2,8 +2,9 @@
 # Proves the README's quick start on a fresh machine: builds a minimal Debian 12 root
 # (debootstrap --variant=minbase bookworm, cached between runs), puts a clean clone of HEAD in it,
 # runs the README's two quick-start commands exactly as written, then both again (a second run
-# must be fast and green), and reports each exit code and time. Exit 0 when all four runs exit 0
-# and a PNG is under out/.
+# must be fast and green), then the first once more after breaking the set-up as an interrupted
+# run would (a half-configured build folder, a package unpacked but not configured), and reports
+# each exit code and time. Exit 0 when every run exits 0 and a PNG is under out/.
 #
 #   tools/fresh-machine-check.sh [--keep]      (as root; needs debootstrap, git, unshare)
 #
@@ -103,6 +104,26 @@ for pass in 1 2; do
     [ "$rc" -eq 0 ] || { failed=1; echo "   (whole log: $log)"; }
   done
 done
+
+# An interrupted earlier run: configure stopped before writing the build system (CMakeCache.txt
+# without a Makefile), and dpkg stopped between unpacking and configuring a package.
+echo "== breaking the set-up as an interrupted run would"
+run_in_root "$cache/break.log" '
+  set -e
+  rm -f build/Makefile out/*.png
+  deb=$(ls /var/cache/apt/archives/povray_*.deb | head -1)
+  dpkg --remove --force-depends povray >/dev/null
+  dpkg --unpack "$deb" >/dev/null
+  dpkg-query -W -f="povray: \${Status}\n" povray' || { echo "   could not break the set-up (log: $cache/break.log)"; failed=1; }
+sed 's/^/   | /' "$cache/break.log"
+cmd=${commands[0]}
+echo "== run 3 (recovering): $cmd"
+t0=$(date +%s)
+rc=0; run_in_root "$cache/run-3-1.log" "$cmd" || rc=$?
+secs=$(( $(date +%s) - t0 ))
+tail -3 "$cache/run-3-1.log" | sed 's/^/   | /'
+report+=("$(printf 'run 3  exit %-3d %5d s  %s  (after an interrupted run)' "$rc" "$secs" "$cmd")")
+[ "$rc" -eq 0 ] || { failed=1; echo "   (whole log: $cache/run-3-1.log)"; }
 
 pngs=$(find "$root/root/relief/out" -name '*.png' -printf '%P (%s bytes)\n' 2>/dev/null || true)
 echo
