@@ -1,5 +1,6 @@
-// relief: the command line. The only code that prints or exits; everything
-// else is the relief_core library. Each subcommand is in its own cmd_*.cpp.
+// relief: the command line. src/cli/ is the only code that prints or exits;
+// everything else is the relief_core library. Each subcommand is in its own
+// cmd_*.cpp and only parses its arguments, calls the library and prints.
 #include <iostream>
 
 #include <CLI/CLI.hpp>

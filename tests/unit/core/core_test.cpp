@@ -40,12 +40,13 @@ TEST(NumberFormat, UnsignedAndLocaleFree) {
               "18446744073709551615");
 }
 
-// A C locale with a decimal comma changes nothing. The test set-up builds
-// de_DE.UTF-8 into the build tree (tests/CMakeLists.txt, LOCPATH), so this runs
-// everywhere; the locale's comma is checked first, so the test cannot pass vacuously.
+// A C locale with a decimal comma changes nothing. The build compiles
+// de_DE.UTF-8 into the build tree (tests/CMakeLists.txt) and the test points
+// glibc at it (LOCPATH), so this runs everywhere; the locale's comma is checked
+// first, so the test cannot pass vacuously.
 TEST(NumberFormat, LocaleFreeUnderADecimalCommaCLocale) {
-    ASSERT_NE(std::setlocale(LC_ALL, "de_DE.UTF-8"), nullptr)
-        << "de_DE.UTF-8 missing: LOCPATH=" << (std::getenv("LOCPATH") ? std::getenv("LOCPATH") : "");
+    ::setenv("LOCPATH", RELIEF_TEST_LOCPATH, 1);
+    ASSERT_NE(std::setlocale(LC_ALL, "de_DE.UTF-8"), nullptr) << "no de_DE.UTF-8 in " << RELIEF_TEST_LOCPATH;
     ASSERT_STREQ(std::localeconv()->decimal_point, ",");
     char buf[64];
     std::snprintf(buf, sizeof buf, "%.2f", 1.25);
@@ -54,6 +55,7 @@ TEST(NumberFormat, LocaleFreeUnderADecimalCommaCLocale) {
     EXPECT_EQ(formatShortest(0.5), "0.5");
     EXPECT_EQ(formatShortest(-1234.5678), "-1234.5678");
     std::setlocale(LC_ALL, "C");
+    ::unsetenv("LOCPATH");
 }
 
 // The same for the C++ global locale, with a numpunct of its own.
