@@ -200,7 +200,7 @@ std::optional<Surface> buildSurface(const LoadedScene& loaded, Diagnostics& diag
     const scene::SubdivisionSpec& sub = spec.subdivision;
     const subdiv::Scheme& scheme = loaded.resolved.scheme;
     auto t0 = Clock::now();
-    const auto samples = geo::readSamples(spec.samples.path, spec.samples.pathAsWritten, diags);
+    const auto samples = geo::readSamples(spec.samples, diags);
     if (diags.hasErrors()) return std::nullopt;
     auto net = geo::normalize(spec.frame, spec.net, spec.samples.pathAsWritten, samples, diags);
     if (!net) return std::nullopt;

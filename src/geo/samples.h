@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "core/diagnostics.h"
+#include "scene/scene_spec.h"
 #include "core/source_loc.h"
 
 namespace relief::geo {
@@ -24,5 +25,10 @@ struct GeoSample {
 /// on one line, is an error too. `displayPath` is the path used in messages.
 std::vector<GeoSample> readSamples(const std::filesystem::path& path,
                                    const std::string& displayPath, Diagnostics& diags);
+
+/// The samples a scene's [samples] names.
+inline std::vector<GeoSample> readSamples(const scene::SamplesSpec& spec, Diagnostics& diags) {
+    return readSamples(spec.path, spec.pathAsWritten, diags);
+}
 
 }  // namespace relief::geo

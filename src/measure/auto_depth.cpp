@@ -24,7 +24,7 @@ struct NetCurve {
     std::vector<Vec3> points;
 };
 
-std::vector<NetCurve> netCurves(const geo::ControlNet& net) {
+std::vector<NetCurve> netCurves(const geo::GeoGrid& net) {
     std::vector<NetCurve> curves;
     for (int r = 0; r < net.grid.rows; ++r) {
         NetCurve c{fmt::format("row {}", r), true, r, {}};
@@ -47,7 +47,7 @@ curves::PiecewiseBezier polyline(const std::vector<Vec3>& points) {
 
 }  // namespace
 
-DepthChoice chooseDepth(const subdiv::Scheme& scheme, const geo::ControlNet& net, double toleranceM,
+DepthChoice chooseDepth(const subdiv::Scheme& scheme, const geo::GeoGrid& net, double toleranceM,
                         int maxDepth, int threads) {
     DepthChoice choice;
     std::vector<NetCurve> curves = netCurves(net);

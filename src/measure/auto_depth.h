@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "geo/normalize.h"
+#include "geo/geo_grid.h"
 #include "subdiv/scheme.h"
 
 namespace relief::measure {
@@ -33,7 +33,7 @@ struct DepthChoice {
 /// at or below `toleranceM`. The curves are refined with the same boundary
 /// rule as the surface. Rows and columns are measured in parallel
 /// (`threads` <= 0: all cores); the result does not depend on the threads.
-DepthChoice chooseDepth(const subdiv::Scheme& scheme, const geo::ControlNet& net,
+DepthChoice chooseDepth(const subdiv::Scheme& scheme, const geo::GeoGrid& net,
                         double toleranceM, int maxDepth, int threads = 0);
 
 /// The observed convergence rate of step k: log_arity(d_{k-1} / d_k)
