@@ -23,7 +23,7 @@ esac
 # locales: the definitions the tests build a decimal-comma locale from.
 packages=(cmake make g++ pkg-config
           libgeographiclib-dev libgdal-dev libopenimageio-dev openimageio-tools libtomlplusplus-dev
-          libcli11-dev libfmt-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev
+          libcli11-dev libfmt-dev nlohmann-json3-dev libnanoflann-dev libgtest-dev libbenchmark-dev
           povray chromium fonts-dejavu-core locales)
 missing=()
 for p in "${packages[@]}"; do

@@ -112,6 +112,66 @@ TEST(Normalize, LinearGriddingOfAPlaneAndFillOutsideHull) {
     EXPECT_GE(inside, static_cast<int>(net->grid.points.size() - net->filledOutsideHull));
 }
 
+// The nearest-sample fill (nodes outside the hull for linear gridding, every
+// node for nearest gridding) against a brute-force search over every sample.
+TEST(Normalize, NearestSampleFillMatchesBruteForce) {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(0, 1000);
+    std::vector<FramePoint> pts;
+    for (int i = 0; i < 2000; ++i) {
+        const double x = u(rng), y = u(rng);
+        pts.push_back({{x, y, std::sin(x / 90) * 40 + y / 10}, {"p.csv", i + 2, 1}});
+    }
+    auto bruteForce = [&](double x, double y) {
+        double best = 1e300, z = 0;
+        for (const auto& p : pts) {
+            const double d = (p.p.x - x) * (p.p.x - x) + (p.p.y - y) * (p.p.y - y);
+            if (d < best) best = d, z = p.p.z;
+        }
+        return z;
+    };
+    Frame frame;
+    frame.utmZone = 33;
+    for (auto gridding : {scene::Gridding::Linear, scene::Gridding::Nearest}) {
+        scene::NetSpec spec;
+        spec.rows = 31;
+        spec.cols = 41;
+        spec.extentM = std::array<double, 4>{-100, -50, 1100, 1050};  // beyond the samples
+        spec.gridding = gridding;
+        Diagnostics diags;
+        const auto net = gridSamples(spec, "p.csv", frame, pts, diags);
+        ASSERT_TRUE(net);
+        int outside = 0;
+        for (const Vec3& n : net->grid.points) {
+            const bool inHull = n.x > 0 && n.x < 1000 && n.y > 0 && n.y < 1000;
+            if (gridding == scene::Gridding::Linear && inHull) continue;
+            outside += !inHull;
+            EXPECT_DOUBLE_EQ(n.z, bruteForce(n.x, n.y)) << n.x << ", " << n.y;
+        }
+        EXPECT_GT(outside, 100);
+        if (gridding == scene::Gridding::Linear) {
+            EXPECT_GE(net->filledOutsideHull, static_cast<size_t>(outside));
+        }
+    }
+}
+
+// A node equally far from several samples takes the first of them, as GDAL's
+// nearest-neighbour search does, so the result does not depend on the search.
+TEST(Normalize, NearestSampleTiesGoToTheFirstSample) {
+    const std::vector<FramePoint> pts{{{20, 20, 4}, {}}, {{0, 0, 1}, {}}, {{20, 0, 2}, {}}, {{0, 20, 3}, {}}};
+    scene::NetSpec spec;
+    spec.rows = 3;
+    spec.cols = 3;
+    spec.gridding = scene::Gridding::Nearest;
+    Diagnostics diags;
+    const auto net = gridSamples(spec, "t.csv", Frame{}, pts, diags);
+    ASSERT_TRUE(net);
+    EXPECT_EQ(net->grid.at(1, 1).z, 4);  // the centre: all four tie
+    EXPECT_EQ(net->grid.at(0, 1).z, 1);  // (10, 0): samples 1 and 2 tie
+    EXPECT_EQ(net->grid.at(1, 0).z, 1);  // (0, 10): samples 1 and 3 tie
+    EXPECT_EQ(net->grid.at(2, 1).z, 4);  // (10, 20): samples 0 and 3 tie
+}
+
 TEST(Normalize, DumpFormats) {
     ControlNet net;
     net.grid.rows = 2;
