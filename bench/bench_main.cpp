@@ -2,12 +2,15 @@
 // the same run: the refiner against a naive per-point loop, the mesh2 writer
 // against fprintf("%.9g").
 #include <benchmark/benchmark.h>
+#include <cpl_conv.h>
+#include <gdalgrid.h>
 #include <fmt/format.h>
 #include <immintrin.h>
 #include <omp.h>
 
 #include <cmath>
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
@@ -20,6 +23,7 @@
 
 #include "emit/mesh.h"
 #include "emit/write_scene.h"
+#include "geo/normalize.h"
 #include "reference/naive_four_point.h"
 #include "subdiv/refine.h"
 #include "subdiv/row_kernels.h"
@@ -472,5 +476,69 @@ void BM_HausdorffTerrainRowVertexOnly(benchmark::State& state) {
                                relief::curves::vertexHausdorff({&p.coarse, 1}, {&p.fine, 1})));
 }
 BENCHMARK(BM_HausdorffTerrainRowVertexOnly)->Unit(benchmark::kMillisecond);
+
+// The nearest-sample fill: relief's k-d tree (geo::gridSamples, nearest
+// gridding: every node filled) against GDAL's nearest neighbour with radius 0
+// (what relief used before: every sample searched for every node), on the
+// same scattered points and net, in the same run. Arg: samples (and about as
+// many nodes).
+struct ScatteredSet {
+    std::vector<geo::FramePoint> points;
+    std::vector<double> xs, ys, zs;
+    int side = 0;  ///< net nodes per side
+};
+const ScatteredSet& scattered(int n) {
+    static std::map<int, ScatteredSet> sets;
+    auto& s = sets[n];
+    if (s.points.empty()) {
+        std::uint64_t state = 12345;
+        auto next = [&] {  // a fixed LCG: the same points in every run
+            state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+            return static_cast<double>(state >> 11) / 9007199254740992.0;
+        };
+        for (int i = 0; i < n; ++i) {
+            const double x = 1000 * next(), y = 1000 * next();
+            const double z = 100 * std::sin(x / 70) * std::cos(y / 90);
+            s.points.push_back({{x, y, z}, {}});
+            s.xs.push_back(x), s.ys.push_back(y), s.zs.push_back(z);
+        }
+        s.side = static_cast<int>(std::sqrt(static_cast<double>(n)));
+    }
+    return s;
+}
+
+void BM_NearestFill(benchmark::State& state) {
+    const auto& s = scattered(static_cast<int>(state.range(0)));
+    scene::NetSpec spec;
+    spec.rows = spec.cols = s.side;
+    spec.extentM = std::array<double, 4>{0, 0, 1000, 1000};
+    spec.gridding = scene::Gridding::Nearest;
+    for (auto _ : state) {
+        Diagnostics diags;
+        auto net = geo::gridSamples(spec, "bench", geo::Frame{}, s.points, diags);
+        benchmark::DoNotOptimize(net->grid.points.data());
+    }
+    state.counters["nodes"] = s.side * s.side;
+}
+BENCHMARK(BM_NearestFill)->Arg(5000)->Arg(20000)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_NearestFillGdalRadius0(benchmark::State& state) {
+    const auto& s = scattered(static_cast<int>(state.range(0)));
+    GDALGridAlgorithm algorithm;
+    void* options = nullptr;
+    ParseAlgorithmAndOptions("nearest:radius1=0:radius2=0", &algorithm, &options);
+    const double d = 1000.0 / (s.side - 1);
+    std::vector<double> out(static_cast<size_t>(s.side) * s.side);
+    for (auto _ : state) {
+        GDALGridCreate(algorithm, options, static_cast<GUInt32>(s.xs.size()), s.xs.data(), s.ys.data(),
+                       s.zs.data(), -0.5 * d, 1000 + 0.5 * d, -0.5 * d, 1000 + 0.5 * d,
+                       static_cast<GUInt32>(s.side), static_cast<GUInt32>(s.side), GDT_Float64, out.data(),
+                       nullptr, nullptr);
+        benchmark::DoNotOptimize(out.data());
+    }
+    CPLFree(options);
+    state.counters["nodes"] = s.side * s.side;
+}
+BENCHMARK(BM_NearestFillGdalRadius0)->Arg(5000)->Arg(20000)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
