@@ -218,7 +218,7 @@ int runCurve(const CurveOptions& o) {
 std::string familyNames() {
     std::string names;
     for (const auto& f : relief::subdiv::schemeFamilies()) names += (names.empty() ? "" : ", ") + f.name;
-    return names + ", or mask (relief check --list)";
+    return names + " (relief check --list)";
 }
 
 }  // namespace

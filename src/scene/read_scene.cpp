@@ -430,11 +430,7 @@ std::optional<SceneSpec> readScene(const std::filesystem::path& path, Diagnostic
                 s.error("mask", "subdivision.mask must be a list of numbers or fractions (the "
                                 "coefficients a_k of the scheme's symbol)");
         }
-        const bool isMask = scheme.name == "mask";
-        if (isMask && (scheme.mask.empty() || scheme.maskArity == 0) && !diags.hasErrors())
-            diags.error(sub.locs.at("subdivision.scheme"),
-                        "scheme = \"mask\" needs subdivision.arity (2 or 3) and "
-                        "subdivision.mask = [a_k, ...]");
+        const bool isMask = scheme.name == "mask";  // a mask's own keys: subdiv::resolveScheme
         if (!isMask && (s.find("mask") || s.find("arity") || s.find("mask_first")))
             diags.error(s.keyLoc(s.find("mask") ? "mask" : s.find("arity") ? "arity" : "mask_first"),
                         "subdivision.mask, arity and mask_first are only used with scheme = \"mask\"");

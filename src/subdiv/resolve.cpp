@@ -146,7 +146,10 @@ std::optional<ResolvedScheme> resolveScheme(const scene::SchemeSpec& spec, Diagn
         if (!params.empty())
             diags.error(spec.locs.at("subdivision." + params.begin()->first),
                         fmt::format("scheme = \"mask\" takes no parameter \"{}\"", params.begin()->first));
-        else if (!spec.mask.empty())
+        else if (spec.mask.empty() || spec.maskArity == 0)
+            diags.error(nameLoc, "scheme = \"mask\" needs subdivision.arity (2 or 3) and "
+                                 "subdivision.mask = [a_k, ...]");
+        else
             scheme = schemeFromMask(
                 spec.maskArity,
                 spec.maskFirst.value_or(-(static_cast<int>(spec.mask.size()) - 1) / 2), spec.mask,
