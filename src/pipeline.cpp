@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <mutex>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -151,7 +152,7 @@ std::optional<CompileResult> compileScene(const LoadedScene& loaded,
 
     auto tmpl = emit::loadSceneTemplate(options.templatesDir, diags);
     if (!tmpl) return std::nullopt;
-    auto surface = buildSurface(loaded, diags, options.threads);
+    auto surface = buildSurface(loaded, diags, options.threads, options.progress);
     if (!surface) return std::nullopt;
     result.estimate = surface->estimate;
     result.times.normalize = surface->normalizeSeconds;
@@ -195,14 +196,30 @@ std::optional<CompileResult> compileScene(const LoadedScene& loaded,
     return result;
 }
 
-std::optional<Surface> buildSurface(const LoadedScene& loaded, Diagnostics& diags, int threads) {
+std::optional<Surface> buildSurface(const LoadedScene& loaded, Diagnostics& diags, int threads,
+                                    const ProgressFn& progress) {
     const scene::SceneSpec& spec = loaded.scene;
     const scene::SubdivisionSpec& sub = spec.subdivision;
     const subdiv::Scheme& scheme = loaded.resolved.scheme;
     auto t0 = Clock::now();
     const auto samples = geo::readSamples(spec.samples, diags);
     if (diags.hasErrors()) return std::nullopt;
-    auto net = geo::normalize(spec.frame, spec.net, spec.samples.pathAsWritten, samples, diags);
+    // Gridding is what takes long on real data: tell each percent.
+    geo::GridProgressFn gridding;
+    int lastPercent = -1;
+    std::mutex reporting;  // GDAL reports from its main thread; a guard costs nothing if not
+    const std::string task = fmt::format("gridding {} samples", samples.size());
+    if (progress) {
+        progress({ProgressEvent::Stage::Compiling, task, -1});  // before GDAL's triangulation, which tells nothing
+        gridding = [&](double fraction) {
+            const int percent = static_cast<int>(100 * fraction);
+            const std::lock_guard<std::mutex> lock(reporting);
+            if (percent == lastPercent) return;
+            lastPercent = percent;
+            progress({ProgressEvent::Stage::Compiling, task, percent});
+        };
+    }
+    auto net = geo::normalize(spec.frame, spec.net, spec.samples.pathAsWritten, samples, diags, gridding);
     if (!net) return std::nullopt;
     Surface s;
     s.normalizeSeconds = secondsSince(t0);
@@ -283,6 +300,7 @@ JobOutcome runSceneJob(const SceneJob& job, Diagnostics& diags, const ProgressFn
     copts.templatesDir = job.templatesDir;
     copts.dumpNetPath = job.dumpNetPath;
     copts.threads = job.threads;
+    copts.progress = progress;
     for (const auto& p : {outcome.paths.png, outcome.paths.pov, job.dumpNetPath}) createParentOf(p);
     say(Stage::Compiling, fmt::format("compiling {} ({}, {})", job.scenePath.string(),
                                       loaded->resolved.family, depthLabel(loaded->scene.subdivision)));

@@ -49,6 +49,15 @@ std::string autoDepthSummary(const measure::DepthChoice& choice, double toleranc
 /// The output budget of a scene's [limits].
 subdiv::Budget budgetOf(const scene::LimitsSpec& limits);
 
+/// What a job is doing, for the command line to show.
+struct ProgressEvent {
+    enum class Stage { Reading, Compiling, Rendering } stage = Stage::Reading;
+    std::string text;  ///< e.g. "reading scenes/default.toml", "gridding 458845 samples",
+                       ///< POV-Ray's "Rendered 5120 of 480000 pixels (1%)"
+    int percent = -1;  ///< of the task `text` names, 0..100; -1 when it has none
+};
+using ProgressFn = std::function<void(const ProgressEvent&)>;
+
 /// Stages 2 and 3: the control net and the refined surface (metres, in the
 /// net's frame), refused with a diagnostic when over the output budget. Used
 /// by compileScene and by measurements such as profiles.
@@ -60,13 +69,16 @@ struct Surface {
     std::optional<measure::DepthChoice> autoDepth;  ///< the change per level, for depth = "auto"
     double normalizeSeconds = 0, subdivideSeconds = 0;  ///< subdivide includes choosing the depth
 };
-std::optional<Surface> buildSurface(const LoadedScene& loaded, Diagnostics& diags, int threads = 0);
+/// `progress` (may be empty) hears how far the gridding is.
+std::optional<Surface> buildSurface(const LoadedScene& loaded, Diagnostics& diags, int threads = 0,
+                                    const ProgressFn& progress = {});
 
 struct CompileOptions {
     std::filesystem::path povPath;       ///< where the .pov goes
     std::filesystem::path templatesDir;
     std::filesystem::path dumpNetPath;   ///< optional: .csv (x,y,z) or .asc (ESRI ASCII grid)
     int threads = 0;                     ///< refiner threads; 0 = all cores
+    ProgressFn progress;                 ///< may be empty
 };
 
 struct StageTimes {
@@ -115,14 +127,6 @@ struct SceneJob {
     std::filesystem::path dumpNetPath;
     int threads = 0;            ///< refiner and POV-Ray threads; 0 = all cores
 };
-
-/// What a job is doing, for the command line to show.
-struct ProgressEvent {
-    enum class Stage { Reading, Compiling, Rendering } stage = Stage::Reading;
-    std::string text;  ///< e.g. "reading scenes/default.toml", POV-Ray's "Rendered ... (40%)"
-    int percent = -1;  ///< of the render, 0..100; -1 when unknown
-};
-using ProgressFn = std::function<void(const ProgressEvent&)>;
 
 enum class JobStatus { Ok, BadInput, ToolFailed };
 

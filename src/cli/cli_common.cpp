@@ -80,7 +80,30 @@ void Progress::show(const std::string& line, int percent) {
 }
 
 void Progress::show(const relief::ProgressEvent& e) {
-    show(e.stage == relief::ProgressEvent::Stage::Rendering ? "povray: " + e.text : e.text, e.percent);
+    const bool rendering = e.stage == relief::ProgressEvent::Stage::Rendering;
+    // POV-Ray's own lines carry their percentage (and change with it): the stage is the task.
+    const std::string task = rendering ? std::string("povray") : e.text;
+    const auto now = std::chrono::steady_clock::now();
+    if (task != task_) {
+        task_ = task;
+        taskStart_ = now;
+        firstPercent_ = -1;
+    }
+    if (e.percent >= 0 && firstPercent_ < 0) {
+        firstPercent_ = e.percent;
+        firstPercentAt_ = now;
+    }
+    std::string line = rendering ? "povray: " + e.text
+                                 : e.percent < 0 ? e.text : fmt::format("{} ({}%)", e.text, e.percent);
+    // On a terminal: seconds spent on the task, and those left at the rate since its first percentage.
+    if (tty_ && e.percent > firstPercent_ && e.percent < 100) {
+        const auto seconds = [](auto d) { return std::chrono::duration<double>(d).count(); };
+        const double rate = (e.percent - firstPercent_) / seconds(now - firstPercentAt_);
+        const double left = (100 - e.percent) / rate;
+        line += fmt::format(", {:.0f} s, {}", seconds(now - taskStart_),
+                            left < 1 ? std::string("under a second left") : fmt::format("about {:.0f} s left", left));
+    }
+    show(line, e.percent);
 }
 
 void Progress::done() {

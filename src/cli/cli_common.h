@@ -3,6 +3,7 @@
 // the scene options every scene command takes, small argument parsers.
 // Each subcommand lives in one cmd_*.cpp and registers itself through a
 // Command; main.cpp only builds the app and dispatches.
+#include <chrono>
 #include <filesystem>
 #include <functional>
 #include <map>
@@ -63,8 +64,9 @@ fs::path findTemplates(const std::string& option);
 
 void ensureParent(const fs::path& file);
 
-/// One status line, rewritten in place on a terminal; in a log, stage lines
-/// and render progress per 10 %.
+/// One status line, rewritten in place on a terminal, where a task with a
+/// percentage also shows the seconds spent and an estimate of those left; in
+/// a log, stage lines and one line per 10 % of a task. Nothing when quiet.
 class Progress {
 public:
     explicit Progress(bool quiet);
@@ -78,6 +80,10 @@ private:
     bool quiet_, tty_, open_ = false;
     std::string last_;
     int lastDecile_ = -1;
+    std::string task_;  ///< the task the percentages belong to, and when it started
+    std::chrono::steady_clock::time_point taskStart_;
+    int firstPercent_ = -1;  ///< its first percentage, and when it came: the rate is measured from there
+    std::chrono::steady_clock::time_point firstPercentAt_;
 };
 
 /// The options of the commands that take one scene file.

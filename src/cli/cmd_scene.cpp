@@ -26,7 +26,7 @@ int runScene(const CommonOptions& o, const std::string& dumpNet, relief::SceneJo
     job.threads = o.threads;
     const auto outcome = relief::runSceneJob(job, diags, [&](const relief::ProgressEvent& e) {
         // Each stage on a line of its own; the render's progress rewrites its line.
-        if (e.stage == relief::ProgressEvent::Stage::Compiling) progress.done();
+        if (e.stage == relief::ProgressEvent::Stage::Compiling && e.percent < 0) progress.done();
         progress.show(e);
     });
     progress.done();

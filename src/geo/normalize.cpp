@@ -122,9 +122,15 @@ namespace {
 // One GDALGridCreate call. GDAL registers pixel centres, so the nodes
 // x0 + i*dx are the centres of a raster spanning [x0 - dx/2, x0 + (n-1/2)dx];
 // GDAL's row 0 is at the smallest y, like ours.
+int CPL_STDCALL reportGridProgress(double fraction, const char*, void* fn) {
+    (*static_cast<const GridProgressFn*>(fn))(fraction);
+    return TRUE;
+}
+
 bool gdalGrid(const char* algorithmAndOptions, const std::vector<double>& xs,
               const std::vector<double>& ys, const std::vector<double>& zs,
-              const ControlNet& net, std::vector<double>& out, std::string& error) {
+              const ControlNet& net, std::vector<double>& out, std::string& error,
+              const GridProgressFn& progress) {
     GDALGridAlgorithm algorithm;
     void* options = nullptr;
     if (ParseAlgorithmAndOptions(algorithmAndOptions, &algorithm, &options) != CE_None) {
@@ -142,7 +148,8 @@ bool gdalGrid(const char* algorithmAndOptions, const std::vector<double>& xs,
         algorithm, options, static_cast<GUInt32>(xs.size()), xs.data(), ys.data(), zs.data(),
         net.x0 - 0.5 * net.dx, net.x0 + (cols - 0.5) * net.dx, net.y0 - 0.5 * net.dy,
         net.y0 + (rows - 0.5) * net.dy, static_cast<GUInt32>(cols), static_cast<GUInt32>(rows),
-        GDT_Float64, out.data(), nullptr, nullptr);
+        GDT_Float64, out.data(), progress ? reportGridProgress : nullptr,
+        const_cast<GridProgressFn*>(&progress));
     if (err != CE_None) error = CPLGetLastErrorMsg();
     CPLSetThreadLocalConfigOption("GDAL_USE_AVX", nullptr);
     CPLSetThreadLocalConfigOption("GDAL_USE_SSE", nullptr);
@@ -203,7 +210,7 @@ void fillFromNearestSample(const std::vector<double>& xs, const std::vector<doub
 
 std::optional<ControlNet> gridSamples(const scene::NetSpec& spec, const std::string& samplesName,
                                       const Frame& frame, const std::vector<FramePoint>& points,
-                                      Diagnostics& diags) {
+                                      Diagnostics& diags, const GridProgressFn& progress) {
     const std::string& csv = samplesName;
     if (points.size() < 4) {
         diags.error({csv, 0, 0}, fmt::format("only {} distinct sample point(s); at least 4 are "
@@ -268,7 +275,7 @@ std::optional<ControlNet> gridSamples(const scene::NetSpec& spec, const std::str
     }
     std::vector<double> z(static_cast<size_t>(rows) * cols, kNoData);
     std::string error;
-    if (!algorithm.empty() && !gdalGrid(algorithm.c_str(), xs, ys, zs, net, z, error)) {
+    if (!algorithm.empty() && !gdalGrid(algorithm.c_str(), xs, ys, zs, net, z, error, progress)) {
         diags.error({csv, 0, 0}, fmt::format("GDAL gridding failed: {}", error));
         return std::nullopt;
     }
@@ -278,6 +285,7 @@ std::optional<ControlNet> gridSamples(const scene::NetSpec& spec, const std::str
     for (size_t i = 0; i < z.size(); ++i)
         if (z[i] <= kNoData * 0.5) empty.push_back(i);
     fillFromNearestSample(xs, ys, zs, net, empty, z);
+    if (progress) progress(1.0);
     if (spec.gridding != scene::Gridding::Nearest) net.filledOutsideHull = empty.size();
 
     net.grid.points.resize(z.size());
@@ -290,12 +298,13 @@ std::optional<ControlNet> gridSamples(const scene::NetSpec& spec, const std::str
 
 std::optional<ControlNet> normalize(const scene::FrameSpec& frameSpec, const scene::NetSpec& net,
                                     const std::string& samplesName,
-                                    const std::vector<GeoSample>& samples, Diagnostics& diags) {
+                                    const std::vector<GeoSample>& samples, Diagnostics& diags,
+                                    const GridProgressFn& progress) {
     auto frame = chooseFrame(frameSpec, samples, diags);
     if (!frame) return std::nullopt;
     auto points = projectSamples(*frame, samples, diags);
     if (diags.hasErrors()) return std::nullopt;
-    return gridSamples(net, samplesName, *frame, points, diags);
+    return gridSamples(net, samplesName, *frame, points, diags, progress);
 }
 
 std::string netToCsv(const ControlNet& net) {

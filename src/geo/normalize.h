@@ -2,6 +2,7 @@
 // Stage 2 of 5. Input: FrameSpec, NetSpec and the samples (WGS84
 // lon/lat/elev, geo/samples.h). Output: ControlNet, a GeoGrid (metres,
 // x = east, y = north, z = up) ready for subdivision.
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -48,15 +49,19 @@ std::vector<FramePoint> projectSamples(const Frame& frame, const std::vector<Geo
 /// Grids the projected samples onto the rectangular net with GDAL's
 /// GDALGridCreate. Linear (Delaunay) interpolation leaves nodes outside the
 /// samples' convex hull empty; those are filled with the nearest sample.
+/// How far the gridding is, 0..1 (GDAL reports it per row of the net).
+using GridProgressFn = std::function<void(double fraction)>;
+
 /// `samplesName` names the samples in messages.
 std::optional<ControlNet> gridSamples(const scene::NetSpec& spec, const std::string& samplesName,
                                       const Frame& frame, const std::vector<FramePoint>& points,
-                                      Diagnostics& diags);
+                                      Diagnostics& diags, const GridProgressFn& progress = {});
 
 /// Whole stage: chooseFrame, projectSamples, gridSamples.
 std::optional<ControlNet> normalize(const scene::FrameSpec& frame, const scene::NetSpec& net,
                                     const std::string& samplesName,
-                                    const std::vector<GeoSample>& samples, Diagnostics& diags);
+                                    const std::vector<GeoSample>& samples, Diagnostics& diags,
+                                    const GridProgressFn& progress = {});
 
 /// The net as CSV `x,y,z` (metres in the frame, row 0 south first).
 std::string netToCsv(const ControlNet& net);
