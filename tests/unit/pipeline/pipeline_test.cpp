@@ -40,10 +40,21 @@ TEST(Pipeline, CompileJobWritesThePovAndItsSidecar) {
     job.templatesDir = kSource / "templates";
     job.threads = 1;
     Diagnostics diags;
-    std::vector<ProgressEvent::Stage> stages;
-    const JobOutcome outcome = runSceneJob(job, diags, [&](const ProgressEvent& e) { stages.push_back(e.stage); });
+    std::vector<ProgressEvent> events;
+    const JobOutcome outcome = runSceneJob(job, diags, [&](const ProgressEvent& e) { events.push_back(e); });
     ASSERT_EQ(outcome.status, JobStatus::Ok);
-    EXPECT_EQ((std::vector{ProgressEvent::Stage::Reading, ProgressEvent::Stage::Compiling}), stages);
+    // Reading, compiling, then the gridding's percentages (how many depends on
+    // GDAL's threads), ending at 100 %; no render.
+    ASSERT_GE(events.size(), 4u);
+    EXPECT_EQ(events[0].stage, ProgressEvent::Stage::Reading);
+    EXPECT_EQ(events[1].stage, ProgressEvent::Stage::Compiling);
+    EXPECT_EQ(events[2].text, "gridding 300 samples");
+    EXPECT_EQ(events[2].percent, -1);
+    for (size_t i = 3; i < events.size(); ++i) {
+        EXPECT_EQ(events[i].stage, ProgressEvent::Stage::Compiling);
+        EXPECT_GE(events[i].percent, events[i - 1].percent);
+    }
+    EXPECT_EQ(events.back().percent, 100);
     const std::string pov = readFile(dir / "small.pov");
     const std::string golden = readFile(kSource / "tests/golden/small/ref.pov");
     // The header names the scene as given; everything after it must match.
