@@ -10,6 +10,7 @@
 #include "core/atomic_file.h"
 #include "core/number_format.h"
 #include "emit/mesh.h"
+#include "geo/raster.h"
 #include "geo/samples.h"
 #include "measure/auto_depth.h"
 #include "relief/version.h"
@@ -83,7 +84,8 @@ emit::ParameterList describe(const scene::SceneSpec& s, const geo::ControlNet& n
     add("net.spacing_m", fmt::format("{} x {}", formatShortest(net.dx), formatShortest(net.dy)));
     add("net.origin_m", fmt::format("{}, {}", formatShortest(net.x0), formatShortest(net.y0)));
     add("net.gridding", name(s.net.gridding));
-    add("net.filled_outside_hull", std::to_string(net.filledOutsideHull));
+    if (net.filledNodata > 0) add("net.filled_nodata", std::to_string(net.filledNodata));
+    else add("net.filled_outside_hull", std::to_string(net.filledOutsideHull));
     add("vertical.exaggeration", formatShortest(look.exaggeration));
     std::string params;
     for (const auto& [k, v] : scheme.params)
@@ -196,15 +198,14 @@ std::optional<CompileResult> compileScene(const LoadedScene& loaded,
     return result;
 }
 
-std::optional<Surface> buildSurface(const LoadedScene& loaded, Diagnostics& diags, int threads,
-                                    const ProgressFn& progress) {
-    const scene::SceneSpec& spec = loaded.scene;
-    const scene::SubdivisionSpec& sub = spec.subdivision;
-    const subdiv::Scheme& scheme = loaded.resolved.scheme;
-    auto t0 = Clock::now();
+namespace {
+
+// Scattered samples gridded onto the net, telling each percent of the gridding
+// (what takes long on real data).
+std::optional<geo::ControlNet> griddedSamples(const scene::SceneSpec& spec, Diagnostics& diags,
+                                              const ProgressFn& progress) {
     const auto samples = geo::readSamples(spec.samples, diags);
     if (diags.hasErrors()) return std::nullopt;
-    // Gridding is what takes long on real data: tell each percent.
     geo::GridProgressFn gridding;
     int lastPercent = -1;
     std::mutex reporting;  // GDAL reports from its main thread; a guard costs nothing if not
@@ -219,8 +220,34 @@ std::optional<Surface> buildSurface(const LoadedScene& loaded, Diagnostics& diag
             progress({ProgressEvent::Stage::Compiling, task, percent});
         };
     }
-    auto net = geo::normalize(spec.frame, spec.net, spec.samples.pathAsWritten, samples, diags, gridding);
-    if (!net) return std::nullopt;
+    return geo::normalize(spec.frame, spec.net, spec.samples.pathAsWritten, samples, diags, gridding);
+}
+
+}  // namespace
+
+std::optional<Surface> buildSurface(const LoadedScene& loaded, Diagnostics& diags, int threads,
+                                    const ProgressFn& progress) {
+    const scene::SceneSpec& spec = loaded.scene;
+    const scene::SubdivisionSpec& sub = spec.subdivision;
+    const subdiv::Scheme& scheme = loaded.resolved.scheme;
+    auto t0 = Clock::now();
+    std::optional<geo::ControlNet> net;
+    if (geo::isRasterDem(spec.samples.path)) {
+        net = geo::rasterNet(spec.samples, spec.frame, spec.net, diags, [&](double fraction) {
+            if (progress) progress({ProgressEvent::Stage::Compiling, "resampling the raster", static_cast<int>(100 * fraction)});
+        });
+        if (!net) return std::nullopt;
+    } else {
+        for (const char* key : {"samples.band", "samples.crs", "samples.resample", "samples.nodata"})
+            if (spec.samples.locs.has(key))
+                diags.error(spec.samples.locs.at(key),
+                            fmt::format("{} is only used with a raster DEM, and {} is a table of samples "
+                                        "(lon,lat,elev): remove it",
+                                        key, spec.samples.pathAsWritten));
+        if (diags.hasErrors()) return std::nullopt;
+        net = griddedSamples(spec, diags, progress);
+        if (!net) return std::nullopt;
+    }
     Surface s;
     s.normalizeSeconds = secondsSince(t0);
     const subdiv::Budget budget = budgetOf(spec.limits);
@@ -351,7 +378,8 @@ std::string sidecarJson(const CompileResult& c, const OutputPaths& paths,
                 {"dx_m", c.net.dx},
                 {"dy_m", c.net.dy},
                 {"frame", c.net.frame.describe()},
-                {"filled_outside_hull", c.net.filledOutsideHull}};
+                {"filled_outside_hull", c.net.filledOutsideHull},
+                {"filled_nodata", c.net.filledNodata}};
     const MeshSize mesh = gridMeshSize(c.estimate.rows, c.estimate.cols);
     j["refined"] = {{"rows", c.estimate.rows},
                     {"cols", c.estimate.cols},

@@ -208,6 +208,50 @@ void fillFromNearestSample(const std::vector<double>& xs, const std::vector<doub
 
 }  // namespace
 
+bool layoutNet(const scene::NetSpec& spec, std::array<double, 4> dataBox, double defaultSpacingM,
+               GeoGrid& net, Diagnostics& diags) {
+    const auto& e = spec.extentM ? *spec.extentM : dataBox;
+    const double xmin = e[0], ymin = e[1], xmax = e[2], ymax = e[3];
+    const double width = xmax - xmin, height = ymax - ymin;
+    int rows = spec.rows, cols = spec.cols;
+    const bool countsGiven = spec.locs.has("net.rows") || spec.locs.has("net.cols");
+    const double spacing = spec.spacingM > 0 ? spec.spacingM : countsGiven ? 0 : defaultSpacingM;
+    if (spacing > 0) {
+        // The largest net with this spacing inside the extent, centred in it.
+        const double across = std::floor(width / spacing + 1e-9) + 1, up = std::floor(height / spacing + 1e-9) + 1;
+        if (!(across >= 4 && up >= 4)) {
+            diags.error(spec.locs.at("net"),
+                        fmt::format("net.spacing_m = {} m gives only {:.0f} x {:.0f} nodes over the "
+                                    "{} x {} m extent; at least 4 x 4 are needed: use a smaller "
+                                    "spacing",
+                                    formatShortest(spacing), up, across, formatShortest(width),
+                                    formatShortest(height)));
+            return false;
+        }
+        if (across * up > 1e9) {
+            diags.error(spec.locs.at("net"),
+                        fmt::format("net.spacing_m = {} m gives {:.0f} x {:.0f} nodes over the {} x {} m "
+                                    "extent, more than the 1e9 a net may have: use a larger spacing",
+                                    formatShortest(spacing), up, across, formatShortest(width),
+                                    formatShortest(height)));
+            return false;
+        }
+        cols = static_cast<int>(across);
+        rows = static_cast<int>(up);
+        net.dx = net.dy = spacing;
+        net.x0 = xmin + 0.5 * (width - (cols - 1) * net.dx);
+        net.y0 = ymin + 0.5 * (height - (rows - 1) * net.dy);
+    } else {
+        net.dx = width / (cols - 1);
+        net.dy = height / (rows - 1);
+        net.x0 = xmin;
+        net.y0 = ymin;
+    }
+    net.grid.rows = rows;
+    net.grid.cols = cols;
+    return true;
+}
+
 std::optional<ControlNet> gridSamples(const scene::NetSpec& spec, const std::string& samplesName,
                                       const Frame& frame, const std::vector<FramePoint>& points,
                                       Diagnostics& diags, const GridProgressFn& progress) {
@@ -226,36 +270,8 @@ std::optional<ControlNet> gridSamples(const scene::NetSpec& spec, const std::str
         xmin = std::min(xmin, fp.p.x), xmax = std::max(xmax, fp.p.x);
         ymin = std::min(ymin, fp.p.y), ymax = std::max(ymax, fp.p.y);
     }
-    if (spec.extentM) {
-        const auto& e = *spec.extentM;
-        xmin = e[0], ymin = e[1], xmax = e[2], ymax = e[3];
-    }
-    const double width = xmax - xmin, height = ymax - ymin;
-    int rows = spec.rows, cols = spec.cols;
-    if (spec.spacingM > 0) {
-        // The largest net with this spacing inside the extent, centred in it.
-        cols = static_cast<int>(std::floor(width / spec.spacingM + 1e-9)) + 1;
-        rows = static_cast<int>(std::floor(height / spec.spacingM + 1e-9)) + 1;
-        if (rows < 4 || cols < 4) {
-            diags.error(spec.locs.at("net"),
-                        fmt::format("net.spacing_m = {} m gives only {} x {} nodes over the "
-                                    "{} x {} m extent; at least 4 x 4 are needed: use a smaller "
-                                    "spacing",
-                                    formatShortest(spec.spacingM), rows, cols,
-                                    formatShortest(width), formatShortest(height)));
-            return std::nullopt;
-        }
-        net.dx = net.dy = spec.spacingM;
-        net.x0 = xmin + 0.5 * (width - (cols - 1) * net.dx);
-        net.y0 = ymin + 0.5 * (height - (rows - 1) * net.dy);
-    } else {
-        net.dx = width / (cols - 1);
-        net.dy = height / (rows - 1);
-        net.x0 = xmin;
-        net.y0 = ymin;
-    }
-    net.grid.rows = rows;
-    net.grid.cols = cols;
+    if (!layoutNet(spec, {xmin, ymin, xmax, ymax}, 0, net, diags)) return std::nullopt;
+    const int rows = net.grid.rows, cols = net.grid.cols;
 
     std::vector<double> xs, ys, zs;
     xs.reserve(points.size()), ys.reserve(points.size()), zs.reserve(points.size());

@@ -2,6 +2,7 @@
 // Stage 2 of 5. Input: FrameSpec, NetSpec and the samples (WGS84
 // lon/lat/elev, geo/samples.h). Output: ControlNet, a GeoGrid (metres,
 // x = east, y = north, z = up) ready for subdivision.
+#include <array>
 #include <functional>
 #include <optional>
 #include <string>
@@ -21,9 +22,10 @@ struct FramePoint {
     SourceLoc loc;
 };
 
-/// The control net: the samples gridded onto a GeoGrid, and how.
+/// The control net: the samples (or a raster's cells) on a GeoGrid, and how.
 struct ControlNet : GeoGrid {
-    size_t sampleCount = 0;
+    size_t sampleCount = 0;        ///< samples read, or the raster's cells
+    size_t filledNodata = 0;       ///< rasters: nodes without data, filled from their neighbours
     size_t filledOutsideHull = 0;  ///< nodes set by the nearest-sample fill (linear gridding)
 };
 
@@ -49,6 +51,14 @@ std::vector<FramePoint> projectSamples(const Frame& frame, const std::vector<Geo
 /// Grids the projected samples onto the rectangular net with GDAL's
 /// GDALGridCreate. Linear (Delaunay) interpolation leaves nodes outside the
 /// samples' convex hull empty; those are filled with the nearest sample.
+/// Lays a net (origin, spacing, rows and cols; no heights) over net.extent_m,
+/// else `dataBox` (xmin, ymin, xmax, ymax in the frame): rows x cols spanning
+/// it, or the largest net of net.spacing_m inside it, centred (or of
+/// `defaultSpacingM` when the scene gives neither; 0: rows and cols). False,
+/// with an error at [net], for fewer than 4 x 4 nodes or more than 1e9.
+bool layoutNet(const scene::NetSpec& spec, std::array<double, 4> dataBox, double defaultSpacingM,
+               GeoGrid& net, Diagnostics& diags);
+
 /// How far the gridding is, 0..1 (GDAL reports it per row of the net).
 using GridProgressFn = std::function<void(double fraction)>;
 

@@ -9,6 +9,8 @@
 #include <gdal_alg.h>
 #include <ogr_api.h>
 
+#include "geo/gdal_drivers.h"
+
 namespace relief::measure {
 
 namespace {
@@ -24,7 +26,7 @@ std::vector<curves::CurveSet> contourLines(const geo::GeoGrid& lat, const std::v
                                            std::string& error) {
     std::vector<curves::CurveSet> out(levels.size());
     if (levels.empty()) return out;
-    GDALAllRegister();
+    geo::registerGdalDrivers();
     const Grid& g = lat.grid;
     // The raster: GDAL's row 0 is north, so rows are flipped; the pixel
     // centres are the nodes.

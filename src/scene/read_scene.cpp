@@ -315,6 +315,15 @@ std::optional<SceneSpec> readScene(const std::filesystem::path& path, Diagnostic
                                                 *p, scene.samples.path.string()));
             }
         }
+        if (auto b = s.integer("band", 1, 65535, "(1 = the first band)")) scene.samples.band = *b;
+        if (auto c = s.string("crs")) scene.samples.crs = *c;
+        if (auto r = s.choice("resample", {"bilinear", "cubic", "average", "nearest"}))
+            scene.samples.resample = *r == "bilinear" ? Resample::Bilinear
+                                     : *r == "cubic"  ? Resample::Cubic
+                                     : *r == "average" ? Resample::Average
+                                                       : Resample::Nearest;
+        if (auto n = s.choice("nodata", {"fill", "error"}))
+            scene.samples.nodata = *n == "fill" ? NodataPolicy::Fill : NodataPolicy::Error;
         s.finish();
     }
 

@@ -57,10 +57,21 @@ struct ColorRamp {
 /// stay strings, which every numeric key accepts).
 using SceneOverrides = std::vector<std::pair<std::string, std::string>>;
 
-/// [samples]: where the elevation samples are.
+/// How a raster is resampled onto the net (GDAL's warper).
+enum class Resample { Bilinear, Cubic, Average, Nearest };
+/// What becomes of net nodes without data (outside the raster, or its nodata).
+enum class NodataPolicy { Fill, Error };
+
+/// [samples]: where the elevation data are: a `lon,lat,elev` CSV of scattered
+/// samples, or any raster DEM GDAL opens (recognised by GDAL, not by name).
 struct SamplesSpec {
     std::filesystem::path path;   ///< resolved against the scene file's folder
     std::string pathAsWritten;    ///< for messages and the .pov header
+    // Rasters only:
+    int band = 1;                 ///< the band holding elevations
+    std::string crs;              ///< "" = the raster's own; e.g. "EPSG:2193" for one without
+    Resample resample = Resample::Bilinear;
+    NodataPolicy nodata = NodataPolicy::Fill;
     KeyLocations locs;
 };
 

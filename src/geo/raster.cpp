@@ -1,0 +1,359 @@
+#include "geo/raster.h"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <string_view>
+#include <vector>
+
+#include <cpl_conv.h>
+#include <cpl_error.h>
+#include <cpl_string.h>
+#include <gdal.h>
+#include <gdal_alg.h>
+#include <gdalwarper.h>
+#include <ogr_srs_api.h>
+#include <fmt/format.h>
+
+#include "core/number_format.h"
+#include "geo/gdal_drivers.h"
+
+namespace relief::geo {
+
+namespace {
+
+struct DatasetCloser {
+    void operator()(void* ds) const { GDALClose(ds); }
+};
+using Dataset = std::unique_ptr<void, DatasetCloser>;
+struct SrsDeleter {
+    void operator()(void* s) const { OSRDestroySpatialReference(static_cast<OGRSpatialReferenceH>(s)); }
+};
+struct TransformDeleter {
+    void operator()(void* t) const { OCTDestroyCoordinateTransformation(static_cast<OGRCoordinateTransformationH>(t)); }
+};
+using Srs = std::unique_ptr<void, SrsDeleter>;
+using Transform = std::unique_ptr<void, TransformDeleter>;
+
+Dataset openRaster(const std::filesystem::path& path) {
+    geo::registerGdalDrivers();
+    CPLPushErrorHandler(CPLQuietErrorHandler);
+    Dataset ds(GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr));
+    CPLPopErrorHandler();
+    if (!ds) return ds;
+    const std::string_view driver = GDALGetDriverShortName(GDALGetDatasetDriver(ds.get()));
+    if (driver == "XYZ" || driver == "CSV") ds.reset();  // text tables are samples, not rasters
+    return ds;
+}
+
+// The chain from a net node to a raster pixel and back: frame <-> WGS84
+// (GeographicLib) <-> the raster's CRS (PROJ, through GDAL) <-> pixel and line
+// (the geotransform). GDAL's warper calls it with its own pixel coordinates of
+// the net: pixel centres are the nodes, row 0 north.
+struct NetToRaster {
+    Frame frame;
+    double x0 = 0, y0 = 0, dx = 1, dy = 1;
+    int rows = 0;
+    OGRCoordinateTransformationH toRaster = nullptr, toWgs84 = nullptr;
+    double geo[6] = {}, inverse[6] = {};
+};
+
+int transformNetToRaster(void* arg, int dstToSrc, int count, double* x, double* y, double* z, int* ok) {
+    const auto& t = *static_cast<const NetToRaster*>(arg);
+    for (int i = 0; i < count; ++i) {
+        ok[i] = FALSE;
+        double lat = 0, lon = 0, h = 0;
+        if (dstToSrc) {
+            const Vec3 p{t.x0 + (x[i] - 0.5) * t.dx, t.y0 + (t.rows - 0.5 - y[i]) * t.dy, 0};
+            if (!frameToGeodetic(t.frame, p, lat, lon, h)) continue;
+            double cx = lon, cy = lat, cz = 0;
+            if (!OCTTransform(t.toRaster, 1, &cx, &cy, &cz)) continue;
+            x[i] = t.inverse[0] + cx * t.inverse[1] + cy * t.inverse[2];
+            y[i] = t.inverse[3] + cx * t.inverse[4] + cy * t.inverse[5];
+        } else {
+            double cx = t.geo[0] + x[i] * t.geo[1] + y[i] * t.geo[2];
+            double cy = t.geo[3] + x[i] * t.geo[4] + y[i] * t.geo[5], cz = 0;
+            if (!OCTTransform(t.toWgs84, 1, &cx, &cy, &cz)) continue;
+            Vec3 p;
+            if (!geodeticToFrame(t.frame, cy, cx, 0, p)) continue;
+            x[i] = (p.x - t.x0) / t.dx + 0.5;
+            y[i] = t.rows - 0.5 - (p.y - t.y0) / t.dy;
+        }
+        if (z) z[i] = 0;
+        ok[i] = std::isfinite(x[i]) && std::isfinite(y[i]);
+    }
+    return TRUE;
+}
+
+int CPL_STDCALL reportWarpProgress(double fraction, const char*, void* fn) {
+    (*static_cast<const GridProgressFn*>(fn))(fraction);
+    return TRUE;
+}
+
+GDALResampleAlg gdalResampling(scene::Resample r) {
+    switch (r) {
+        case scene::Resample::Bilinear: return GRA_Bilinear;
+        case scene::Resample::Cubic: return GRA_Cubic;
+        case scene::Resample::Average: return GRA_Average;
+        case scene::Resample::Nearest: return GRA_NearestNeighbour;
+    }
+    return GRA_Bilinear;
+}
+
+// Metres per unit of the band's values: 1 for metres, 0.3048 for feet
+// (1200/3937 for US survey feet); 0 when the unit is not a length relief knows.
+double metresPerUnit(std::string unit) {
+    std::transform(unit.begin(), unit.end(), unit.begin(), [](unsigned char c) { return std::tolower(c); });
+    if (unit == "m" || unit == "metre" || unit == "meter" || unit == "metres" || unit == "meters") return 1;
+    if (unit == "ft" || unit == "foot" || unit == "feet" || unit == "international foot") return 0.3048;
+    if (unit == "us-ft" || unit == "us survey foot" || unit == "ftus") return 1200.0 / 3937.0;
+    return 0;
+}
+
+}  // namespace
+
+bool isRasterDem(const std::filesystem::path& path) { return static_cast<bool>(openRaster(path)); }
+
+std::optional<ControlNet> rasterNet(const scene::SamplesSpec& samples, const scene::FrameSpec& frameSpec,
+                                    const scene::NetSpec& netSpec, Diagnostics& diags,
+                                    const GridProgressFn& progress) {
+    const std::string& name = samples.pathAsWritten;
+    const SourceLoc fileLoc{name, 0, 0};
+    Dataset src = openRaster(samples.path);
+    if (!src) {
+        diags.error(fileLoc, "GDAL cannot read this raster (a truncated or damaged file?)");
+        return std::nullopt;
+    }
+    const int width = GDALGetRasterXSize(src.get()), height = GDALGetRasterYSize(src.get());
+    const int bands = GDALGetRasterCount(src.get());
+    if (samples.band > bands) {
+        diags.error(samples.locs.at("samples.band"),
+                    fmt::format("samples.band = {}, but {} has {} band{}: give a band from 1 to {}",
+                                samples.band, name, bands, bands == 1 ? "" : "s", bands));
+        return std::nullopt;
+    }
+    if (width < 2 || height < 2) {
+        diags.error(fileLoc, fmt::format("the raster is {} x {} cells; a surface needs at least 2 x 2",
+                                         width, height));
+        return std::nullopt;
+    }
+    double geo[6];
+    if (GDALGetGeoTransform(src.get(), geo) != CE_None) {
+        diags.error(fileLoc, "the raster has no georeferencing (geotransform): give it one, e.g. with "
+                             "gdal_translate -a_ullr and -a_srs");
+        return std::nullopt;
+    }
+    if (geo[2] != 0 || geo[4] != 0) {
+        diags.error(fileLoc, "the raster's geotransform is rotated; relief reads north-up rasters: "
+                             "warp it first (gdalwarp)");
+        return std::nullopt;
+    }
+
+    // The raster's CRS, or the scene's word for it.
+    Srs rasterSrs(OSRNewSpatialReference(nullptr));
+    OSRSetAxisMappingStrategy(rasterSrs.get(), OAMS_TRADITIONAL_GIS_ORDER);
+    if (!samples.crs.empty()) {
+        if (OSRSetFromUserInput(rasterSrs.get(), samples.crs.c_str()) != OGRERR_NONE) {
+            diags.error(samples.locs.at("samples.crs"),
+                        fmt::format("samples.crs = \"{}\" is not a CRS GDAL knows; write e.g. \"EPSG:2193\"",
+                                    samples.crs));
+            return std::nullopt;
+        }
+    } else {
+        const char* wkt = GDALGetProjectionRef(src.get());
+        if (!wkt || !*wkt || OSRImportFromWkt(rasterSrs.get(), const_cast<char**>(&wkt)) != OGRERR_NONE) {
+            diags.error(fileLoc, "the raster has no coordinate reference system: give it in the scene, "
+                                 "e.g. crs = \"EPSG:2193\" in [samples]");
+            return std::nullopt;
+        }
+    }
+    Srs wgs84(OSRNewSpatialReference(nullptr));
+    OSRSetWellKnownGeogCS(wgs84.get(), "WGS84");
+    OSRSetAxisMappingStrategy(wgs84.get(), OAMS_TRADITIONAL_GIS_ORDER);
+    Transform toRaster(OCTNewCoordinateTransformation(wgs84.get(), rasterSrs.get()));
+    Transform toWgs84(OCTNewCoordinateTransformation(rasterSrs.get(), wgs84.get()));
+    if (!toRaster || !toWgs84) {
+        diags.error(fileLoc, "PROJ cannot transform between WGS84 and the raster's CRS");
+        return std::nullopt;
+    }
+
+    // The footprint: points along the raster's edges, in WGS84.
+    std::vector<GeoSample> edge;
+    auto addPixel = [&](double px, double py) {
+        double cx = geo[0] + px * geo[1], cy = geo[3] + py * geo[5], cz = 0;
+        if (OCTTransform(toWgs84.get(), 1, &cx, &cy, &cz) && std::fabs(cy) <= 90)
+            edge.push_back({cx, cy, 0, {}});
+    };
+    constexpr int kEdgePoints = 64;
+    for (int i = 0; i <= kEdgePoints; ++i) {
+        const double f = static_cast<double>(i) / kEdgePoints;
+        addPixel(f * width, 0), addPixel(f * width, height), addPixel(0, f * height), addPixel(width, f * height);
+    }
+    if (edge.size() < 4) {
+        diags.error(fileLoc, "the raster's corners cannot be carried to latitude and longitude: check its CRS");
+        return std::nullopt;
+    }
+    auto frame = chooseFrame(frameSpec, edge, diags);
+    if (!frame) return std::nullopt;
+    auto framed = [&](double px, double py, Vec3& p) {
+        double cx = geo[0] + px * geo[1], cy = geo[3] + py * geo[5], cz = 0;
+        return OCTTransform(toWgs84.get(), 1, &cx, &cy, &cz) && geodeticToFrame(*frame, cy, cx, 0, p);
+    };
+    // The largest axis-aligned box inside the footprint: the west edge's
+    // easternmost point, the east edge's westernmost, and so on.
+    double west = -1e300, east = 1e300, south = -1e300, north = 1e300;
+    int outside = 0;
+    for (int i = 0; i <= kEdgePoints; ++i) {
+        const double f = static_cast<double>(i) / kEdgePoints;
+        Vec3 p;
+        framed(0, f * height, p) ? void(west = std::max(west, p.x)) : void(++outside);
+        framed(width, f * height, p) ? void(east = std::min(east, p.x)) : void(++outside);
+        framed(f * width, height, p) ? void(south = std::max(south, p.y)) : void(++outside);
+        framed(f * width, 0, p) ? void(north = std::min(north, p.y)) : void(++outside);
+    }
+    if (outside > 0 && !netSpec.extentM) {
+        double lonMin = 180, lonMax = -180, latMin = 90, latMax = -90;
+        for (const auto& g : edge)
+            lonMin = std::min(lonMin, g.lonDeg), lonMax = std::max(lonMax, g.lonDeg),
+            latMin = std::min(latMin, g.latDeg), latMax = std::max(latMax, g.latDeg);
+        diags.error(fileLoc, fmt::format("the raster spans lon {:.2f}..{:.2f}, lat {:.2f}..{:.2f}, more than {} "
+                                         "can hold: choose a window of it with net.extent_m, or "
+                                         "frame.kind = \"local\"",
+                                         lonMin, lonMax, latMin, latMax, frame->describe()));
+        return std::nullopt;
+    }
+    // The raster's cell on the ground, at its centre.
+    Vec3 c0, c1, c2;
+    double cell = 0;
+    if (framed(0.5 * width, 0.5 * height, c0) && framed(0.5 * width + 1, 0.5 * height, c1) &&
+        framed(0.5 * width, 0.5 * height + 1, c2))
+        cell = std::min(length(c1 - c0), length(c2 - c0));
+    if (netSpec.extentM) {  // the scene's window: the footprint does not matter
+        west = (*netSpec.extentM)[0], south = (*netSpec.extentM)[1];
+        east = (*netSpec.extentM)[2], north = (*netSpec.extentM)[3];
+    }
+    if (!(east > west && north > south) || !(cell > 0)) {
+        diags.error(fileLoc, fmt::format("the raster's footprint cannot be laid out in {}: check its CRS",
+                                         frame->describe()));
+        return std::nullopt;
+    }
+
+    ControlNet net;
+    net.frame = *frame;
+    net.sampleCount = static_cast<size_t>(width) * height;
+    if (!layoutNet(netSpec, {west, south, east, north}, cell, net, diags)) return std::nullopt;
+    const int rows = net.rows(), cols = net.cols();
+
+    // The net as a raster of its own (pixel centres = nodes, row 0 north), warped into.
+    GDALRasterBandH band = GDALGetRasterBand(src.get(), samples.band);
+    constexpr double kNoData = -1.0e30;
+    Dataset dst(GDALCreate(GDALGetDriverByName("MEM"), "", cols, rows, 1, GDT_Float64, nullptr));
+    GDALRasterBandH out = GDALGetRasterBand(dst.get(), 1);
+    GDALSetRasterNoDataValue(out, kNoData);
+    NetToRaster chain{net.frame, net.x0, net.y0, net.dx, net.dy, rows, toRaster.get(), toWgs84.get(), {}, {}};
+    std::copy(geo, geo + 6, chain.geo);
+    if (!GDALInvGeoTransform(geo, chain.inverse)) {
+        diags.error(fileLoc, "the raster's geotransform cannot be inverted (a cell of size 0?)");
+        return std::nullopt;
+    }
+
+    GDALWarpOptions* wo = GDALCreateWarpOptions();
+    wo->hSrcDS = src.get();
+    wo->hDstDS = dst.get();
+    wo->nBandCount = 1;
+    wo->panSrcBands = static_cast<int*>(CPLMalloc(sizeof(int)));
+    wo->panSrcBands[0] = samples.band;
+    wo->panDstBands = static_cast<int*>(CPLMalloc(sizeof(int)));
+    wo->panDstBands[0] = 1;
+    wo->eWorkingDataType = GDT_Float64;
+    wo->eResampleAlg = gdalResampling(samples.resample);
+    int hasNoData = FALSE;
+    const double srcNoData = GDALGetRasterNoDataValue(band, &hasNoData);
+    wo->padfSrcNoDataReal = static_cast<double*>(CPLMalloc(sizeof(double)));
+    // No declared nodata: NaN cells are still no data.
+    wo->padfSrcNoDataReal[0] = hasNoData ? srcNoData : std::nan("");
+    wo->padfDstNoDataReal = static_cast<double*>(CPLMalloc(sizeof(double)));
+    wo->padfDstNoDataReal[0] = kNoData;
+    wo->papszWarpOptions = CSLSetNameValue(wo->papszWarpOptions, "INIT_DEST", "NO_DATA");
+    wo->pfnTransformer = transformNetToRaster;
+    wo->pTransformerArg = &chain;
+    if (progress) {
+        wo->pfnProgress = reportWarpProgress;
+        wo->pProgressArg = const_cast<GridProgressFn*>(&progress);
+    }
+    CPLPushErrorHandler(CPLQuietErrorHandler);
+    GDALWarpOperation warp;
+    CPLErr err = warp.Initialize(wo);
+    if (err == CE_None) err = warp.ChunkAndWarpImage(0, 0, cols, rows);
+    CPLPopErrorHandler();
+    GDALDestroyWarpOptions(wo);
+    if (err != CE_None) {
+        diags.error(fileLoc, fmt::format("GDAL could not resample the raster onto the net: {}",
+                                         CPLGetLastErrorMsg()));
+        return std::nullopt;
+    }
+
+    std::vector<double> z(static_cast<size_t>(rows) * cols);
+    if (GDALRasterIO(out, GF_Read, 0, 0, cols, rows, z.data(), cols, rows, GDT_Float64, 0, 0) != CE_None) {
+        diags.error(fileLoc, "reading the resampled net back failed");
+        return std::nullopt;
+    }
+    size_t empty = 0, firstEmpty = z.size();
+    for (size_t i = 0; i < z.size(); ++i)
+        if (!(z[i] > kNoData * 0.5)) {
+            if (firstEmpty == z.size()) firstEmpty = i;
+            ++empty;
+        }
+    if (empty == z.size()) {
+        diags.error(fileLoc, "no net node has data: every cell the net covers is nodata (check net.extent_m "
+                             "and the raster's nodata value)");
+        return std::nullopt;
+    }
+    if (empty > 0 && samples.nodata == scene::NodataPolicy::Error) {
+        const size_t r = rows - 1 - firstEmpty / cols, c = firstEmpty % cols;
+        double lat = 0, lon = 0, h = 0;
+        frameToGeodetic(net.frame, {net.x0 + c * net.dx, net.y0 + r * net.dy, 0}, lat, lon, h);
+        diags.error(samples.locs.at("samples.nodata"),
+                    fmt::format("{} of the net's {} nodes have no data (nodata cells or outside the "
+                                "raster), the first at lat {:.6f} lon {:.6f}; set nodata = \"fill\" or a "
+                                "smaller net.extent_m",
+                                empty, z.size(), lat, lon));
+        return std::nullopt;
+    }
+    if (empty > 0) {
+        // Filled from the surrounding nodes (GDAL's inverse-distance search), far enough to reach all.
+        if (GDALFillNodata(out, nullptr, std::max(rows, cols), 0, 0, nullptr, nullptr, nullptr) != CE_None ||
+            GDALRasterIO(out, GF_Read, 0, 0, cols, rows, z.data(), cols, rows, GDT_Float64, 0, 0) != CE_None) {
+            diags.error(fileLoc, "filling the nodes without data failed");
+            return std::nullopt;
+        }
+        net.filledNodata = empty;
+    }
+
+    // Vertical units.
+    const char* unitType = GDALGetRasterUnitType(band);
+    double scale = metresPerUnit(unitType ? unitType : "");
+    if (scale == 0) {
+        diags.warning(fileLoc, fmt::format("the raster does not say its elevations are in metres (unit \"{}\"); "
+                                           "they are taken as metres",
+                                           unitType ? unitType : ""));
+        scale = 1;
+    }
+    net.grid.points.resize(z.size());
+    for (int r = 0; r < rows; ++r)
+        for (int c = 0; c < cols; ++c) {
+            const double h = scale * z[static_cast<size_t>(rows - 1 - r) * cols + c];
+            Vec3 p{net.x0 + c * net.dx, net.y0 + r * net.dy, h};
+            if (net.frame.kind == scene::FrameKind::Local) {
+                // z above the tangent plane, as for samples: the height plus the Earth's curvature.
+                double lat, lon, ignored;
+                frameToGeodetic(net.frame, {p.x, p.y, 0}, lat, lon, ignored);
+                Vec3 q;
+                if (geodeticToFrame(net.frame, lat, lon, h, q)) p.z = q.z;
+            }
+            net.grid.at(r, c) = p;
+        }
+    return net;
+}
+
+}  // namespace relief::geo

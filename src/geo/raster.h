@@ -1,0 +1,34 @@
+#pragma once
+// Stage 2 for raster DEMs. Input: SamplesSpec naming any raster GDAL opens
+// (GeoTIFF, SRTM .hgt, ESRI ASCII grid, VRT, ...), FrameSpec and NetSpec.
+// Output: ControlNet, as for scattered samples. Every net node (x, y in the
+// scene's frame) goes to WGS84 latitude and longitude with GeographicLib, then
+// to the raster's CRS with GDAL/PROJ, and is resampled there by GDAL's warper,
+// which reads only the blocks the net covers.
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "core/diagnostics.h"
+#include "geo/normalize.h"
+#include "scene/scene_spec.h"
+
+namespace relief::geo {
+
+/// Whether GDAL opens `path` as a raster. Text tables (GDAL's CSV and XYZ
+/// drivers) are not: a `lon,lat,elev` CSV stays a CSV of scattered samples.
+bool isRasterDem(const std::filesystem::path& path);
+
+/// The raster resampled onto the net. The frame is the scene's (UTM: the zone
+/// of the raster's centre unless given); the net covers the raster's
+/// footprint in the frame (the largest axis-aligned box inside it) unless
+/// net.extent_m says otherwise, with the raster's own cell size on the ground
+/// unless net.spacing_m or rows and cols say otherwise. Nodes without data
+/// (nodata cells, outside the raster) are filled from their neighbours
+/// (GDALFillNodata) or, with nodata = "error", reported. Vertical units in feet
+/// are converted to metres; an unknown unit is taken as metres, with a warning.
+std::optional<ControlNet> rasterNet(const scene::SamplesSpec& samples, const scene::FrameSpec& frame,
+                                    const scene::NetSpec& net, Diagnostics& diags,
+                                    const GridProgressFn& progress = {});
+
+}  // namespace relief::geo
