@@ -208,8 +208,39 @@ void fillFromNearestSample(const std::vector<double>& xs, const std::vector<doub
 
 }  // namespace
 
+std::optional<std::array<double, 4>> frameBoxInside(const Frame& frame, const std::array<double, 4>& w) {
+    double west = -1e300, east = 1e300, south = -1e300, north = 1e300;
+    constexpr int kEdgePoints = 64;
+    for (int i = 0; i <= kEdgePoints; ++i) {
+        const double f = static_cast<double>(i) / kEdgePoints;
+        const double lon = w[0] + f * (w[2] - w[0]), lat = w[1] + f * (w[3] - w[1]);
+        Vec3 p;
+        if (!geodeticToFrame(frame, lat, w[0], 0, p)) return std::nullopt;
+        west = std::max(west, p.x);
+        if (!geodeticToFrame(frame, lat, w[2], 0, p)) return std::nullopt;
+        east = std::min(east, p.x);
+        if (!geodeticToFrame(frame, w[1], lon, 0, p)) return std::nullopt;
+        south = std::max(south, p.y);
+        if (!geodeticToFrame(frame, w[3], lon, 0, p)) return std::nullopt;
+        north = std::min(north, p.y);
+    }
+    if (!(east > west && north > south)) return std::nullopt;
+    return std::array<double, 4>{west, south, east, north};
+}
+
 bool layoutNet(const scene::NetSpec& spec, std::array<double, 4> dataBox, double defaultSpacingM,
                GeoGrid& net, Diagnostics& diags) {
+    if (spec.extentLonLat) {
+        const auto box = frameBoxInside(net.frame, *spec.extentLonLat);
+        if (!box) {
+            diags.error(spec.locs.at("net.extent_lonlat"),
+                        fmt::format("net.extent_lonlat does not fit in {}: choose a smaller window or "
+                                    "frame.kind = \"local\"",
+                                    net.frame.describe()));
+            return false;
+        }
+        dataBox = *box;
+    }
     const auto& e = spec.extentM ? *spec.extentM : dataBox;
     const double xmin = e[0], ymin = e[1], xmax = e[2], ymax = e[3];
     const double width = xmax - xmin, height = ymax - ymin;

@@ -51,8 +51,14 @@ std::vector<FramePoint> projectSamples(const Frame& frame, const std::vector<Geo
 /// Grids the projected samples onto the rectangular net with GDAL's
 /// GDALGridCreate. Linear (Delaunay) interpolation leaves nodes outside the
 /// samples' convex hull empty; those are filled with the nearest sample.
+/// The largest box of `frame` (xmin, ymin, xmax, ymax) inside a lon/lat window
+/// (lon_min, lat_min, lon_max, lat_max; its edges are curves in the frame);
+/// nullopt when the window does not fit in the frame.
+std::optional<std::array<double, 4>> frameBoxInside(const Frame& frame, const std::array<double, 4>& lonLat);
+
 /// Lays a net (origin, spacing, rows and cols; no heights) over net.extent_m,
-/// else `dataBox` (xmin, ymin, xmax, ymax in the frame): rows x cols spanning
+/// else the box inside net.extent_lonlat, else `dataBox` (xmin, ymin, xmax,
+/// ymax in net.frame, which must be set): rows x cols spanning
 /// it, or the largest net of net.spacing_m inside it, centred (or of
 /// `defaultSpacingM` when the scene gives neither; 0: rows and cols). False,
 /// with an error at [net], for fewer than 4 x 4 nodes or more than 1e9.

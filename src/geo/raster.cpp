@@ -193,6 +193,10 @@ std::optional<ControlNet> rasterNet(const scene::SamplesSpec& samples, const sce
         diags.error(fileLoc, "the raster's corners cannot be carried to latitude and longitude: check its CRS");
         return std::nullopt;
     }
+    if (netSpec.extentLonLat) {  // the frame of the window, not of the whole raster
+        const auto& w = *netSpec.extentLonLat;
+        edge = {{w[0], w[1], 0, {}}, {w[2], w[1], 0, {}}, {w[0], w[3], 0, {}}, {w[2], w[3], 0, {}}};
+    }
     auto frame = chooseFrame(frameSpec, edge, diags);
     if (!frame) return std::nullopt;
     auto framed = [&](double px, double py, Vec3& p) {
@@ -211,7 +215,8 @@ std::optional<ControlNet> rasterNet(const scene::SamplesSpec& samples, const sce
         framed(f * width, height, p) ? void(south = std::max(south, p.y)) : void(++outside);
         framed(f * width, 0, p) ? void(north = std::min(north, p.y)) : void(++outside);
     }
-    if (outside > 0 && !netSpec.extentM) {
+    const bool window = netSpec.extentM || netSpec.extentLonLat;
+    if (outside > 0 && !window) {
         double lonMin = 180, lonMax = -180, latMin = 90, latMax = -90;
         for (const auto& g : edge)
             lonMin = std::min(lonMin, g.lonDeg), lonMax = std::max(lonMax, g.lonDeg),
@@ -222,16 +227,31 @@ std::optional<ControlNet> rasterNet(const scene::SamplesSpec& samples, const sce
                                          lonMin, lonMax, latMin, latMax, frame->describe()));
         return std::nullopt;
     }
-    // The raster's cell on the ground, at its centre.
+    // The raster's cell on the ground, at the centre of the raster or of the scene's window.
+    double px = 0.5 * width, py = 0.5 * height;
+    if (window) {
+        double lat = 0, lon = 0, h = 0;
+        if (netSpec.extentLonLat) {
+            lon = 0.5 * ((*netSpec.extentLonLat)[0] + (*netSpec.extentLonLat)[2]);
+            lat = 0.5 * ((*netSpec.extentLonLat)[1] + (*netSpec.extentLonLat)[3]);
+        } else {
+            const auto& e = *netSpec.extentM;
+            frameToGeodetic(*frame, {0.5 * (e[0] + e[2]), 0.5 * (e[1] + e[3]), 0}, lat, lon, h);
+        }
+        double cx = lon, cy = lat, cz = 0;
+        if (OCTTransform(toRaster.get(), 1, &cx, &cy, &cz)) {
+            double inverse[6];
+            if (GDALInvGeoTransform(geo, inverse)) {
+                px = inverse[0] + cx * inverse[1] + cy * inverse[2];
+                py = inverse[3] + cx * inverse[4] + cy * inverse[5];
+            }
+        }
+    }
     Vec3 c0, c1, c2;
     double cell = 0;
-    if (framed(0.5 * width, 0.5 * height, c0) && framed(0.5 * width + 1, 0.5 * height, c1) &&
-        framed(0.5 * width, 0.5 * height + 1, c2))
+    if (framed(px, py, c0) && framed(px + 1, py, c1) && framed(px, py + 1, c2))
         cell = std::min(length(c1 - c0), length(c2 - c0));
-    if (netSpec.extentM) {  // the scene's window: the footprint does not matter
-        west = (*netSpec.extentM)[0], south = (*netSpec.extentM)[1];
-        east = (*netSpec.extentM)[2], north = (*netSpec.extentM)[3];
-    }
+    if (window) west = south = 0, east = north = 1;  // the scene's window: layoutNet places the net
     if (!(east > west && north > south) || !(cell > 0)) {
         diags.error(fileLoc, fmt::format("the raster's footprint cannot be laid out in {}: check its CRS",
                                          frame->describe()));

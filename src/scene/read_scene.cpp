@@ -376,6 +376,27 @@ std::optional<SceneSpec> readScene(const std::filesystem::path& path, Diagnostic
             else
                 scene.net.extentM = ext;
         }
+        s.markKnown("extent_lonlat");
+        if (const toml::node* e = s.find("extent_lonlat")) {
+            const toml::array* a = e->as_array();
+            std::array<double, 4> box{};
+            bool ok = a && a->size() == 4;
+            for (size_t i = 0; ok && i < 4; ++i) {
+                if (auto d = (*a)[i].value<double>()) box[i] = *d;
+                else ok = false;
+            }
+            if (!ok)
+                s.error("extent_lonlat", "net.extent_lonlat must be [lon_min, lat_min, lon_max, lat_max] in "
+                                         "WGS84 degrees");
+            else if (!(box[2] > box[0] && box[3] > box[1] && box[0] >= -180 && box[2] <= 180 &&
+                       box[1] >= -90 && box[3] <= 90))
+                s.error("extent_lonlat", "net.extent_lonlat needs -180 <= lon_min < lon_max <= 180 and "
+                                         "-90 <= lat_min < lat_max <= 90 (degrees)");
+            else if (s.find("extent_m"))
+                s.error("extent_lonlat", "give either net.extent_m or net.extent_lonlat, not both");
+            else
+                scene.net.extentLonLat = box;
+        }
         if (auto g = s.choice("gridding", {"linear", "invdist", "nearest"}))
             scene.net.gridding = *g == "linear"    ? Gridding::Linear
                              : *g == "invdist" ? Gridding::InverseDistance

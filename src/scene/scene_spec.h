@@ -87,6 +87,9 @@ struct NetSpec {
     int rows = 0, cols = 0;        ///< 0 when spacing is given
     double spacingM = 0;           ///< 0 when rows/cols are given
     std::optional<std::array<double, 4>> extentM;  ///< xmin, ymin, xmax, ymax in the frame
+    /// lon_min, lat_min, lon_max, lat_max (WGS84 degrees): the net covers the
+    /// largest box of the frame inside this window
+    std::optional<std::array<double, 4>> extentLonLat;
     Gridding gridding = Gridding::Linear;
     KeyLocations locs;
 };

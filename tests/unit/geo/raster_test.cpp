@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -91,6 +92,35 @@ TEST(Raster, PlaneInANationalGridLandsWhereItShould) {
     }
     EXPECT_GT(checked, 0.9 * result->rows() * result->cols());
     EXPECT_EQ(diags.warningCount(), 1);  // an ESRI grid has no vertical unit: metres assumed, and said
+}
+
+// A lon/lat window: the net is the largest box of the frame inside it, and
+// still lands where it should.
+TEST(Raster, LonLatWindowChoosesTheNet) {
+    const fs::path dir = freshDir("window");
+    const auto spec = rasterSpec(writePlane(dir, 60, 50), "EPSG:2193");
+    scene::NetSpec net;
+    net.spacingM = 5;
+    const std::array<double, 4> window{174.7630, -36.8790, 174.7655, -36.8770};
+    net.extentLonLat = window;
+    Diagnostics diags;
+    const auto result = rasterNet(spec, {}, net, diags);
+    ASSERT_TRUE(result) << (diags.all().empty() ? "" : formatDiagnostic(diags.all()[0]));
+    EXPECT_EQ(result->filledNodata, 0u);
+    for (const Vec3& p : result->grid.points) {
+        double lat, lon, gamma, k;
+        GeographicLib::UTMUPS::Reverse(60, false, p.x, p.y, lat, lon, gamma, k);
+        EXPECT_GE(lon, window[0]);
+        EXPECT_LE(lon, window[2]);
+        EXPECT_GE(lat, window[1]);
+        EXPECT_LE(lat, window[3]);
+        double e, n;
+        nztm(lat, lon, e, n);
+        ASSERT_NEAR(p.z, plane(e, n), 0.01);
+    }
+    // 0.0025 deg of longitude at 36.9 S is 223 m, 0.002 deg of latitude 222 m: a 5 m net of about 44 x 44.
+    EXPECT_NEAR(result->cols(), 44, 1);
+    EXPECT_NEAR(result->rows(), 44, 1);
 }
 
 // Nodata cells: filled from the neighbours and counted, or an error that says
