@@ -112,7 +112,17 @@ double metresPerUnit(std::string unit) {
 
 }  // namespace
 
-bool isRasterDem(const std::filesystem::path& path) { return static_cast<bool>(openRaster(path)); }
+bool isRasterDem(const std::filesystem::path& path) {
+    if (openRaster(path)) return true;
+    // Identified as a raster format but not readable (a truncated GeoTIFF): still a raster, so
+    // that the error is about the raster, not about a CSV header made of binary bytes.
+    CPLPushErrorHandler(CPLQuietErrorHandler);
+    GDALDriverH driver = GDALIdentifyDriverEx(path.c_str(), GDAL_OF_RASTER, nullptr, nullptr);
+    CPLPopErrorHandler();
+    if (!driver) return false;
+    const std::string_view name = GDALGetDriverShortName(driver);
+    return name != "XYZ" && name != "CSV";
+}
 
 std::optional<ControlNet> rasterNet(const scene::SamplesSpec& samples, const scene::FrameSpec& frameSpec,
                                     const scene::NetSpec& netSpec, Diagnostics& diags,

@@ -15,8 +15,9 @@
 
 namespace relief::geo {
 
-/// Whether GDAL opens `path` as a raster. Text tables (GDAL's CSV and XYZ
-/// drivers) are not: a `lon,lat,elev` CSV stays a CSV of scattered samples.
+/// Whether GDAL takes `path` for a raster (it may still fail to read it: a
+/// truncated file). Text tables (GDAL's CSV and XYZ drivers) are not: a
+/// `lon,lat,elev` CSV stays a CSV of scattered samples.
 bool isRasterDem(const std::filesystem::path& path);
 
 /// The raster resampled onto the net. The frame is the scene's (UTM: the zone

@@ -171,9 +171,11 @@ TEST(Raster, UnusableRastersAreErrors) {
     // A CSV of samples is not a raster, even one GDAL could read as a table.
     std::ofstream(dir / "s.csv") << "lon,lat,elev\n174.76,-36.87,100\n174.77,-36.87,101\n";
     EXPECT_FALSE(isRasterDem(dir / "s.csv"));
-    // A truncated GeoTIFF.
+    // A truncated GeoTIFF is a raster GDAL cannot read, not a CSV.
     std::ofstream(dir / "cut.tif", std::ios::binary) << std::string("II*\0\x08\0\0\0", 8);
-    EXPECT_FALSE(isRasterDem(dir / "cut.tif"));
+    EXPECT_TRUE(isRasterDem(dir / "cut.tif"));
+    EXPECT_EQ(message(rasterSpec(dir / "cut.tif", "")),
+              "cut.tif: error: GDAL cannot read this raster (a truncated or damaged file?)");
 }
 
 }  // namespace
