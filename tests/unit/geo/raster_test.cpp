@@ -7,11 +7,14 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include <GeographicLib/TransverseMercator.hpp>
 #include <GeographicLib/UTMUPS.hpp>
 #include <fmt/format.h>
+#include <gdal.h>
 
+#include "geo/gdal_drivers.h"
 #include "geo/samples.h"
 
 namespace relief::geo {
@@ -121,6 +124,34 @@ TEST(Raster, LonLatWindowChoosesTheNet) {
     // 0.0025 deg of longitude at 36.9 S is 223 m, 0.002 deg of latitude 222 m: a 5 m net of about 44 x 44.
     EXPECT_NEAR(result->cols(), 44, 1);
     EXPECT_NEAR(result->rows(), 44, 1);
+}
+
+// Vertical units: feet become metres, metres stay, and no warning is given
+// when the raster names its unit.
+TEST(Raster, FeetBecomeMetres) {
+    const fs::path dir = freshDir("feet");
+    registerGdalDrivers();
+    for (const char* unit : {"ft", "m"}) {
+        const fs::path path = dir / (std::string(unit) + ".tif");
+        {
+            GDALDatasetH ds = GDALCreate(GDALGetDriverByName("GTiff"), path.c_str(), 20, 20, 1, GDT_Float32, nullptr);
+            double geo[6] = {kX0 - 0.5 * kCell, kCell, 0, kY0 + 19.5 * kCell, 0, -kCell};
+            GDALSetGeoTransform(ds, geo);
+            GDALSetProjection(ds, "EPSG:2193");
+            GDALRasterBandH band = GDALGetRasterBand(ds, 1);
+            GDALSetRasterUnitType(band, unit);
+            std::vector<float> values(400, 1000.0f);
+            ASSERT_EQ(GDALRasterIO(band, GF_Write, 0, 0, 20, 20, values.data(), 20, 20, GDT_Float32, 0, 0), CE_None);
+            GDALClose(ds);
+        }
+        scene::NetSpec net;
+        net.spacingM = kCell;
+        Diagnostics diags;
+        const auto result = rasterNet(rasterSpec(path, ""), {}, net, diags);
+        ASSERT_TRUE(result) << (diags.all().empty() ? "" : formatDiagnostic(diags.all()[0]));
+        EXPECT_EQ(diags.warningCount(), 0) << unit;
+        for (const Vec3& p : result->grid.points) EXPECT_DOUBLE_EQ(p.z, unit[0] == 'f' ? 304.8 : 1000.0) << unit;
+    }
 }
 
 // Nodata cells: filled from the neighbours and counted, or an error that says
