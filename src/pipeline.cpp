@@ -83,7 +83,8 @@ emit::ParameterList describe(const scene::SceneSpec& s, const geo::ControlNet& n
     add("net.size", fmt::format("{} rows x {} cols", net.grid.rows, net.grid.cols));
     add("net.spacing_m", fmt::format("{} x {}", formatShortest(net.dx), formatShortest(net.dy)));
     add("net.origin_m", fmt::format("{}, {}", formatShortest(net.x0), formatShortest(net.y0)));
-    add("net.gridding", name(s.net.gridding));
+    if (net.raster.empty()) add("net.gridding", name(s.net.gridding));
+    else add("samples.raster", net.raster);
     if (net.filledNodata > 0) add("net.filled_nodata", std::to_string(net.filledNodata));
     else add("net.filled_outside_hull", std::to_string(net.filledOutsideHull));
     add("vertical.exaggeration", formatShortest(look.exaggeration));

@@ -150,12 +150,24 @@ size_t writeMesh2(const Mesh& mesh, std::FILE* out) {
     return w->total();
 }
 
+std::string sdlCommentText(std::string_view text) {
+    std::string out;
+    out.reserve(text.size());
+    for (const char ch : text) {
+        const auto c = static_cast<unsigned char>(ch);
+        if (c < 0x20 || c == 0x7f) out += fmt::format("\\x{:02x}", c);
+        else out += ch;
+    }
+    return out;
+}
+
 Bindings sceneBindings(const Mesh& mesh, const scene::LookSpec& look,
                        const scene::RenderSpec& render, const ParameterList& header) {
     const scene::CameraSpec& camera = look.camera;
     Bindings b;
     std::string head;
-    for (const auto& [key, value] : header) head += fmt::format("// {}: {}\n", key, value);
+    for (const auto& [key, value] : header)
+        head += fmt::format("// {}: {}\n", sdlCommentText(key), sdlCommentText(value));
     b["header"].text = head;
 
     const Vec3 lo = mesh.boundsMin, hi = mesh.boundsMax;

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -24,7 +25,13 @@ using ParameterList = std::vector<std::pair<std::string, std::string>>;
 /// from above, each with its three palette indices) }`. Returns bytes written.
 size_t writeMesh2(const Mesh& mesh, std::FILE* out);
 
-/// The template's bindings: header, camera, sun, sky and the mesh.
+/// Text from anywhere (a path, a raster's CRS name: untrusted) as it may stand
+/// in a `//` comment of SDL: control characters, line breaks above all, become
+/// \xNN, so nothing can end the comment and become a directive.
+std::string sdlCommentText(std::string_view text);
+
+/// The template's bindings: header (every key and value through
+/// sdlCommentText), camera, sun, sky and the mesh.
 Bindings sceneBindings(const Mesh& mesh, const scene::LookSpec& look,
                        const scene::RenderSpec& render, const ParameterList& header);
 

@@ -26,6 +26,8 @@ struct FramePoint {
 struct ControlNet : GeoGrid {
     size_t sampleCount = 0;        ///< samples read, or the raster's cells
     size_t filledNodata = 0;       ///< rasters: nodes without data, filled from their neighbours
+    std::string raster;            ///< rasters: what was read and how, e.g.
+                                   ///< "122 x 174 cells, band 1, NZGD2000 / New Zealand Transverse Mercator 2000, bilinear"
     size_t filledOutsideHull = 0;  ///< nodes set by the nearest-sample fill (linear gridding)
 };
 

@@ -271,6 +271,10 @@ std::optional<ControlNet> rasterNet(const scene::SamplesSpec& samples, const sce
     ControlNet net;
     net.frame = *frame;
     net.sampleCount = static_cast<size_t>(width) * height;
+    const char* crsName = OSRGetName(rasterSrs.get());
+    static constexpr const char* kResampling[] = {"bilinear", "cubic", "average", "nearest"};
+    net.raster = fmt::format("{} x {} cells, band {}, {}, {}", width, height, samples.band,
+                             crsName ? crsName : "unnamed CRS", kResampling[static_cast<int>(samples.resample)]);
     if (!layoutNet(netSpec, {west, south, east, north}, cell, net, diags)) return std::nullopt;
     const int rows = net.rows(), cols = net.cols();
 

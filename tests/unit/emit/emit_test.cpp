@@ -74,6 +74,17 @@ TEST(Mesh, NormalsOfATiltedPlaneAndSceneUnits) {
     EXPECT_EQ(m.palette.back(), 255);
 }
 
+// A string from a scene or a data file cannot leave the header's comments:
+// a line break would let POV-Ray run what follows (#fopen, #write, ...).
+TEST(SceneHeader, UntrustedTextStaysInItsComment) {
+    EXPECT_EQ(sdlCommentText("data/dem.tif"), "data/dem.tif");
+    EXPECT_EQ(sdlCommentText("a\n#fopen F \"/tmp/x\" write\r\x7f"), "a\\x0a#fopen F \"/tmp/x\" write\\x0d\\x7f");
+    const Mesh m = buildMesh({{}, tiltedPlane(), 300000, 5900000, 100, 100}, {});
+    const Bindings b = sceneBindings(m, {}, {}, {{"samples.path", "x.csv\n#declare Evil = 1;"}});
+    const std::string head = b.at("header").text;
+    EXPECT_EQ(head, "// samples.path: x.csv\\x0a#declare Evil = 1;\n");
+}
+
 TEST(Mesh2, WriterOutputShape) {
     const Mesh m = buildMesh({{}, tiltedPlane(), 300000, 5900000, 100, 100}, {});
     char* data = nullptr;
