@@ -1,6 +1,7 @@
 #include "scene/read_scene.h"
 
 #include <algorithm>
+#include <array>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -148,6 +149,25 @@ public:
         error(key, fmt::format("{} = \"{}\" is not one of {}{}", qualified(key), *s,
                                joinQuoted(choices), didYouMean(*s, choices)));
         return std::nullopt;
+    }
+
+    // Four numbers, e.g. an extent; `what` says which in the error.
+    std::optional<std::array<double, 4>> box(const std::string& key, std::string_view what) {
+        known_.insert(key);
+        const toml::node* n = find(key);
+        if (!n) return std::nullopt;
+        const toml::array* a = n->as_array();
+        std::array<double, 4> out{};
+        bool ok = a && a->size() == 4;
+        for (size_t i = 0; ok && i < 4; ++i) {
+            if (auto d = (*a)[i].value<double>()) out[i] = *d;
+            else ok = false;
+        }
+        if (!ok) {
+            error(key, fmt::format("{} must be {}", qualified(key), what));
+            return std::nullopt;
+        }
+        return out;
     }
 
     void markKnown(const std::string& key) { known_.insert(key); }
@@ -360,36 +380,15 @@ std::optional<SceneSpec> readScene(const std::filesystem::path& path, Diagnostic
             scene.net.rows = 64;  // default: 64 x 64 nodes over the samples' extent
             scene.net.cols = 64;
         }
-        s.markKnown("extent_m");
-        if (const toml::node* e = s.find("extent_m")) {
-            const toml::array* a = e->as_array();
-            std::array<double, 4> ext{};
-            bool ok = a && a->size() == 4;
-            for (size_t i = 0; ok && i < 4; ++i) {
-                if (auto d = (*a)[i].value<double>()) ext[i] = *d;
-                else ok = false;
-            }
-            if (!ok)
-                s.error("extent_m", "net.extent_m must be [xmin, ymin, xmax, ymax] in metres");
-            else if (!(ext[2] > ext[0] && ext[3] > ext[1]))
+        if (auto ext = s.box("extent_m", "[xmin, ymin, xmax, ymax] in metres")) {
+            if (!((*ext)[2] > (*ext)[0] && (*ext)[3] > (*ext)[1]))
                 s.error("extent_m", "net.extent_m needs xmin < xmax and ymin < ymax (metres)");
             else
                 scene.net.extentM = ext;
         }
-        s.markKnown("extent_lonlat");
-        if (const toml::node* e = s.find("extent_lonlat")) {
-            const toml::array* a = e->as_array();
-            std::array<double, 4> box{};
-            bool ok = a && a->size() == 4;
-            for (size_t i = 0; ok && i < 4; ++i) {
-                if (auto d = (*a)[i].value<double>()) box[i] = *d;
-                else ok = false;
-            }
-            if (!ok)
-                s.error("extent_lonlat", "net.extent_lonlat must be [lon_min, lat_min, lon_max, lat_max] in "
-                                         "WGS84 degrees");
-            else if (!(box[2] > box[0] && box[3] > box[1] && box[0] >= -180 && box[2] <= 180 &&
-                       box[1] >= -90 && box[3] <= 90))
+        if (auto box = s.box("extent_lonlat", "[lon_min, lat_min, lon_max, lat_max] in WGS84 degrees")) {
+            const auto& w = *box;
+            if (!(w[2] > w[0] && w[3] > w[1] && w[0] >= -180 && w[2] <= 180 && w[1] >= -90 && w[3] <= 90))
                 s.error("extent_lonlat", "net.extent_lonlat needs -180 <= lon_min < lon_max <= 180 and "
                                          "-90 <= lat_min < lat_max <= 90 (degrees)");
             else if (s.find("extent_m"))
