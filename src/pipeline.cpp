@@ -34,7 +34,8 @@ std::string depthLabel(const scene::SubdivisionSpec& sub) {
 }
 
 subdiv::Budget budgetOf(const scene::LimitsSpec& limits) {
-    return {limits.maxTriangles, limits.maxSdlMB, limits.maxParseS};
+    return {limits.maxTriangles, limits.maxSdlMB, limits.maxParseS,
+            limits.maxMemoryMB > 0 ? limits.maxMemoryMB : subdiv::defaultMemoryBudgetMB()};
 }
 
 namespace {
@@ -386,7 +387,8 @@ std::string sidecarJson(const CompileResult& c, const OutputPaths& paths,
                     {"cols", c.estimate.cols},
                     {"vertices", mesh.vertices},
                     {"triangles", mesh.triangles},
-                    {"pov_bytes", c.povBytes}};
+                    {"pov_bytes", c.povBytes},
+                    {"memory_estimate_mb", c.estimate.memoryBytes / 1e6}};
     ordered_json times = {{"read_scene", c.times.readScene},
                           {"normalize", c.times.normalize},
                           {"subdivide", c.times.subdivide},

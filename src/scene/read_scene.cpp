@@ -498,6 +498,7 @@ std::optional<SceneSpec> readScene(const std::filesystem::path& path, Diagnostic
         if (auto v = s.number("max_triangles", 1, 1e10, "triangles")) scene.limits.maxTriangles = *v;
         if (auto v = s.number("max_sdl_mb", 0.001, 1e6, "MB")) scene.limits.maxSdlMB = *v;
         if (auto v = s.number("max_parse_s", 0.001, 1e6, "s")) scene.limits.maxParseS = *v;
+        if (auto v = s.number("max_memory_mb", 1, 1e9, "MB")) scene.limits.maxMemoryMB = *v;
         s.finish();
     }
 

@@ -123,6 +123,7 @@ struct LimitsSpec {
     double maxTriangles = 20e6;
     double maxSdlMB = 2048;
     double maxParseS = 120;
+    double maxMemoryMB = 0;  ///< 0 = three quarters of this machine's memory
     KeyLocations locs;
 };
 

@@ -1,5 +1,7 @@
 #include "subdiv/budget.h"
 
+#include <unistd.h>
+
 #include <fmt/format.h>
 
 #include "core/number_format.h"
@@ -20,12 +22,19 @@ OutputEstimate estimateOutput(const Scheme& scheme, int rows, int cols, int dept
     e.triangles = static_cast<double>(size.triangles);
     e.sdlBytes = e.vertices * kSdlBytesPerVertex + e.triangles * kSdlBytesPerTriangle;
     e.parseSeconds = e.triangles * kParseSecondsPerTriangle;
+    const double coarser = depth > 0 ? e.vertices / (scheme.arity * scheme.arity) : 0;
+    e.memoryBytes = e.vertices * kMemoryBytesPerVertex + 24 * coarser;
     return e;
+}
+
+double defaultMemoryBudgetMB() {
+    const double bytes = static_cast<double>(::sysconf(_SC_PHYS_PAGES)) * static_cast<double>(::sysconf(_SC_PAGE_SIZE));
+    return bytes > 0 ? 0.75 * bytes / 1e6 : 1e6;
 }
 
 bool withinBudget(const OutputEstimate& est, const Budget& budget) {
     return est.triangles <= budget.maxTriangles && est.sdlBytes / 1e6 <= budget.maxSdlMB &&
-           est.parseSeconds <= budget.maxParseS;
+           est.parseSeconds <= budget.maxParseS && est.memoryBytes / 1e6 <= budget.maxMemoryMB;
 }
 
 int deepestWithinBudget(const Scheme& scheme, int rows, int cols, const Budget& budget, int maxDepth) {
@@ -48,6 +57,9 @@ bool checkBudget(const OutputEstimate& est, const Budget& budget, const SourceLo
     if (est.parseSeconds > budget.maxParseS)
         add(fmt::format("~{:.1f} s of POV-Ray parsing > limits.max_parse_s = {}",
                         est.parseSeconds, formatShortest(budget.maxParseS)));
+    if (est.memoryBytes / 1e6 > budget.maxMemoryMB)
+        add(fmt::format("{:.0f} MB of memory > limits.max_memory_mb = {:.0f}", est.memoryBytes / 1e6,
+                        budget.maxMemoryMB));
     diags.error(where, fmt::format("depth {} refines the net to {} x {} vertices: {}; lower "
                                    "subdivision.depth, use a coarser net, or raise [limits]",
                                    depth, est.rows, est.cols, over));

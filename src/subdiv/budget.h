@@ -13,19 +13,27 @@ struct OutputEstimate {
     double triangles = 0;
     double sdlBytes = 0;  ///< the .pov's size, from the writer's bytes per vertex and face
     double parseSeconds = 0;  ///< POV-Ray's parse time at ~4 us per triangle (measured here)
+    double memoryBytes = 0;   ///< relief's peak: the refined grid, its mesh, the last coarser level
 };
 
 struct Budget {
     double maxTriangles;
     double maxSdlMB;
     double maxParseS;
+    double maxMemoryMB;
 };
+
+/// Three quarters of this machine's physical memory, in MB: the default memory budget.
+double defaultMemoryBudgetMB();
 
 inline constexpr double kParseSecondsPerTriangle = 4e-6;
 // Measured on the writer's output (emit/write_scene.cpp) for the default scene: a vertex line plus
 // its normal line, and a face line with its three palette indices.
 inline constexpr double kSdlBytesPerVertex = 58;
 inline constexpr double kSdlBytesPerTriangle = 31;
+// Per refined vertex: the grid (3 doubles), the mesh's position and normal (3 doubles each) and
+// its palette index; the last coarser level is counted at its own size.
+inline constexpr double kMemoryBytesPerVertex = 3 * 8 + 3 * 8 + 3 * 8 + 1;
 
 OutputEstimate estimateOutput(const Scheme& scheme, int rows, int cols, int depth);
 

@@ -269,13 +269,29 @@ TEST(Budget, EstimateMatchesRefinedSize) {
 TEST(Budget, RefusesOversizedOutputNamingTheLimit) {
     Diagnostics diags;
     const auto est = estimateOutput(dlgFourPoint(1.0 / 16), 257, 257, 5);
-    EXPECT_FALSE(checkBudget(est, {20e6, 2048, 120}, {"s.toml", 9, 1}, 5, diags));
+    EXPECT_FALSE(checkBudget(est, {20e6, 2048, 120, 1e9}, {"s.toml", 9, 1}, 5, diags));
     ASSERT_EQ(diags.errorCount(), 1);
     EXPECT_EQ(formatDiagnostic(diags.all()[0]),
               "s.toml:9:1: error: depth 5 refines the net to 8193 x 8193 vertices: 1.34e+08 "
               "triangles > limits.max_triangles = 2e+07; 8054 MB of SDL > limits.max_sdl_mb = "
               "2048; ~536.9 s of POV-Ray parsing > limits.max_parse_s = 120; lower "
               "subdivision.depth, use a coarser net, or raise [limits]");
+}
+
+// The memory budget, known before anything is allocated: a 3601 x 3601
+// one-arc-second tile refined once (7201 x 7201) needs about 4.1 GB, which a
+// 24 GiB machine has; refused, with the numbers, under a smaller budget.
+TEST(Budget, MemoryIsEstimatedAndRefused) {
+    const auto est = estimateOutput(dlgFourPoint(1.0 / 16), 3601, 3601, 1);
+    EXPECT_NEAR(est.memoryBytes / 1e9, 7201.0 * 7201 * 73 / 1e9 + 3601.0 * 3601 * 24 / 1e9, 0.01);
+    EXPECT_LT(est.memoryBytes, 0.75 * 24 * 1024.0 * 1024 * 1024);
+    Diagnostics diags;
+    EXPECT_FALSE(checkBudget(est, {1e9, 1e9, 1e9, 2000}, {"s.toml", 4, 1}, 1, diags));
+    ASSERT_EQ(diags.errorCount(), 1);
+    EXPECT_EQ(formatDiagnostic(diags.all()[0]),
+              "s.toml:4:1: error: depth 1 refines the net to 7201 x 7201 vertices: 4096 MB of memory > "
+              "limits.max_memory_mb = 2000; lower subdivision.depth, use a coarser net, or raise [limits]");
+    EXPECT_GT(defaultMemoryBudgetMB(), 100);
 }
 
 }  // namespace
