@@ -15,15 +15,18 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <map>
 #include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
 
+#include "core/atomic_file.h"
 #include "emit/mesh.h"
 #include "emit/write_scene.h"
 #include "geo/normalize.h"
+#include "geo/samples.h"
 #include "reference/naive_four_point.h"
 #include "subdiv/refine.h"
 #include "subdiv/row_kernels.h"
@@ -540,5 +543,48 @@ void BM_NearestFillGdalRadius0(benchmark::State& state) {
     state.counters["nodes"] = s.side * s.side;
 }
 BENCHMARK(BM_NearestFillGdalRadius0)->Arg(5000)->Arg(20000)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// Reading scattered samples: a lon,lat,elev CSV of 770,000 lines (the size of
+// a 1197 x 643 DEM written out), parsed and checked; items = lines.
+const std::string& samplesCsv770k() {
+    static const std::string path = [] {
+        const std::string p = (std::filesystem::temp_directory_path() / "relief-bench-samples.csv").string();
+        std::FILE* f = std::fopen(p.c_str(), "w");
+        std::fputs("lon,lat,elev\n", f);
+        for (int r = 0; r < 643; ++r)
+            for (int c = 0; c < 1197; ++c)
+                std::fprintf(f, "%.8f,%.8f,%.3f\n", -117.5 + c * 0.000337, 36.1 + r * 0.00027,
+                             1200 + 300 * std::sin(r * 0.01) * std::cos(c * 0.013));
+        std::fclose(f);
+        return p;
+    }();
+    return path;
+}
+
+void BM_ReadSamples(benchmark::State& state) {
+    const std::string& path = samplesCsv770k();
+    size_t count = 0;
+    for (auto _ : state) {
+        Diagnostics diags;
+        const auto samples = geo::readSamples(path, "bench.csv", diags);
+        count = samples.size();
+        benchmark::DoNotOptimize(samples.data());
+    }
+    state.SetItemsProcessed(static_cast<int64_t>(state.iterations() * count));
+}
+BENCHMARK(BM_ReadSamples)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The baseline: the same file's bytes read into memory, no parsing.
+void BM_ReadSamplesFileBytes(benchmark::State& state) {
+    const std::string& path = samplesCsv770k();
+    size_t bytes = 0;
+    for (auto _ : state) {
+        const std::string text = readFile(path);
+        bytes = text.size();
+        benchmark::DoNotOptimize(text.data());
+    }
+    state.SetBytesProcessed(static_cast<int64_t>(state.iterations() * bytes));
+}
+BENCHMARK(BM_ReadSamplesFileBytes)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
