@@ -199,6 +199,19 @@ TEST(Raster, UnusableRastersAreErrors) {
     std::ofstream(dir / "one.asc") << "ncols 1\nnrows 1\nxllcenter 0\nyllcenter 0\ncellsize 1\n5\n";
     EXPECT_EQ(message(rasterSpec(dir / "one.asc", "EPSG:2193")),
               "one.asc: error: the raster is 1 x 1 cells; a surface needs at least 2 x 2");
+    // A rotated geotransform.
+    registerGdalDrivers();
+    {
+        const fs::path rotated = dir / "rotated.tif";
+        GDALDatasetH ds = GDALCreate(GDALGetDriverByName("GTiff"), rotated.c_str(), 4, 4, 1, GDT_Float32, nullptr);
+        double geo[6] = {kX0, kCell, 2, kY0, 2, -kCell};
+        GDALSetGeoTransform(ds, geo);
+        GDALSetProjection(ds, "EPSG:2193");
+        GDALClose(ds);
+        EXPECT_EQ(message(rasterSpec(rotated, "")),
+                  "rotated.tif: error: the raster's geotransform is rotated; relief reads north-up rasters: "
+                  "warp it first (gdalwarp)");
+    }
     // A CSV of samples is not a raster, even one GDAL could read as a table.
     std::ofstream(dir / "s.csv") << "lon,lat,elev\n174.76,-36.87,100\n174.77,-36.87,101\n";
     EXPECT_FALSE(isRasterDem(dir / "s.csv"));
