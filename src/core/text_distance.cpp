@@ -33,4 +33,9 @@ std::string closestMatch(std::string_view word, const std::vector<std::string>& 
     return best;
 }
 
+std::string didYouMean(std::string_view word, const std::vector<std::string>& candidates) {
+    const std::string best = closestMatch(word, candidates);
+    return best.empty() ? std::string() : " (did you mean \"" + best + "\"?)";
+}
+
 }  // namespace relief

@@ -158,6 +158,11 @@ std::optional<ControlNet> rasterNet(const scene::SamplesSpec& samples, const sce
                              "warp it first (gdalwarp)");
         return std::nullopt;
     }
+    double inverse[6];
+    if (!GDALInvGeoTransform(geo, inverse)) {
+        diags.error(fileLoc, "the raster's geotransform cannot be inverted (a cell of size 0?)");
+        return std::nullopt;
+    }
 
     // The raster's CRS, or the scene's word for it.
     Srs rasterSrs(OSRNewSpatialReference(nullptr));
@@ -250,11 +255,8 @@ std::optional<ControlNet> rasterNet(const scene::SamplesSpec& samples, const sce
         }
         double cx = lon, cy = lat, cz = 0;
         if (OCTTransform(toRaster.get(), 1, &cx, &cy, &cz)) {
-            double inverse[6];
-            if (GDALInvGeoTransform(geo, inverse)) {
-                px = inverse[0] + cx * inverse[1] + cy * inverse[2];
-                py = inverse[3] + cx * inverse[4] + cy * inverse[5];
-            }
+            px = inverse[0] + cx * inverse[1] + cy * inverse[2];
+            py = inverse[3] + cx * inverse[4] + cy * inverse[5];
         }
     }
     Vec3 c0, c1, c2;
@@ -286,10 +288,7 @@ std::optional<ControlNet> rasterNet(const scene::SamplesSpec& samples, const sce
     GDALSetRasterNoDataValue(out, kNoData);
     NetToRaster chain{net.frame, net.x0, net.y0, net.dx, net.dy, rows, toRaster.get(), toWgs84.get(), {}, {}};
     std::copy(geo, geo + 6, chain.geo);
-    if (!GDALInvGeoTransform(geo, chain.inverse)) {
-        diags.error(fileLoc, "the raster's geotransform cannot be inverted (a cell of size 0?)");
-        return std::nullopt;
-    }
+    std::copy(inverse, inverse + 6, chain.inverse);
 
     GDALWarpOptions* wo = GDALCreateWarpOptions();
     wo->hSrcDS = src.get();

@@ -34,11 +34,6 @@ SourceLoc locOf(const std::string& file, const toml::source_region& r) {
 
 std::string quoteName(std::string_view s) { return fmt::format("\"{}\"", s); }
 
-std::string didYouMean(std::string_view word, const std::vector<std::string>& candidates) {
-    const std::string best = closestMatch(word, candidates);
-    return best.empty() ? std::string() : fmt::format(" (did you mean \"{}\"?)", best);
-}
-
 std::string joinQuoted(const std::vector<std::string>& names) {
     std::string out;
     for (size_t i = 0; i < names.size(); ++i) out += (i ? ", " : "") + quoteName(names[i]);

@@ -11,11 +11,6 @@ namespace relief::subdiv {
 
 namespace {
 
-std::string didYouMean(const std::string& word, const std::vector<std::string>& names) {
-    const std::string best = closestMatch(word, names);
-    return best.empty() ? std::string() : " (did you mean \"" + best + "\"?)";
-}
-
 // The preset's family and its parameters, from the preset's own parameters.
 bool resolvePreset(const scene::SchemeSpec& spec, Diagnostics& diags, std::string& familyName,
                    SchemeParams& familyParams) {
