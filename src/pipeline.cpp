@@ -68,7 +68,7 @@ const char* name(scene::Gridding g) {
 
 emit::ParameterList describe(const scene::SceneSpec& s, const geo::ControlNet& net,
                              const subdiv::ResolvedScheme& scheme, int depth,
-                             const subdiv::OutputEstimate& est, double metresPerUnit) {
+                             const subdiv::OutputEstimate& est, const emit::Mesh& mesh) {
     const scene::SubdivisionSpec& sub = s.subdivision;
     const scene::LookSpec& look = s.look;
     const scene::CameraSpec& camera = look.camera;
@@ -87,6 +87,7 @@ emit::ParameterList describe(const scene::SceneSpec& s, const geo::ControlNet& n
     if (net.raster.empty()) add("net.gridding", name(s.net.gridding));
     else add("samples.raster", net.raster);
     if (net.filledNodata > 0) add("net.filled_nodata", std::to_string(net.filledNodata));
+    else if (!net.masked.empty()) add("net.masked_nodata", std::to_string(net.maskedCount()));
     else add("net.filled_outside_hull", std::to_string(net.filledOutsideHull));
     add("vertical.exaggeration", formatShortest(look.exaggeration));
     std::string params;
@@ -105,6 +106,9 @@ emit::ParameterList describe(const scene::SceneSpec& s, const geo::ControlNet& n
     add("refined.size", fmt::format("{} rows x {} cols", est.rows, est.cols));
     add("refined.vertices", fmt::format("{:.0f}", est.vertices));
     add("refined.triangles", fmt::format("{:.0f}", est.triangles));
+    if (!mesh.vertexOfNode.empty())
+        add("mesh.with_data", fmt::format("{} vertices, {} triangles (masked nodata left out)",
+                                          mesh.positions.size(), mesh.triangles));
     add("texture.ramp", look.ramp.preset);
     add("lighting.sun", fmt::format("azimuth {} deg, altitude {} deg",
                                     formatShortest(look.sunAzimuthDeg),
@@ -119,7 +123,7 @@ emit::ParameterList describe(const scene::SceneSpec& s, const geo::ControlNet& n
                               formatShortest(camera.fovDeg)));
     add("render", fmt::format("{} x {}, antialias {}", s.render.width, s.render.height,
                               s.render.antialias ? "on" : "off"));
-    add("scene_unit_m", formatShortest(metresPerUnit));
+    add("scene_unit_m", formatShortest(mesh.metresPerUnit));
     return p;
 }
 
@@ -172,8 +176,10 @@ std::optional<CompileResult> compileScene(const LoadedScene& loaded,
     result.metresPerUnit = mesh.metresPerUnit;
     result.depth = surface->depth;
     result.autoDepth = surface->autoDepth;
-    result.parameters = describe(spec, net, loaded.resolved, surface->depth, result.estimate,
-                                 mesh.metresPerUnit);
+    result.parameters = describe(spec, net, loaded.resolved, surface->depth, result.estimate, mesh);
+    result.meshVertices = static_cast<long long>(mesh.positions.size());
+    result.meshTriangles = mesh.triangles;
+    result.maskedNodes = surface->refined.maskedCount();
 
     if (!options.dumpNetPath.empty()) {
         const bool asc = options.dumpNetPath.extension() == ".asc";
@@ -381,12 +387,13 @@ std::string sidecarJson(const CompileResult& c, const OutputPaths& paths,
                 {"dy_m", c.net.dy},
                 {"frame", c.net.frame.describe()},
                 {"filled_outside_hull", c.net.filledOutsideHull},
-                {"filled_nodata", c.net.filledNodata}};
-    const MeshSize mesh = gridMeshSize(c.estimate.rows, c.estimate.cols);
+                {"filled_nodata", c.net.filledNodata},
+                {"masked_nodata", c.net.maskedCount()}};
     j["refined"] = {{"rows", c.estimate.rows},
                     {"cols", c.estimate.cols},
-                    {"vertices", mesh.vertices},
-                    {"triangles", mesh.triangles},
+                    {"masked_nodata", c.maskedNodes},
+                    {"vertices", c.meshVertices},
+                    {"triangles", c.meshTriangles},
                     {"pov_bytes", c.povBytes},
                     {"memory_estimate_mb", c.estimate.memoryBytes / 1e6}};
     ordered_json times = {{"read_scene", c.times.readScene},

@@ -99,6 +99,8 @@ struct CompileResult {
     emit::ParameterList parameters;  ///< as recorded in the .pov header
     StageTimes times;
     std::uintmax_t povBytes = 0;
+    long long meshVertices = 0, meshTriangles = 0;  ///< as emitted: masked nodes left out
+    size_t maskedNodes = 0;                         ///< refined nodes without data
 };
 
 /// Runs stages 2-4 and writes the .pov (and the net dump, if asked).

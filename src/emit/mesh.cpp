@@ -13,9 +13,26 @@ Mesh buildMesh(const geo::GeoGrid& refined, const scene::LookSpec& look) {
     mesh.rows = g.rows;
     mesh.cols = g.cols;
     mesh.exaggeration = look.exaggeration;
+    const size_t nodes = g.points.size();
+    auto kept = [&](size_t i) { return refined.masked.empty() || refined.masked[i] == 0; };
+
+    size_t vertices = nodes;
+    if (!refined.masked.empty()) {
+        mesh.vertexOfNode.resize(nodes);
+        std::uint32_t next = 0;
+        for (size_t i = 0; i < nodes; ++i) mesh.vertexOfNode[i] = kept(i) ? next++ : Mesh::kNoVertex;
+        vertices = next;
+    }
+    for (int r = 0; r + 1 < g.rows; ++r)
+        for (int c = 0; c + 1 < g.cols; ++c) {
+            const size_t sw = static_cast<size_t>(r) * g.cols + c, se = sw + 1, nw = sw + g.cols, ne = nw + 1;
+            mesh.triangles += (kept(sw) && kept(se) && kept(ne)) + (kept(sw) && kept(ne) && kept(nw));
+        }
 
     double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300, zmin = 1e300, zmax = -1e300;
-    for (const Vec3& p : g.points) {
+    for (size_t i = 0; i < nodes; ++i) {
+        if (!kept(i)) continue;
+        const Vec3& p = g.points[i];
         xmin = std::min(xmin, p.x), xmax = std::max(xmax, p.x);
         ymin = std::min(ymin, p.y), ymax = std::max(ymax, p.y);
         zmin = std::min(zmin, p.z), zmax = std::max(zmax, p.z);
@@ -29,31 +46,12 @@ Mesh buildMesh(const geo::GeoGrid& refined, const scene::LookSpec& look) {
 
     const double s = 1.0 / mesh.metresPerUnit;
     const double zs = look.exaggeration * s;
-    mesh.positions.resize(g.points.size());
-    for (size_t i = 0; i < g.points.size(); ++i) {
-        const Vec3& p = g.points[i];
-        mesh.positions[i] = {(p.x - mesh.originM.x) * s, p.z * zs, (p.y - mesh.originM.y) * s};
-    }
+    auto scenePoint = [&](int r, int c) {
+        const Vec3& p = g.at(r, c);
+        return Vec3{(p.x - mesh.originM.x) * s, p.z * zs, (p.y - mesh.originM.y) * s};
+    };
     mesh.boundsMin = {(xmin - mesh.originM.x) * s, zmin * zs, (ymin - mesh.originM.y) * s};
     mesh.boundsMax = {(xmax - mesh.originM.x) * s, zmax * zs, (ymax - mesh.originM.y) * s};
-
-    // Normals in scene axes from the exaggerated surface. d/dcol runs east,
-    // d/drow north; cross(north, east) points up in POV-Ray's (x, y, z) = (E, U, N).
-    mesh.normals.resize(g.points.size());
-    const auto& P = mesh.positions;
-    auto at = [&](int r, int c) { return P[static_cast<size_t>(r) * g.cols + c]; };
-    for (int r = 0; r < g.rows; ++r) {
-        const int r0 = std::max(r - 1, 0), r1 = std::min(r + 1, g.rows - 1);
-        for (int c = 0; c < g.cols; ++c) {
-            const int c0 = std::max(c - 1, 0), c1 = std::min(c + 1, g.cols - 1);
-            const Vec3 east = at(r, c1) - at(r, c0);
-            const Vec3 north = at(r1, c) - at(r0, c);
-            Vec3 n = cross(north, east);
-            const double len = length(n);
-            mesh.normals[static_cast<size_t>(r) * g.cols + c] =
-                len > 0 ? (1.0 / len) * n : Vec3{0, 1, 0};
-        }
-    }
 
     // Palette over the true (not exaggerated) elevation range.
     const auto stops = scene::resolveRamp(look.ramp, zmin, zmax);
@@ -61,11 +59,33 @@ Mesh buildMesh(const geo::GeoGrid& refined, const scene::LookSpec& look) {
     mesh.paletteColors.resize(kPaletteSize);
     for (int k = 0; k < kPaletteSize; ++k)
         mesh.paletteColors[k] = scene::sampleRamp(stops, zmin + span * k / (kPaletteSize - 1));
-    mesh.palette.resize(g.points.size());
-    for (size_t i = 0; i < g.points.size(); ++i) {
-        const double t = (g.points[i].z - zmin) / span;
-        mesh.palette[i] = static_cast<unsigned char>(
-            std::clamp(std::lround(t * (kPaletteSize - 1)), 0L, long{kPaletteSize - 1}));
+
+    // Per vertex: position, normal and palette index. Normals in scene axes
+    // from the exaggerated surface; d/dcol runs east, d/drow north, and
+    // cross(north, east) points up in POV-Ray's (x, y, z) = (E, U, N).
+    mesh.positions.resize(vertices);
+    mesh.normals.resize(vertices);
+    mesh.palette.resize(vertices);
+    size_t v = 0;
+    for (int r = 0; r < g.rows; ++r) {
+        for (int c = 0; c < g.cols; ++c) {
+            const size_t i = static_cast<size_t>(r) * g.cols + c;
+            if (!kept(i)) continue;
+            const int c0 = c > 0 && !refined.isMasked(r, c - 1) ? c - 1 : c;
+            const int c1 = c + 1 < g.cols && !refined.isMasked(r, c + 1) ? c + 1 : c;
+            const int r0 = r > 0 && !refined.isMasked(r - 1, c) ? r - 1 : r;
+            const int r1 = r + 1 < g.rows && !refined.isMasked(r + 1, c) ? r + 1 : r;
+            const Vec3 east = scenePoint(r, c1) - scenePoint(r, c0);
+            const Vec3 north = scenePoint(r1, c) - scenePoint(r0, c);
+            const Vec3 n = cross(north, east);
+            const double len = length(n);
+            mesh.positions[v] = scenePoint(r, c);
+            mesh.normals[v] = len > 0 ? (1.0 / len) * n : Vec3{0, 1, 0};
+            const double t = (g.points[i].z - zmin) / span;
+            mesh.palette[v] = static_cast<unsigned char>(
+                std::clamp(std::lround(t * (kPaletteSize - 1)), 0L, long{kPaletteSize - 1}));
+            ++v;
+        }
     }
     return mesh;
 }

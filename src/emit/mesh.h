@@ -3,6 +3,7 @@
 // LookSpec. Output: Mesh,
 // in POV-Ray scene units and axes, with normals and an elevation palette.
 #include <array>
+#include <cstdint>
 #include <vector>
 
 #include "core/types.h"
@@ -18,8 +19,13 @@ inline constexpr int kPaletteSize = 256;
 /// chosen so the terrain spans 10-100 units: POV-Ray stores vertices as
 /// 32-bit floats and treats bounding boxes over ~2e10 cubic units as infinite.
 struct Mesh {
-    int rows = 0, cols = 0;
-    std::vector<Vec3> positions;  ///< scene units, relative to `originM`
+    static constexpr std::uint32_t kNoVertex = 0xffffffffu;
+    int rows = 0, cols = 0;       ///< the refined grid's lattice
+    /// Per grid node: its vertex, or kNoVertex for a masked node (no data);
+    /// empty when every node is a vertex, node i being vertex i.
+    std::vector<std::uint32_t> vertexOfNode;
+    long long triangles = 0;      ///< two per cell, less those touching a masked node
+    std::vector<Vec3> positions;  ///< per vertex: scene units, relative to `originM`
     std::vector<Vec3> normals;    ///< unit length, scene axes
     std::vector<unsigned char> palette;  ///< per vertex: index into paletteColors
     std::vector<scene::ColorStop> paletteColors;  ///< kPaletteSize entries (linear RGB)
@@ -32,7 +38,9 @@ struct Mesh {
 
 /// Builds the mesh: centres the terrain on the origin, applies the vertical
 /// exaggeration, computes normals from the grid (central differences, one-sided
-/// at the edges) and maps each vertex's true elevation to the palette.
+/// at the edges and next to masked nodes) and maps each vertex's true
+/// elevation to the palette. Masked nodes are left out, with every triangle
+/// that touches one; bounds and the palette's range are those of the rest.
 Mesh buildMesh(const geo::GeoGrid& refined, const scene::LookSpec& look);
 
 }  // namespace relief::emit

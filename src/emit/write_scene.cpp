@@ -116,7 +116,7 @@ size_t writeMesh2(const Mesh& mesh, std::FILE* out) {
     w->put("\n  }\n  face_indices {\n    ");
     {
         char* p = w->reserve(24);
-        w->commit(writeUnsigned(p, static_cast<std::uint64_t>(gridMeshSize(mesh.rows, mesh.cols).triangles)));
+        w->commit(writeUnsigned(p, static_cast<std::uint64_t>(mesh.triangles)));
     }
     const size_t cols = static_cast<size_t>(mesh.cols);
     auto face = [&](size_t a, size_t b, size_t c) {
@@ -138,12 +138,20 @@ size_t writeMesh2(const Mesh& mesh, std::FILE* out) {
         p = writeUnsigned(p, mesh.palette[c]);
         w->commit(p);
     };
+    const auto& vertexOf = mesh.vertexOfNode;
     for (size_t r = 0; r + 1 < static_cast<size_t>(mesh.rows); ++r) {
         for (size_t c = 0; c + 1 < cols; ++c) {
             // South-west, south-east, north-east, north-west corners of the quad.
             const size_t sw = r * cols + c, se = sw + 1, nw = sw + cols, ne = nw + 1;
-            face(sw, se, ne);
-            face(sw, ne, nw);
+            if (vertexOf.empty()) {
+                face(sw, se, ne);
+                face(sw, ne, nw);
+                continue;
+            }
+            const std::uint32_t vsw = vertexOf[sw], vse = vertexOf[se], vnw = vertexOf[nw], vne = vertexOf[ne];
+            if (vsw == Mesh::kNoVertex || vne == Mesh::kNoVertex) continue;
+            if (vse != Mesh::kNoVertex) face(vsw, vse, vne);
+            if (vnw != Mesh::kNoVertex) face(vsw, vne, vnw);
         }
     }
     w->put("\n  }\n  inside_vector <0, 1, 0>\n}");

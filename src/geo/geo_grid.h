@@ -3,8 +3,10 @@
 // projected frame (metres, x = east, y = north, z = up). Normalization makes
 // one (the control net), refinement makes a finer one over the same extent, and
 // emit, profiles, contours, compare-geometry and automatic depth read them.
+#include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/types.h"
 #include "scene/scene_spec.h"
@@ -30,19 +32,32 @@ struct GeoGrid {
     Grid grid;
     double x0 = 0, y0 = 0;  ///< position of node (0, 0), metres
     double dx = 0, dy = 0;  ///< node spacing, metres
+    /// Per node (row-major, as grid.points): 1 where the data have none
+    /// (nodata = "mask"), else 0; empty when every node has data. Masked nodes
+    /// still hold finite heights, filled from their neighbours, so that the
+    /// refiner's stencils read no NaN; the mesh leaves them out and sample()
+    /// does not read them.
+    std::vector<std::uint8_t> masked;
 
     int rows() const { return grid.rows; }
     int cols() const { return grid.cols; }
     double xMax() const { return x0 + (grid.cols - 1) * dx; }
     double yMax() const { return y0 + (grid.rows - 1) * dy; }
+    bool isMasked(int r, int c) const {
+        return !masked.empty() && masked[static_cast<size_t>(r) * grid.cols + c] != 0;
+    }
+    size_t maskedCount() const;
 
     /// Height at (x, y) in the frame by bilinear interpolation between the
-    /// four surrounding nodes; nullopt outside the lattice.
+    /// four surrounding nodes; nullopt outside the lattice or where one of
+    /// those nodes is masked.
     std::optional<double> sample(double x, double y) const;
 
     /// The same extent and frame with new nodes: `nodes` refines this grid's
     /// nodes by `factor` along each axis (arity^depth), so the spacing shrinks
-    /// by that factor and the origin stays.
+    /// by that factor and the origin stays. A refined node is masked when a
+    /// control node of the cell (or edge) it lies in is masked, so the holes
+    /// keep the control net's outline.
     GeoGrid refined(Grid nodes, double factor) const;
 };
 

@@ -110,6 +110,35 @@ double metresPerUnit(std::string unit) {
     return 0;
 }
 
+// The box of cells (pixel edges: x0, y0, x1, y1) that holds every cell with
+// data, so that a raster with a nodata border (a region, a coastline tile)
+// defaults to its data, not to its border. Read at most kScan cells across,
+// and widened by one read cell; nullopt when no read cell has data.
+struct PixelBox {
+    double x0, y0, x1, y1;
+};
+std::optional<PixelBox> dataBox(GDALRasterBandH band, int width, int height, double noData) {
+    constexpr int kScan = 1024;
+    const int bw = std::min(width, kScan), bh = std::min(height, kScan);
+    std::vector<double> cells(static_cast<size_t>(bw) * bh);
+    CPLPushErrorHandler(CPLQuietErrorHandler);
+    const CPLErr err = GDALRasterIO(band, GF_Read, 0, 0, width, height, cells.data(), bw, bh, GDT_Float64, 0, 0);
+    CPLPopErrorHandler();
+    if (err != CE_None) return PixelBox{0, 0, double(width), double(height)};  // the warper will say why
+    int c0 = bw, c1 = -1, r0 = bh, r1 = -1;
+    for (int r = 0; r < bh; ++r)
+        for (int c = 0; c < bw; ++c) {
+            const double v = cells[static_cast<size_t>(r) * bw + c];
+            if (std::isnan(v) || v == noData) continue;
+            c0 = std::min(c0, c), c1 = std::max(c1, c), r0 = std::min(r0, r), r1 = std::max(r1, r);
+        }
+    if (c1 < 0) return std::nullopt;
+    const double sx = double(width) / bw, sy = double(height) / bh;
+    const int grow = bw < width || bh < height ? 1 : 0;
+    return PixelBox{std::max(0.0, (c0 - grow) * sx), std::max(0.0, (r0 - grow) * sy),
+                    std::min(double(width), (c1 + 1 + grow) * sx), std::min(double(height), (r1 + 1 + grow) * sy)};
+}
+
 }  // namespace
 
 bool isRasterDem(const std::filesystem::path& path) {
@@ -192,7 +221,25 @@ std::optional<ControlNet> rasterNet(const scene::SamplesSpec& samples, const sce
         return std::nullopt;
     }
 
-    // The footprint: points along the raster's edges, in WGS84.
+    GDALRasterBandH band = GDALGetRasterBand(src.get(), samples.band);
+    int hasNoData = FALSE;
+    const double declaredNoData = GDALGetRasterNoDataValue(band, &hasNoData);
+    // No declared nodata: NaN cells are still no data.
+    const double srcNoData = hasNoData ? declaredNoData : std::nan("");
+    const bool window = netSpec.extentM || netSpec.extentLonLat;
+    PixelBox box{0, 0, double(width), double(height)};
+    if (!window) {
+        const auto data = dataBox(band, width, height, srcNoData);
+        if (!data) {
+            diags.error(fileLoc, fmt::format("every cell of band {} is nodata ({}): check the band and the "
+                                             "raster's nodata value",
+                                             samples.band, hasNoData ? formatShortest(declaredNoData) : "NaN"));
+            return std::nullopt;
+        }
+        box = *data;
+    }
+
+    // The footprint: points along the edges of the raster's data, in WGS84.
     std::vector<GeoSample> edge;
     auto addPixel = [&](double px, double py) {
         double cx = geo[0] + px * geo[1], cy = geo[3] + py * geo[5], cz = 0;
@@ -200,9 +247,11 @@ std::optional<ControlNet> rasterNet(const scene::SamplesSpec& samples, const sce
             edge.push_back({cx, cy, 0, {}});
     };
     constexpr int kEdgePoints = 64;
+    const double boxW = box.x1 - box.x0, boxH = box.y1 - box.y0;
     for (int i = 0; i <= kEdgePoints; ++i) {
         const double f = static_cast<double>(i) / kEdgePoints;
-        addPixel(f * width, 0), addPixel(f * width, height), addPixel(0, f * height), addPixel(width, f * height);
+        addPixel(box.x0 + f * boxW, box.y0), addPixel(box.x0 + f * boxW, box.y1);
+        addPixel(box.x0, box.y0 + f * boxH), addPixel(box.x1, box.y0 + f * boxH);
     }
     if (edge.size() < 4) {
         diags.error(fileLoc, "the raster's corners cannot be carried to latitude and longitude: check its CRS");
@@ -225,12 +274,11 @@ std::optional<ControlNet> rasterNet(const scene::SamplesSpec& samples, const sce
     for (int i = 0; i <= kEdgePoints; ++i) {
         const double f = static_cast<double>(i) / kEdgePoints;
         Vec3 p;
-        framed(0, f * height, p) ? void(west = std::max(west, p.x)) : void(++outside);
-        framed(width, f * height, p) ? void(east = std::min(east, p.x)) : void(++outside);
-        framed(f * width, height, p) ? void(south = std::max(south, p.y)) : void(++outside);
-        framed(f * width, 0, p) ? void(north = std::min(north, p.y)) : void(++outside);
+        framed(box.x0, box.y0 + f * boxH, p) ? void(west = std::max(west, p.x)) : void(++outside);
+        framed(box.x1, box.y0 + f * boxH, p) ? void(east = std::min(east, p.x)) : void(++outside);
+        framed(box.x0 + f * boxW, box.y1, p) ? void(south = std::max(south, p.y)) : void(++outside);
+        framed(box.x0 + f * boxW, box.y0, p) ? void(north = std::min(north, p.y)) : void(++outside);
     }
-    const bool window = netSpec.extentM || netSpec.extentLonLat;
     if (outside > 0 && !window) {
         double lonMin = 180, lonMax = -180, latMin = 90, latMax = -90;
         for (const auto& g : edge)
@@ -243,7 +291,7 @@ std::optional<ControlNet> rasterNet(const scene::SamplesSpec& samples, const sce
         return std::nullopt;
     }
     // The raster's cell on the ground, at the centre of the raster or of the scene's window.
-    double px = 0.5 * width, py = 0.5 * height;
+    double px = 0.5 * (box.x0 + box.x1), py = 0.5 * (box.y0 + box.y1);
     if (window) {
         double lat = 0, lon = 0, h = 0;
         if (netSpec.extentLonLat) {
@@ -281,7 +329,6 @@ std::optional<ControlNet> rasterNet(const scene::SamplesSpec& samples, const sce
     const int rows = net.rows(), cols = net.cols();
 
     // The net as a raster of its own (pixel centres = nodes, row 0 north), warped into.
-    GDALRasterBandH band = GDALGetRasterBand(src.get(), samples.band);
     constexpr double kNoData = -1.0e30;
     Dataset dst(GDALCreate(GDALGetDriverByName("MEM"), "", cols, rows, 1, GDT_Float64, nullptr));
     GDALRasterBandH out = GDALGetRasterBand(dst.get(), 1);
@@ -300,16 +347,24 @@ std::optional<ControlNet> rasterNet(const scene::SamplesSpec& samples, const sce
     wo->panDstBands[0] = 1;
     wo->eWorkingDataType = GDT_Float64;
     wo->eResampleAlg = gdalResampling(samples.resample);
-    int hasNoData = FALSE;
-    const double srcNoData = GDALGetRasterNoDataValue(band, &hasNoData);
     wo->padfSrcNoDataReal = static_cast<double*>(CPLMalloc(sizeof(double)));
-    // No declared nodata: NaN cells are still no data.
-    wo->padfSrcNoDataReal[0] = hasNoData ? srcNoData : std::nan("");
+    wo->padfSrcNoDataReal[0] = srcNoData;
     wo->padfDstNoDataReal = static_cast<double*>(CPLMalloc(sizeof(double)));
     wo->padfDstNoDataReal[0] = kNoData;
     wo->papszWarpOptions = CSLSetNameValue(wo->papszWarpOptions, "INIT_DEST", "NO_DATA");
-    wo->pfnTransformer = transformNetToRaster;
-    wo->pTransformerArg = &chain;
+    // The exact chain costs two projections per net node; GDAL's approximating
+    // transformer interpolates it linearly along each row of the net wherever
+    // that stays within kMaxErrorPixels of it (checked at the row's ends and
+    // middle, and recursively), as gdalwarp does by default with 0.125 raster
+    // cells. Within 0.001 cells it is 8x faster on a 1000 x 1000 DEM
+    // (0.07 s against 0.59 s) and changes no height by more than 0.7 mm there.
+    constexpr double kMaxErrorCells = 0.001;
+    struct ApproxDeleter {
+        void operator()(void* t) const { GDALDestroyApproxTransformer(t); }
+    };
+    std::unique_ptr<void, ApproxDeleter> approx(GDALCreateApproxTransformer(transformNetToRaster, &chain, kMaxErrorCells));
+    wo->pfnTransformer = GDALApproxTransform;
+    wo->pTransformerArg = approx.get();
     if (progress) {
         wo->pfnProgress = reportWarpProgress;
         wo->pProgressArg = const_cast<GridProgressFn*>(&progress);
@@ -338,8 +393,12 @@ std::optional<ControlNet> rasterNet(const scene::SamplesSpec& samples, const sce
             ++empty;
         }
     if (empty == z.size()) {
-        diags.error(fileLoc, "no net node has data: every cell the net covers is nodata (check net.extent_m "
-                             "and the raster's nodata value)");
+        // The raster has data (dataBox), so the scene's window missed it.
+        const char* key = netSpec.extentLonLat ? "net.extent_lonlat" : "net.extent_m";
+        diags.error(netSpec.locs.has(key) ? netSpec.locs.at(key) : fileLoc,
+                    fmt::format("no node of the net has data: every cell of {} inside {} is nodata; move the "
+                                "window onto the raster's data",
+                                name, key));
         return std::nullopt;
     }
     if (empty > 0 && samples.nodata == scene::NodataPolicy::Error) {
@@ -348,19 +407,51 @@ std::optional<ControlNet> rasterNet(const scene::SamplesSpec& samples, const sce
         frameToGeodetic(net.frame, {net.x0 + c * net.dx, net.y0 + r * net.dy, 0}, lat, lon, h);
         diags.error(samples.locs.at("samples.nodata"),
                     fmt::format("{} of the net's {} nodes have no data (nodata cells or outside the "
-                                "raster), the first at lat {:.6f} lon {:.6f}; set nodata = \"fill\" or a "
-                                "smaller net.extent_m",
+                                "raster), the first at lat {:.6f} lon {:.6f}; set nodata = \"mask\" or "
+                                "\"fill\", or a smaller net.extent_m",
                                 empty, z.size(), lat, lon));
         return std::nullopt;
     }
     if (empty > 0) {
-        // Filled from the surrounding nodes (GDAL's inverse-distance search), far enough to reach all.
-        if (GDALFillNodata(out, nullptr, std::max(rows, cols), 0, 0, nullptr, nullptr, nullptr) != CE_None ||
+        // Filled from the surrounding nodes (GDAL's inverse-distance search). To
+        // fill, far enough to reach every node; to mask, only as far as the
+        // refiner's stencils reach from a node with data (a few nodes), since
+        // nothing shows the masked nodes' heights.
+        const bool mask = samples.nodata == scene::NodataPolicy::Mask;
+        constexpr int kMaskFillReach = 8;
+        if (mask) {
+            net.masked.assign(z.size(), 0);
+            for (size_t i = 0; i < z.size(); ++i)
+                if (!(z[i] > kNoData * 0.5)) net.masked[static_cast<size_t>(rows - 1 - i / cols) * cols + i % cols] = 1;
+            bool wholeCell = false;
+            for (int r = 0; r + 1 < rows && !wholeCell; ++r)
+                for (int c = 0; c + 1 < cols && !wholeCell; ++c)
+                    wholeCell = !net.isMasked(r, c) && !net.isMasked(r, c + 1) && !net.isMasked(r + 1, c) &&
+                                !net.isMasked(r + 1, c + 1);
+            if (!wholeCell) {
+                diags.error(fileLoc, fmt::format("only {} of the net's {} nodes have data, and no cell of the net "
+                                                 "has data at all four corners: choose a finer net.spacing_m "
+                                                 "or a window with more data",
+                                                 z.size() - empty, z.size()));
+                return std::nullopt;
+            }
+        }
+        if (GDALFillNodata(out, nullptr, mask ? kMaskFillReach : std::max(rows, cols), 0, 0, nullptr, nullptr,
+                           nullptr) != CE_None ||
             GDALRasterIO(out, GF_Read, 0, 0, cols, rows, z.data(), cols, rows, GDT_Float64, 0, 0) != CE_None) {
             diags.error(fileLoc, "filling the nodes without data failed");
             return std::nullopt;
         }
-        net.filledNodata = empty;
+        if (mask) {
+            // Beyond the fill's reach: any finite height; the lowest with data.
+            double lowest = 1e300;
+            for (const double v : z)
+                if (v > kNoData * 0.5) lowest = std::min(lowest, v);
+            for (double& v : z)
+                if (!(v > kNoData * 0.5)) v = lowest;
+        } else {
+            net.filledNodata = empty;
+        }
     }
 
     // Vertical units.

@@ -38,10 +38,13 @@ std::vector<curves::CurveSet> contourLines(const geo::GeoGrid& lat, const std::v
     }
     double transform[6] = {lat.x0 - 0.5 * lat.dx, lat.dx, 0, lat.y0 + (g.rows - 0.5) * lat.dy, 0, -lat.dy};
     GDALSetGeoTransform(raster.get(), transform);
+    // Masked nodes (no data) are GDAL's nodata: no contour crosses them.
+    constexpr double kMaskedHeight = -1.0e30;
     std::vector<double> row(static_cast<size_t>(g.cols));
     GDALRasterBandH band = GDALGetRasterBand(raster.get(), 1);
     for (int r = 0; r < g.rows; ++r) {
-        for (int c = 0; c < g.cols; ++c) row[c] = g.at(g.rows - 1 - r, c).z;
+        for (int c = 0; c < g.cols; ++c)
+            row[c] = lat.isMasked(g.rows - 1 - r, c) ? kMaskedHeight : g.at(g.rows - 1 - r, c).z;
         if (GDALRasterIO(band, GF_Write, 0, r, g.cols, 1, row.data(), g.cols, 1, GDT_Float64, 0, 0) != CE_None) {
             error = CPLGetLastErrorMsg();
             return out;
@@ -54,7 +57,8 @@ std::vector<curves::CurveSet> contourLines(const geo::GeoGrid& lat, const std::v
     OGR_Fld_Destroy(id);
     OGR_Fld_Destroy(elev);
     std::vector<double> fixed = levels;
-    if (GDALContourGenerate(band, 0, 0, static_cast<int>(fixed.size()), fixed.data(), FALSE, 0, layer, 0, 1,
+    if (GDALContourGenerate(band, 0, 0, static_cast<int>(fixed.size()), fixed.data(), !lat.masked.empty(),
+                            kMaskedHeight, layer, 0, 1,
                             nullptr, nullptr) != CE_None) {
         error = fmt::format("GDALContourGenerate failed: {}", CPLGetLastErrorMsg());
         return out;

@@ -337,8 +337,10 @@ std::optional<SceneSpec> readScene(const std::filesystem::path& path, Diagnostic
                                      : *r == "cubic"  ? Resample::Cubic
                                      : *r == "average" ? Resample::Average
                                                        : Resample::Nearest;
-        if (auto n = s.choice("nodata", {"fill", "error"}))
-            scene.samples.nodata = *n == "fill" ? NodataPolicy::Fill : NodataPolicy::Error;
+        if (auto n = s.choice("nodata", {"mask", "fill", "error"}))
+            scene.samples.nodata = *n == "mask"   ? NodataPolicy::Mask
+                                   : *n == "fill" ? NodataPolicy::Fill
+                                                  : NodataPolicy::Error;
         s.finish();
     }
 

@@ -59,8 +59,9 @@ using SceneOverrides = std::vector<std::pair<std::string, std::string>>;
 
 /// How a raster is resampled onto the net (GDAL's warper).
 enum class Resample { Bilinear, Cubic, Average, Nearest };
-/// What becomes of net nodes without data (outside the raster, or its nodata).
-enum class NodataPolicy { Fill, Error };
+/// What becomes of net nodes without data (outside the raster, or its nodata):
+/// left out of the mesh (Mask), filled from their neighbours (Fill), or an error.
+enum class NodataPolicy { Mask, Fill, Error };
 
 /// [samples]: where the elevation data are: a `lon,lat,elev` CSV of scattered
 /// samples, or any raster DEM GDAL opens (recognised by GDAL, not by name).
@@ -71,7 +72,7 @@ struct SamplesSpec {
     int band = 1;                 ///< the band holding elevations
     std::string crs;              ///< "" = the raster's own; e.g. "EPSG:2193" for one without
     Resample resample = Resample::Bilinear;
-    NodataPolicy nodata = NodataPolicy::Fill;
+    NodataPolicy nodata = NodataPolicy::Mask;
     KeyLocations locs;
 };
 

@@ -59,7 +59,7 @@ Grid tiltedPlane() {
 TEST(Mesh, NormalsOfATiltedPlaneAndSceneUnits) {
     scene::LookSpec look;
     look.exaggeration = 2;
-    const Mesh m = buildMesh({{}, tiltedPlane(), 300000, 5900000, 100, 100}, look);
+    const Mesh m = buildMesh({{}, tiltedPlane(), 300000, 5900000, 100, 100, {}}, look);
     EXPECT_EQ(m.metresPerUnit, 10.0);  // 300 m extent -> 10 m per unit
     // Height rises 20 (exaggerated) per 100 m east: normal ~ (-0.2, 1, 0) normalised.
     const double n = std::sqrt(1 + 0.04);
@@ -79,14 +79,14 @@ TEST(Mesh, NormalsOfATiltedPlaneAndSceneUnits) {
 TEST(SceneHeader, UntrustedTextStaysInItsComment) {
     EXPECT_EQ(sdlCommentText("data/dem.tif"), "data/dem.tif");
     EXPECT_EQ(sdlCommentText("a\n#fopen F \"/tmp/x\" write\r\x7f"), "a\\x0a#fopen F \"/tmp/x\" write\\x0d\\x7f");
-    const Mesh m = buildMesh({{}, tiltedPlane(), 300000, 5900000, 100, 100}, {});
+    const Mesh m = buildMesh({{}, tiltedPlane(), 300000, 5900000, 100, 100, {}}, {});
     const Bindings b = sceneBindings(m, {}, {}, {{"samples.path", "x.csv\n#declare Evil = 1;"}});
     const std::string head = b.at("header").text;
     EXPECT_EQ(head, "// samples.path: x.csv\\x0a#declare Evil = 1;\n");
 }
 
 TEST(Mesh2, WriterOutputShape) {
-    const Mesh m = buildMesh({{}, tiltedPlane(), 300000, 5900000, 100, 100}, {});
+    const Mesh m = buildMesh({{}, tiltedPlane(), 300000, 5900000, 100, 100, {}}, {});
     char* data = nullptr;
     size_t size = 0;
     std::FILE* f = open_memstream(&data, &size);
@@ -98,6 +98,32 @@ TEST(Mesh2, WriterOutputShape) {
     EXPECT_EQ(out.rfind("mesh2 {\n  vertex_vectors {\n    12,\n<-15.00000,5.00000,-10.00000>", 0), 0u);
     EXPECT_NE(out.find("face_indices {\n    12,\n<0,1,5>,0,85,85,\n<0,5,4>,0,85,0"), std::string::npos);
     EXPECT_NE(out.find("texture_list {\n    256,\n    texture { pigment { rgb <"), std::string::npos);
+}
+
+// Masked nodes (no data) are left out with every triangle that touches one;
+// the rest are renumbered, and bounds and palette come from the nodes with data.
+TEST(Mesh2, MaskedNodesLeaveAHole) {
+    geo::GeoGrid grid{{}, tiltedPlane(), 300000, 5900000, 100, 100, {}};
+    grid.masked.assign(12, 0);
+    grid.masked[0] = 1;                  // the south-west corner
+    grid.grid.points[0].z = -1000;       // a filled height that nothing may show
+    const Mesh m = buildMesh(grid, {});
+    EXPECT_EQ(m.positions.size(), 11u);
+    EXPECT_EQ(m.triangles, 12 - 2);      // the corner cell's two triangles
+    EXPECT_EQ(m.zMinM, 50.0);
+    ASSERT_EQ(m.vertexOfNode.size(), 12u);
+    EXPECT_EQ(m.vertexOfNode[0], Mesh::kNoVertex);
+    EXPECT_EQ(m.vertexOfNode[1], 0u);
+    char* data = nullptr;
+    size_t size = 0;
+    std::FILE* f = open_memstream(&data, &size);
+    writeMesh2(m, f);
+    std::fclose(f);
+    const std::string out(data, size);
+    std::free(data);
+    EXPECT_EQ(out.rfind("mesh2 {\n  vertex_vectors {\n    11,\n<-5.00000,6.00000,-10.00000>", 0), 0u);
+    // The first cell kept is the second of row 0: nodes 1, 2, 6, 5 -> vertices 0, 1, 5, 4.
+    EXPECT_NE(out.find("face_indices {\n    10,\n<0,1,5>,85,170,170,\n<0,5,4>,85,170,85"), std::string::npos) << out;
 }
 
 // A map: two layers (solid and dashed, own colours), a marker with its label,

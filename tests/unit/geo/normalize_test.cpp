@@ -235,6 +235,38 @@ namespace {
 
 // The geodesic's points are equally spaced (GeographicLib's own distance) and
 // bilinear sampling reproduces a plane exactly.
+// A masked control node masks the refined nodes of the cells around it (and
+// of its edges), so the hole keeps the control net's outline; sample() does
+// not read a masked node.
+TEST(GeoGrid, MaskRefinesWithTheCellsAroundIt) {
+    GeoGrid net;
+    net.grid.rows = 3;
+    net.grid.cols = 3;
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) net.grid.points.push_back({10.0 * c, 10.0 * r, 1});
+    net.dx = net.dy = 10;
+    net.masked.assign(9, 0);
+    net.masked[0] = 1;  // the south-west corner
+    EXPECT_FALSE(net.sample(5, 5));
+    EXPECT_FALSE(net.sample(0, 0));
+    EXPECT_TRUE(net.sample(10, 5));  // on the edge x = 10: the masked node has no weight
+    EXPECT_TRUE(net.sample(15, 15));
+
+    Grid fine;
+    fine.rows = fine.cols = 5;
+    fine.points.resize(25);
+    const GeoGrid refined = net.refined(fine, 2);
+    ASSERT_EQ(refined.masked.size(), 25u);
+    EXPECT_EQ(refined.dx, 5);
+    std::string rows;
+    for (int r = 4; r >= 0; --r) {
+        for (int c = 0; c < 5; ++c) rows += refined.isMasked(r, c) ? '#' : '.';
+        rows += '\n';
+    }
+    EXPECT_EQ(rows, ".....\n.....\n.....\n##...\n##...\n");
+    EXPECT_EQ(refined.maskedCount(), 4u);
+}
+
 TEST(Profile, GeodesicSpacingAndBilinearPlane) {
     Frame frame;
     frame.utmZone = 60;

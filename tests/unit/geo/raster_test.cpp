@@ -154,17 +154,37 @@ TEST(Raster, FeetBecomeMetres) {
     }
 }
 
-// Nodata cells: filled from the neighbours and counted, or an error that says
-// how many and where.
-TEST(Raster, NodataIsFilledAndCountedOrAnError) {
+// Nodata cells: masked (the default: left out of the mesh), filled from the
+// neighbours and counted, or an error that says how many and where.
+TEST(Raster, NodataIsMaskedFilledOrAnError) {
     const fs::path dir = freshDir("nodata");
     auto spec = rasterSpec(writePlane(dir, 40, 30, 10), "EPSG:2193");
     scene::NetSpec net;
     net.spacingM = kCell;
     Diagnostics diags;
-    const auto filled = rasterNet(spec, {}, net, diags);
+    const auto masked = rasterNet(spec, {}, net, diags);
+    ASSERT_TRUE(masked);
+    EXPECT_EQ(masked->filledNodata, 0u);
+    const size_t holes = masked->maskedCount();
+    EXPECT_GT(holes, 0u);
+    EXPECT_LT(holes, 40u);
+    for (int r = 0; r < masked->rows(); ++r)
+        for (int c = 0; c < masked->cols(); ++c) {
+            EXPECT_TRUE(std::isfinite(masked->grid.at(r, c).z));  // the refiner reads them all
+            // The nodata cells are the first 10 of the raster's north row, so every hole is in the
+            // net's north-west, within a cell or two of them.
+            if (masked->isMasked(r, c)) {
+                EXPECT_GE(r, masked->rows() - 3) << r << " " << c;
+                EXPECT_LE(c, 12) << r << " " << c;
+            }
+        }
+
+    spec.nodata = scene::NodataPolicy::Fill;
+    Diagnostics fillDiags;
+    const auto filled = rasterNet(spec, {}, net, fillDiags);
     ASSERT_TRUE(filled);
-    EXPECT_GT(filled->filledNodata, 0u);
+    EXPECT_EQ(filled->filledNodata, holes);
+    EXPECT_TRUE(filled->masked.empty());
     for (const Vec3& p : filled->grid.points) EXPECT_TRUE(std::isfinite(p.z) && p.z > 0 && p.z < 200);
 
     spec.nodata = scene::NodataPolicy::Error;
@@ -174,8 +194,34 @@ TEST(Raster, NodataIsFilledAndCountedOrAnError) {
     ASSERT_EQ(strict.errorCount(), 1);
     const std::string message = formatDiagnostic(strict.all().back());
     EXPECT_EQ(message.rfind("s.toml:4:10: error: ", 0), 0u) << message;
-    EXPECT_NE(message.find(fmt::format("{} of the net's", filled->filledNodata)), std::string::npos) << message;
+    EXPECT_NE(message.find(fmt::format("{} of the net's", holes)), std::string::npos) << message;
     EXPECT_NE(message.find("the first at lat -36.8"), std::string::npos) << message;
+}
+
+// A raster with a nodata border defaults to the box of its data, not to its
+// whole footprint: the net ends where the data end.
+TEST(Raster, DefaultExtentIsTheDataNotTheBorder) {
+    const fs::path dir = freshDir("border");
+    const fs::path path = dir / "island.asc";
+    {
+        std::ofstream out(path);
+        out << fmt::format("ncols 60\nnrows 50\nxllcenter {}\nyllcenter {}\ncellsize {}\nNODATA_value -9999\n",
+                           kX0, kY0, kCell);
+        for (int r = 49; r >= 0; --r)
+            for (int c = 0; c < 60; ++c) {
+                const bool data = r >= 10 && r < 30 && c >= 20 && c < 50;  // 30 x 20 cells of data
+                out << (data ? plane(kX0 + kCell * c, kY0 + kCell * r) : -9999.0) << (c + 1 < 60 ? " " : "\n");
+            }
+    }
+    scene::NetSpec net;
+    net.spacingM = kCell;
+    Diagnostics diags;
+    const auto result = rasterNet(rasterSpec(path, "EPSG:2193"), {}, net, diags);
+    ASSERT_TRUE(result) << (diags.all().empty() ? "" : formatDiagnostic(diags.all()[0]));
+    // 300 x 200 m of data; the inner box in UTM (rotated by grid convergence) is a little smaller.
+    EXPECT_NEAR(result->xMax() - result->x0, 300, 25);
+    EXPECT_NEAR(result->yMax() - result->y0, 200, 25);
+    EXPECT_LT(result->maskedCount(), result->grid.points.size() / 10);
 }
 
 // Each way a raster can be unusable is an error naming the file or key and the fix.

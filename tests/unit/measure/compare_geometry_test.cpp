@@ -20,7 +20,7 @@ Grid ramp(double x0, double slope, double lift) {
 }
 
 TEST(Contours, PlaneGivesStraightLinesAtTheRightPlace) {
-    const geo::GeoGrid l{{}, ramp(0, 1.0, 0), 300000, 6000000, 10, 10};  // z = x - x0
+    const geo::GeoGrid l{{}, ramp(0, 1.0, 0), 300000, 6000000, 10, 10, {}};  // z = x - x0
     std::string error;
     const auto sets = contourLines(l, {55, 200, 1000}, error);
     ASSERT_TRUE(error.empty()) << error;
@@ -39,6 +39,22 @@ TEST(Contours, PlaneGivesStraightLinesAtTheRightPlace) {
         EXPECT_LE(ymin, 6000000.0);
         EXPECT_GE(ymax, 6000300.0);
     }
+}
+
+// Masked nodes (no data) stop contours: a level that crosses only the masked
+// half of the lattice gives no line, and one in the other half ends at the mask.
+TEST(Contours, MaskedNodesHaveNoContours) {
+    geo::GeoGrid l{{}, ramp(0, 1.0, 0), 300000, 6000000, 10, 10, {}};
+    l.masked.assign(l.grid.points.size(), 0);
+    for (int r = 0; r < l.rows(); ++r)
+        for (int c = 0; c < l.cols(); ++c) l.masked[static_cast<size_t>(r) * l.cols() + c] = r >= 15 || c >= 30;
+    std::string error;
+    const auto sets = contourLines(l, {55, 350}, error);
+    ASSERT_TRUE(error.empty()) << error;
+    EXPECT_TRUE(sets[1].empty());  // x = 350 m lies in the masked columns
+    ASSERT_EQ(sets[0].size(), 1u);
+    for (const auto& seg : sets[0][0].segments)
+        for (const auto& p : seg.control) EXPECT_LE(p.y, 6000000.0 + 145);  // rows 0-14, and half a cell
 }
 
 TEST(Contours, ClipToBox) {
@@ -73,8 +89,8 @@ TEST(CompareGeometry, RampsLiftedByThreeMetres) {
     geo::Frame utm;
     utm.utmZone = 60;
     utm.northp = false;
-    const geo::GeoGrid ga{utm, ramp(0, 1.0, 0), 300000, 6000000, 10, 10};
-    const geo::GeoGrid gb{utm, ramp(0, 1.0, 3.0), 300000, 6000000, 10, 10};
+    const geo::GeoGrid ga{utm, ramp(0, 1.0, 0), 300000, 6000000, 10, 10, {}};
+    const geo::GeoGrid gb{utm, ramp(0, 1.0, 3.0), 300000, 6000000, 10, 10, {}};
     const FramedSurface a{"a", &ga}, b{"b", &gb};
     const auto profiles = defaultProfiles(a, b);
     ASSERT_EQ(profiles.size(), 2u);
