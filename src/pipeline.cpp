@@ -79,6 +79,7 @@ emit::ParameterList describe(const scene::SceneSpec& s, const geo::ControlNet& n
     add("scene_sha1", s.sceneSha1);
     for (const auto& [k, v] : s.overrides) add("override " + k, v);
     add("samples.path", s.samples.pathAsWritten);
+    if (!s.samples.attribution.empty()) add("samples.attribution", s.samples.attribution);
     add("samples.count", std::to_string(net.sampleCount));
     add("frame", net.frame.describe());
     add("net.size", fmt::format("{} rows x {} cols", net.grid.rows, net.grid.cols));
@@ -246,7 +247,8 @@ std::optional<Surface> buildSurface(const LoadedScene& loaded, Diagnostics& diag
         });
         if (!net) return std::nullopt;
     } else {
-        for (const char* key : {"samples.band", "samples.crs", "samples.resample", "samples.nodata"})
+        for (const char* key : {"samples.band", "samples.crs", "samples.resample", "samples.nodata",
+                                "samples.vertical_unit"})
             if (spec.samples.locs.has(key))
                 diags.error(spec.samples.locs.at(key),
                             fmt::format("{} is only used with a raster DEM, and {} is a table of samples "
@@ -378,6 +380,7 @@ std::string sidecarJson(const CompileResult& c, const OutputPaths& paths,
                    {"scene_sha1", c.scene.sceneSha1},
                    {"samples", c.scene.samples.path.string()},
                    {"sample_count", c.net.sampleCount}};
+    if (!c.scene.samples.attribution.empty()) j["inputs"]["attribution"] = c.scene.samples.attribution;
     ordered_json params = ordered_json::object();
     for (const auto& [k, v] : c.parameters) params[k] = v;
     j["parameters"] = params;

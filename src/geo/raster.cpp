@@ -456,11 +456,13 @@ std::optional<ControlNet> rasterNet(const scene::SamplesSpec& samples, const sce
 
     // Vertical units.
     const char* unitType = GDALGetRasterUnitType(band);
-    double scale = metresPerUnit(unitType ? unitType : "");
+    const std::string unit = !samples.verticalUnit.empty() ? samples.verticalUnit : unitType ? unitType : "";
+    double scale = metresPerUnit(unit);
     if (scale == 0) {
         diags.warning(fileLoc, fmt::format("the raster does not say its elevations are in metres (unit \"{}\"); "
-                                           "they are taken as metres",
-                                           unitType ? unitType : ""));
+                                           "they are taken as metres: say so with vertical_unit = \"m\" "
+                                           "(or \"ft\", \"us-ft\") in [samples]",
+                                           unit));
         scale = 1;
     }
     net.grid.points.resize(z.size());

@@ -330,6 +330,7 @@ std::optional<SceneSpec> readScene(const std::filesystem::path& path, Diagnostic
                                                 *p, scene.samples.path.string()));
             }
         }
+        if (auto a = s.string("attribution")) scene.samples.attribution = *a;
         if (auto b = s.integer("band", 1, 65535, "(1 = the first band)")) scene.samples.band = *b;
         if (auto c = s.string("crs")) scene.samples.crs = *c;
         if (auto r = s.choice("resample", {"bilinear", "cubic", "average", "nearest"}))
@@ -337,6 +338,7 @@ std::optional<SceneSpec> readScene(const std::filesystem::path& path, Diagnostic
                                      : *r == "cubic"  ? Resample::Cubic
                                      : *r == "average" ? Resample::Average
                                                        : Resample::Nearest;
+        if (auto u = s.choice("vertical_unit", {"m", "ft", "us-ft"})) scene.samples.verticalUnit = *u;
         if (auto n = s.choice("nodata", {"mask", "fill", "error"}))
             scene.samples.nodata = *n == "mask"   ? NodataPolicy::Mask
                                    : *n == "fill" ? NodataPolicy::Fill

@@ -68,10 +68,12 @@ enum class NodataPolicy { Mask, Fill, Error };
 struct SamplesSpec {
     std::filesystem::path path;   ///< resolved against the scene file's folder
     std::string pathAsWritten;    ///< for messages and the .pov header
+    std::string attribution;      ///< the data's credit line, as its licence asks (header, sidecar)
     // Rasters only:
     int band = 1;                 ///< the band holding elevations
     std::string crs;              ///< "" = the raster's own; e.g. "EPSG:2193" for one without
     Resample resample = Resample::Bilinear;
+    std::string verticalUnit;     ///< "" = the raster's own; "m", "ft" or "us-ft" for one that does not say
     NodataPolicy nodata = NodataPolicy::Mask;
     KeyLocations locs;
 };

@@ -154,6 +154,27 @@ TEST(Raster, FeetBecomeMetres) {
     }
 }
 
+// A raster that does not name its unit: a warning that says how to name it,
+// and none once the scene's vertical_unit does; "ft" converts.
+TEST(Raster, SceneNamesTheVerticalUnit) {
+    const fs::path dir = freshDir("unitless");
+    auto spec = rasterSpec(writePlane(dir, 20, 20), "EPSG:2193");
+    scene::NetSpec net;
+    net.spacingM = kCell;
+    Diagnostics unnamed;
+    const auto metres = rasterNet(spec, {}, net, unnamed);
+    ASSERT_TRUE(metres);
+    ASSERT_EQ(unnamed.warningCount(), 1);
+    EXPECT_NE(formatDiagnostic(unnamed.all()[0]).find("say so with vertical_unit = \"m\""), std::string::npos);
+    spec.verticalUnit = "ft";
+    Diagnostics named;
+    const auto feet = rasterNet(spec, {}, net, named);
+    ASSERT_TRUE(feet);
+    EXPECT_EQ(named.warningCount(), 0);
+    for (size_t i = 0; i < feet->grid.points.size(); ++i)
+        EXPECT_NEAR(feet->grid.points[i].z, 0.3048 * metres->grid.points[i].z, 1e-9);
+}
+
 // Nodata cells: masked (the default: left out of the mesh), filled from the
 // neighbours and counted, or an error that says how many and where.
 TEST(Raster, NodataIsMaskedFilledOrAnError) {
