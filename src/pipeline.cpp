@@ -192,8 +192,16 @@ std::optional<CompileResult> compileScene(const LoadedScene& loaded,
             return std::nullopt;
         }
     }
-    if (!emit::writeScene(options.povPath, *tmpl, mesh, spec.look, spec.render, result.parameters,
-                          diags))
+    emit::WriteProgressFn writing;
+    if (options.progress)
+        writing = [&](double fraction) {
+            options.progress({ProgressEvent::Stage::Compiling,
+                              fmt::format("writing {} ({} triangles)", options.povPath.filename().string(),
+                                          mesh.triangles),
+                              static_cast<int>(100 * fraction)});
+        };
+    if (!emit::writeScene(options.povPath, *tmpl, mesh, spec.look, spec.render, result.parameters, diags,
+                          writing))
         return std::nullopt;
     if (!options.dumpNetPath.empty())
         writeFileAtomically(options.dumpNetPath, options.dumpNetPath.extension() == ".asc"
@@ -215,6 +223,16 @@ std::optional<geo::ControlNet> griddedSamples(const scene::SceneSpec& spec, Diag
                                               const ProgressFn& progress) {
     const auto samples = geo::readSamples(spec.samples, diags);
     if (diags.hasErrors()) return std::nullopt;
+    const double griddingMB = samples.size() * subdiv::kGriddingBytesPerSample / 1e6;
+    const double budgetMB = budgetOf(spec.limits).maxMemoryMB;
+    if (griddingMB > budgetMB) {
+        diags.error(spec.limits.locs.has("limits.max_memory_mb") ? spec.limits.locs.at("limits.max_memory_mb")
+                                                                 : SourceLoc{spec.samples.pathAsWritten, 0, 0},
+                    fmt::format("gridding {} samples needs about {:.0f} MB of memory (2.2 kB each), more than "
+                                "limits.max_memory_mb = {:.0f}: thin the samples, or give them as a raster",
+                                samples.size(), griddingMB, budgetMB));
+        return std::nullopt;
+    }
     geo::GridProgressFn gridding;
     int lastPercent = -1;
     std::mutex reporting;  // GDAL reports from its main thread; a guard costs nothing if not
@@ -290,6 +308,10 @@ std::optional<Surface> buildSurface(const LoadedScene& loaded, Diagnostics& diag
                              sub.locs.at(sub.depthAuto ? "subdivision.depth" : "subdivision.scheme"),
                              s.depth, diags))
         return std::nullopt;
+    if (progress)
+        progress({ProgressEvent::Stage::Compiling,
+                  fmt::format("subdividing to depth {} ({} x {} nodes)", s.depth, s.estimate.rows, s.estimate.cols),
+                  -1});
     s.refined = net->refined(subdiv::refineGrid(scheme, net->grid, s.depth, threads),
                              std::pow(scheme.arity, s.depth));
     s.subdivideSeconds = secondsSince(t0);

@@ -82,21 +82,29 @@ Vec3 direction(double azimuthDeg, double altitudeDeg) {
 
 }  // namespace
 
-size_t writeMesh2(const Mesh& mesh, std::FILE* out) {
+size_t writeMesh2(const Mesh& mesh, std::FILE* out, const WriteProgressFn& progress) {
     auto w = std::make_unique<BlockWriter>(out);
+    // The faces are about half the bytes, vertices and normals a quarter each.
+    int lastPercent = -1;
+    auto report = [&](double fraction) {
+        const int percent = static_cast<int>(100 * fraction);
+        if (progress && percent != lastPercent) progress(fraction), lastPercent = percent;
+    };
     // `name { count, <x,y,z>, ... }` for the vertex and the normal arrays.
-    auto vectorSection = [&](const char* open, const std::vector<Vec3>& vectors, int decimals) {
+    auto vectorSection = [&](const char* open, const std::vector<Vec3>& vectors, int decimals, double from) {
         w->put(open);
         w->commit(writeUnsigned(w->reserve(24), vectors.size()));
-        for (const Vec3& v : vectors) {
+        const size_t step = std::max<size_t>(vectors.size() / 100, 1);
+        for (size_t i = 0; i < vectors.size(); ++i) {
             char* p = w->reserve(128);
             *p++ = ',';
             *p++ = '\n';
-            w->commit(writeVector(p, v, decimals));
+            w->commit(writeVector(p, vectors[i], decimals));
+            if (i % step == 0) report(from + 0.25 * static_cast<double>(i) / vectors.size());
         }
     };
-    vectorSection("mesh2 {\n  vertex_vectors {\n    ", mesh.positions, kPositionDecimals);
-    vectorSection("\n  }\n  normal_vectors {\n    ", mesh.normals, kNormalDecimals);
+    vectorSection("mesh2 {\n  vertex_vectors {\n    ", mesh.positions, kPositionDecimals, 0);
+    vectorSection("\n  }\n  normal_vectors {\n    ", mesh.normals, kNormalDecimals, 0.25);
     w->put("\n  }\n  texture_list {\n    ");
     {
         char* p = w->reserve(24);
@@ -140,6 +148,7 @@ size_t writeMesh2(const Mesh& mesh, std::FILE* out) {
     };
     const auto& vertexOf = mesh.vertexOfNode;
     for (size_t r = 0; r + 1 < static_cast<size_t>(mesh.rows); ++r) {
+        report(0.5 + 0.5 * static_cast<double>(r) / mesh.rows);
         for (size_t c = 0; c + 1 < cols; ++c) {
             // South-west, south-east, north-east, north-west corners of the quad.
             const size_t sw = r * cols + c, se = sw + 1, nw = sw + cols, ne = nw + 1;
@@ -155,6 +164,7 @@ size_t writeMesh2(const Mesh& mesh, std::FILE* out) {
         }
     }
     w->put("\n  }\n  inside_vector <0, 1, 0>\n}");
+    report(1);
     return w->total();
 }
 
@@ -170,7 +180,8 @@ std::string sdlCommentText(std::string_view text) {
 }
 
 Bindings sceneBindings(const Mesh& mesh, const scene::LookSpec& look,
-                       const scene::RenderSpec& render, const ParameterList& header) {
+                       const scene::RenderSpec& render, const ParameterList& header,
+                       const WriteProgressFn& progress) {
     const scene::CameraSpec& camera = look.camera;
     Bindings b;
     std::string head;
@@ -221,7 +232,7 @@ Bindings sceneBindings(const Mesh& mesh, const scene::LookSpec& look,
     const Vec3 sunDir = direction(look.sunAzimuthDeg, look.sunAltitudeDeg);
     b["sun_position"].text = vec(target + (100.0 * radius) * sunDir);
     b["scene_center"].text = vec(target);
-    b["mesh"].writer = [&mesh](std::FILE* out) { writeMesh2(mesh, out); };
+    b["mesh"].writer = [&mesh, progress](std::FILE* out) { writeMesh2(mesh, out, progress); };
     return b;
 }
 
@@ -240,8 +251,8 @@ std::optional<Template> loadSceneTemplate(const std::filesystem::path& templates
 
 bool writeScene(const std::filesystem::path& out, const Template& tmpl, const Mesh& mesh,
                 const scene::LookSpec& look, const scene::RenderSpec& render,
-                const ParameterList& header, Diagnostics& diags) {
-    const Bindings bindings = sceneBindings(mesh, look, render, header);
+                const ParameterList& header, Diagnostics& diags, const WriteProgressFn& progress) {
+    const Bindings bindings = sceneBindings(mesh, look, render, header, progress);
     if (!checkTemplate(tmpl, bindings, diags)) return false;
     AtomicFile file(out);
     renderTemplate(tmpl, bindings, file.stream());

@@ -5,6 +5,7 @@
 // locale-free writers of core/number_format.h.
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -23,7 +24,9 @@ using ParameterList = std::vector<std::pair<std::string, std::string>>;
 /// Writes `mesh2 { vertex_vectors, normal_vectors, texture_list (the 256-entry
 /// palette), face_indices (two triangles per grid quad, counter-clockwise seen
 /// from above, each with its three palette indices) }`. Returns bytes written.
-size_t writeMesh2(const Mesh& mesh, std::FILE* out);
+/// `progress`, if set, is told the fraction written (0..1), at most ~100 times.
+using WriteProgressFn = std::function<void(double fraction)>;
+size_t writeMesh2(const Mesh& mesh, std::FILE* out, const WriteProgressFn& progress = {});
 
 /// Text from anywhere (a path, a raster's CRS name: untrusted) as it may stand
 /// in a `//` comment of SDL: control characters, line breaks above all, become
@@ -33,7 +36,8 @@ std::string sdlCommentText(std::string_view text);
 /// The template's bindings: header (every key and value through
 /// sdlCommentText), camera, sun, sky and the mesh.
 Bindings sceneBindings(const Mesh& mesh, const scene::LookSpec& look,
-                       const scene::RenderSpec& render, const ParameterList& header);
+                       const scene::RenderSpec& render, const ParameterList& header,
+                       const WriteProgressFn& progress = {});
 
 /// Loads `<templatesDir>/scene.pov.in`.
 std::optional<Template> loadSceneTemplate(const std::filesystem::path& templatesDir,
@@ -42,6 +46,6 @@ std::optional<Template> loadSceneTemplate(const std::filesystem::path& templates
 /// Checks bindings, then writes the .pov atomically (temp file + rename).
 bool writeScene(const std::filesystem::path& out, const Template& tmpl, const Mesh& mesh,
                 const scene::LookSpec& look, const scene::RenderSpec& render,
-                const ParameterList& header, Diagnostics& diags);
+                const ParameterList& header, Diagnostics& diags, const WriteProgressFn& progress = {});
 
 }  // namespace relief::emit
