@@ -380,6 +380,7 @@ JobOutcome runSceneJob(const SceneJob& job, Diagnostics& diags, const ProgressFn
     req.antialias = still.antialias;
     req.includeDirs = {job.templatesDir};
     req.threads = job.threads;
+    req.sandbox = job.sandbox;
     outcome.render = render::renderPov(req, [&](const render::RenderProgress& p) {
         say(Stage::Rendering, p.text, p.percent);
     });

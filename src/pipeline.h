@@ -128,6 +128,7 @@ struct SceneJob {
     std::filesystem::path templatesDir;
     std::filesystem::path dumpNetPath;
     int threads = 0;            ///< refiner and POV-Ray threads; 0 = all cores
+    bool sandbox = true;        ///< POV-Ray in bubblewrap (render/povray.h)
 };
 
 enum class JobStatus { Ok, BadInput, ToolFailed };

@@ -24,7 +24,7 @@ esac
 packages=(cmake make g++ pkg-config
           libgeographiclib-dev libgdal-dev libopenimageio-dev openimageio-tools libtomlplusplus-dev
           libcli11-dev libfmt-dev nlohmann-json3-dev libnanoflann-dev libgtest-dev libbenchmark-dev
-          povray chromium fonts-dejavu-core locales)
+          povray bubblewrap chromium fonts-dejavu-core locales)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

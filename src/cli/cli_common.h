@@ -94,6 +94,7 @@ struct CommonOptions {
     std::string templates;
     int threads = 0;
     bool quiet = false;
+    bool noSandbox = false;
 };
 
 /// KEY=VALUE strings -> scene overrides (`section.key=value`); false with a message.

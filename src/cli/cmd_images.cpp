@@ -121,6 +121,7 @@ struct TestOptions {
     std::string templates;
     int jobs = 2;
     bool update = false;
+    bool noSandbox = false;
 };
 
 // `relief test`: render every case of a manifest, compare, report.
@@ -136,6 +137,7 @@ int runTest(const TestOptions& o) {
     ro.templatesDir = findTemplates(o.templates);
     ro.jobs = o.jobs;
     ro.update = o.update;
+    ro.sandbox = !o.noSandbox;
     ro.manifestArgument = o.manifest;
     const auto t0 = std::chrono::steady_clock::now();
     std::cout << fmt::format("relief test: {} cases from {}, {} render{} at a time\n",
@@ -187,6 +189,7 @@ int runSweep(const SweepOptions& o) {
                         : fs::path(o.common.output);
     request.templatesDir = findTemplates(o.common.templates);
     request.threads = o.common.threads;
+    request.sandbox = !o.common.noSandbox;
     request.columns = o.columns;
     Progress progress(o.common.quiet);
     using Kind = relief::figures::SweepEvent::Kind;
@@ -250,6 +253,7 @@ void addImageCommands(CLI::App& app, std::vector<Command>& out) {
         ->check(CLI::Range(1, 64));
     testCmd->add_flag("--update", test->update, "bless the new images of failing or new cases as their references");
     testCmd->add_option("--templates", test->templates, "folder with scene.pov.in");
+    testCmd->add_flag("--no-sandbox", test->noSandbox, "run POV-Ray without its bubblewrap sandbox (only for scenes you trust; see docs/security.md)");
     out.push_back({testCmd, [test] { return runTest(*test); }});
 
     auto sweep = std::make_shared<SweepOptions>();
@@ -264,6 +268,7 @@ void addImageCommands(CLI::App& app, std::vector<Command>& out) {
     sweepCmd->add_option("--templates", sweep->common.templates, "folder with scene.pov.in");
     sweepCmd->add_option("--threads", sweep->common.threads, "threads (0: all cores)");
     sweepCmd->add_flag("-q,--quiet", sweep->common.quiet, "print errors only");
+    sweepCmd->add_flag("--no-sandbox", sweep->common.noSandbox, "run POV-Ray without its bubblewrap sandbox (only for scenes you trust; see docs/security.md)");
     out.push_back({sweepCmd, [sweep] { return runSweep(*sweep); }});
 }
 

@@ -24,6 +24,7 @@ int runScene(const CommonOptions& o, const std::string& dumpNet, relief::SceneJo
     job.templatesDir = findTemplates(o.templates);
     job.dumpNetPath = dumpNet;
     job.threads = o.threads;
+    job.sandbox = !o.noSandbox;
     const auto outcome = relief::runSceneJob(job, diags, [&](const relief::ProgressEvent& e) {
         // Each stage on a line of its own; the render's progress rewrites its line.
         if (e.stage == relief::ProgressEvent::Stage::Compiling && e.percent < 0) progress.done();
@@ -89,6 +90,7 @@ void addSceneCommands(CLI::App& app, std::vector<Command>& out) {
         "render", "compile, then render the still with POV-Ray (.png, .pov and .json sidecar)");
     addCommon(render, "the PNG to write (default: [render] output, else out/<scene name>.png)");
     render->add_option("--dump-net", o->dumpNet, "also write the control net (.csv or .asc)");
+    render->add_flag("--no-sandbox", o->common.noSandbox, "run POV-Ray without its bubblewrap sandbox (only for scenes you trust; see docs/security.md)");
     out.push_back({render, [o] { return runScene(o->common, o->dumpNet, relief::SceneJob::Until::Png); }});
 }
 

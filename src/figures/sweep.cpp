@@ -117,6 +117,7 @@ SweepResult runSweep(const SweepRequest& request, const std::function<void(const
         job.output = stills / fmt::format("{:03}.png", i + 1);
         job.templatesDir = request.templatesDir;
         job.threads = request.threads;
+        job.sandbox = request.sandbox;
         SweepEvent event{SweepEvent::Kind::Started, i + 1, combos.size(), label};
         emit(event);
         Diagnostics diags;

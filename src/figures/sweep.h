@@ -40,6 +40,7 @@ struct SweepRequest {
     std::filesystem::path sheet;         ///< the contact sheet; the stills go to <sheet>-stills/
     std::filesystem::path templatesDir;
     int threads = 0;
+    bool sandbox = true;                 ///< POV-Ray in bubblewrap
     int columns = 0;                     ///< 0: the first variation's count
 };
 

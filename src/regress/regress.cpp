@@ -162,6 +162,7 @@ CaseResult runCase(const TestCase& c, const RunOptions& o, int povThreads) {
     job.output = r.newImage;
     job.templatesDir = o.templatesDir;
     job.threads = povThreads;
+    job.sandbox = o.sandbox;
     Diagnostics diags;
     const JobOutcome outcome = runSceneJob(job, diags, nullptr);
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -89,9 +89,44 @@ std::string errorText(const std::deque<std::string>& lines) {
     return out;
 }
 
+// The bubblewrap command line that runs `command` with only what a render
+// needs: the system's programs and libraries read-only, the inputs read-only
+// at their own paths (so the .pov's references stay valid), `privateDir`
+// writable, fresh /dev, /proc and /tmp, and no network, IPC, PID or user
+// namespace shared with the host.
+std::vector<std::string> sandboxed(const std::string& bwrap, const std::filesystem::path& privateDir,
+                                   const std::vector<std::filesystem::path>& readOnly,
+                                   const std::vector<std::string>& env, const std::vector<std::string>& command) {
+    namespace fs = std::filesystem;
+    std::vector<std::string> a{bwrap, "--unshare-all", "--die-with-parent", "--new-session", "--cap-drop", "ALL",
+                               "--ro-bind", "/usr", "/usr"};
+    std::error_code ec;
+    // Debian's merged /usr: /bin, /lib, ... are links into it.
+    for (const char* top : {"/bin", "/sbin", "/lib", "/lib32", "/lib64", "/libx32"}) {
+        if (fs::is_symlink(top, ec)) a.insert(a.end(), {"--symlink", fs::read_symlink(top, ec).string(), top});
+        else if (fs::is_directory(top, ec)) a.insert(a.end(), {"--ro-bind", top, top});
+    }
+    a.insert(a.end(), {"--ro-bind-try", "/etc/ld.so.cache", "/etc/ld.so.cache", "--ro-bind-try",
+                       "/sys/devices/system/cpu", "/sys/devices/system/cpu", "--proc", "/proc", "--dev", "/dev",
+                       "--tmpfs", "/tmp"});
+    for (const auto& path : readOnly) {
+        const auto absolute = fs::absolute(path, ec);
+        a.insert(a.end(), {"--ro-bind", absolute.string(), absolute.string()});
+    }
+    a.insert(a.end(), {"--bind", privateDir.string(), privateDir.string(), "--chdir", privateDir.string(),
+                       "--clearenv"});
+    for (const auto& kv : env) {
+        const auto eq = kv.find('=');
+        a.insert(a.end(), {"--setenv", kv.substr(0, eq), kv.substr(eq + 1)});
+    }
+    a.push_back("--");
+    a.insert(a.end(), command.begin(), command.end());
+    return a;
+}
+
 }  // namespace
 
-std::string findPovray() {
+std::string findOnPath(const std::string& name) {
     const char* path = std::getenv("PATH");
     if (!path) return "";
     std::string p(path);
@@ -99,7 +134,7 @@ std::string findPovray() {
     while (start <= p.size()) {
         size_t end = p.find(':', start);
         if (end == std::string::npos) end = p.size();
-        const auto candidate = std::filesystem::path(p.substr(start, end - start)) / "povray";
+        const auto candidate = std::filesystem::path(p.substr(start, end - start)) / name;
         if (::access(candidate.c_str(), X_OK) == 0) return candidate.string();
         start = end + 1;
     }
@@ -109,17 +144,27 @@ std::string findPovray() {
 RenderResult renderPov(const RenderRequest& req, const ProgressFn& progress) {
     RenderResult result;
     const auto t0 = std::chrono::steady_clock::now();
-    const std::string povray = findPovray();
+    const std::string povray = findOnPath("povray");
     if (povray.empty()) {
         result.error = "povray is not installed (on Debian: apt-get install povray)";
         return result;
     }
+    std::string bwrap;
+    if (req.sandbox) {
+        bwrap = findOnPath("bwrap");
+        if (bwrap.empty()) {
+            result.error = "POV-Ray runs in a bubblewrap sandbox, and bwrap is not installed: apt-get install "
+                           "bubblewrap, or render without the sandbox (--no-sandbox) only a scene you trust";
+            return result;
+        }
+    }
     PovrayHome home;
-    std::filesystem::path rawPng = req.png;
-    rawPng += fmt::format(".povray-{}.png", ::getpid());
+    // POV-Ray writes into its private folder; the canonical PNG is then
+    // written atomically at its final path.
+    const std::filesystem::path rawPng = home.dir() / "render.png";
 
     std::vector<std::string> args{povray,
-                                  "+I" + req.pov.string(),
+                                  "+I" + std::filesystem::absolute(req.pov).string(),
                                   "+O" + rawPng.string(),
                                   fmt::format("+W{}", req.width),
                                   fmt::format("+H{}", req.height),
@@ -137,10 +182,20 @@ RenderResult renderPov(const RenderRequest& req, const ProgressFn& progress) {
     for (char** e = environ; *e; ++e) {
         const std::string kv(*e);
         if (kv.rfind("HOME=", 0) == 0 || kv.rfind("POVINI=", 0) == 0) continue;
+        // In the sandbox POV-Ray gets only what it needs, not the user's environment.
+        if (req.sandbox && kv.rfind("PATH=", 0) != 0 && kv.rfind("LANG=", 0) != 0 && kv.rfind("LC_", 0) != 0)
+            continue;
         envStrings.push_back(kv);
     }
     envStrings.push_back("HOME=" + home.dir().string());
     envStrings.push_back("POVINI=" + (home.dir() / "povray.ini").string());
+    if (req.sandbox) {
+        std::vector<std::filesystem::path> readOnly{req.pov};
+        readOnly.insert(readOnly.end(), req.includeDirs.begin(), req.includeDirs.end());
+        readOnly.insert(readOnly.end(), req.inputFiles.begin(), req.inputFiles.end());
+        if (!povray.starts_with("/usr/")) readOnly.push_back(povray);
+        args = sandboxed(bwrap, home.dir(), readOnly, envStrings, args);
+    }
     std::vector<char*> envp, argv;
     for (auto& s : envStrings) envp.push_back(s.data());
     envp.push_back(nullptr);
@@ -158,13 +213,12 @@ RenderResult renderPov(const RenderRequest& req, const ProgressFn& progress) {
     posix_spawn_file_actions_adddup2(&actions, pipeFd[1], STDERR_FILENO);
     posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
     pid_t pid = 0;
-    const int spawnErr = ::posix_spawn(&pid, povray.c_str(), &actions, nullptr, argv.data(),
-                                       envp.data());
+    const int spawnErr = ::posix_spawn(&pid, args[0].c_str(), &actions, nullptr, argv.data(), envp.data());
     posix_spawn_file_actions_destroy(&actions);
     ::close(pipeFd[1]);
     if (spawnErr != 0) {
         ::close(pipeFd[0]);
-        result.error = fmt::format("cannot run {}: {}", povray, std::strerror(spawnErr));
+        result.error = fmt::format("cannot run {}: {}", args[0], std::strerror(spawnErr));
         return result;
     }
 
@@ -212,16 +266,21 @@ RenderResult renderPov(const RenderRequest& req, const ProgressFn& progress) {
     std::error_code ec;
     const bool exitedOk = WIFEXITED(status) && WEXITSTATUS(status) == 0;
     if (!exitedOk || !std::filesystem::exists(rawPng, ec)) {
+        // bubblewrap's own failure (e.g. no user namespaces here) comes before POV-Ray's output.
+        if (req.sandbox && !lastLines.empty() && lastLines.front().rfind("bwrap: ", 0) == 0) {
+            result.error = fmt::format("the sandbox for POV-Ray cannot start here ({}); render without it "
+                                       "(--no-sandbox) only a scene you trust",
+                                       lastLines.front());
+            return result;
+        }
         result.error = errorText(lastLines);
         if (result.error.empty())
             result.error = WIFEXITED(status)
                                ? fmt::format("povray exited with status {}", WEXITSTATUS(status))
                                : "povray was killed by a signal";
-        std::filesystem::remove(rawPng, ec);
         return result;
     }
     const std::string pngError = writeCanonicalPng(rawPng, req.png);
-    std::filesystem::remove(rawPng, ec);
     if (!pngError.empty()) {
         result.error = pngError;
         return result;

@@ -1,7 +1,8 @@
 #pragma once
 // Stage 5 of 5. Input: a .pov file. Output: a PNG rendered by POV-Ray 3.7,
 // run in a controlled environment (its own HOME and POVINI, so no user
-// configuration leaks in), with progress reported from its stderr.
+// configuration leaks in) and, by default, in a bubblewrap sandbox, with
+// progress reported from its stderr.
 #include <filesystem>
 #include <functional>
 #include <string>
@@ -17,6 +18,15 @@ struct RenderRequest {
     bool antialias = true;
     std::vector<std::filesystem::path> includeDirs;  ///< passed as +L
     int threads = 0;  ///< 0: POV-Ray's default (all cores)
+    /// POV-Ray's scene language can open, read and write files (#fopen,
+    /// #read, #write) and POV-Ray 3.7's own I/O restrictions are not enforced
+    /// in Debian's build, so a .pov from elsewhere could read or overwrite the
+    /// user's files. In the sandbox (bubblewrap) it sees the system read-only,
+    /// the .pov, its include folders and `inputFiles` read-only, and one
+    /// private temporary folder it may write (its output); no network, no
+    /// other process, no home folder.
+    bool sandbox = true;
+    std::vector<std::filesystem::path> inputFiles;  ///< images the .pov reads (drapes), for the sandbox
 };
 
 struct RenderResult {
@@ -40,7 +50,7 @@ using ProgressFn = std::function<void(const RenderProgress&)>;
 /// gives the same bytes; it appears at `png` only when the render succeeded.
 RenderResult renderPov(const RenderRequest& request, const ProgressFn& progress);
 
-/// The povray executable on PATH, or "" when it is not installed.
-std::string findPovray();
+/// An executable on PATH ("povray", "bwrap"), or "" when it is not installed.
+std::string findOnPath(const std::string& name);
 
 }  // namespace relief::render
