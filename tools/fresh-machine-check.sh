@@ -80,6 +80,9 @@ run_in_root() {  # run_in_root LOG COMMAND
   unshare --mount --propagation private -- bash -c '
     set -e
     root=$1; cache=$2; cmd=$3
+    # The root as a mount point of its own, as on a real machine: bubblewrap (the render'"'"'s
+    # sandbox) pivots into a new root, which needs the current one to be a mount point.
+    mount --bind "$root" "$root"
     mount -t proc proc "$root/proc"
     mount --rbind /dev "$root/dev"
     mount -t sysfs sysfs "$root/sys"

@@ -98,8 +98,12 @@ std::vector<std::string> sandboxed(const std::string& bwrap, const std::filesyst
                                    const std::vector<std::filesystem::path>& readOnly,
                                    const std::vector<std::string>& env, const std::vector<std::string>& command) {
     namespace fs = std::filesystem;
-    std::vector<std::string> a{bwrap, "--unshare-all", "--die-with-parent", "--new-session", "--cap-drop", "ALL",
-                               "--ro-bind", "/usr", "/usr"};
+    // Not --unshare-all: its user namespace cannot be made inside a chroot even by root
+    // (EPERM), and bubblewrap makes one anyway when it runs unprivileged.
+    std::vector<std::string> a{bwrap,           "--unshare-ipc",   "--unshare-pid",  "--unshare-net",
+                               "--unshare-uts", "--unshare-cgroup-try", "--die-with-parent", "--new-session",
+                               "--cap-drop",    "ALL",             "--ro-bind",      "/usr",
+                               "/usr"};
     std::error_code ec;
     // Debian's merged /usr: /bin, /lib, ... are links into it.
     for (const char* top : {"/bin", "/sbin", "/lib", "/lib32", "/lib64", "/libx32"}) {
