@@ -223,6 +223,29 @@ std::optional<geo::ControlNet> griddedSamples(const scene::SceneSpec& spec, Diag
                                               const ProgressFn& progress) {
     const auto samples = geo::readSamples(spec.samples, diags);
     if (diags.hasErrors()) return std::nullopt;
+    // A DEM exported as lon,lat,elev is a lattice in its own CRS: resampled as
+    // the raster it is. Tried: the scene's samples.crs, else degrees, Web
+    // Mercator and the UTM zone of the samples' first point.
+    std::vector<std::string> candidates{spec.samples.crs};
+    if (spec.samples.crs.empty()) {
+        const auto& s0 = samples.front();
+        const int zone = std::clamp(static_cast<int>(std::floor((s0.lonDeg + 180) / 6)) + 1, 1, 60);
+        candidates = {"EPSG:4326", "EPSG:3857", fmt::format("EPSG:{}", (s0.latDeg >= 0 ? 32600 : 32700) + zone)};
+    }
+    for (const auto& crs : candidates) {
+        const auto lattice = geo::findLattice(samples, crs);
+        if (!lattice) continue;
+        const std::string task = fmt::format("resampling the {} x {} lattice of samples in {}", lattice->cols,
+                                             lattice->rows, crs);
+        return geo::latticeNet(*lattice, spec.samples, spec.frame, spec.net, diags, [&](double fraction) {
+            if (progress) progress({ProgressEvent::Stage::Compiling, task, static_cast<int>(100 * fraction)});
+        });
+    }
+    if (!spec.samples.crs.empty())
+        diags.warning(spec.samples.locs.at("samples.crs"),
+                      fmt::format("the {} samples are not one per node of a regular lattice in {}: gridded as "
+                                  "scattered samples",
+                                  samples.size(), spec.samples.crs));
     const double griddingMB = samples.size() * subdiv::kGriddingBytesPerSample / 1e6;
     const double budgetMB = budgetOf(spec.limits).maxMemoryMB;
     if (griddingMB > budgetMB) {
@@ -265,8 +288,7 @@ std::optional<Surface> buildSurface(const LoadedScene& loaded, Diagnostics& diag
         });
         if (!net) return std::nullopt;
     } else {
-        for (const char* key : {"samples.band", "samples.crs", "samples.resample", "samples.nodata",
-                                "samples.vertical_unit"})
+        for (const char* key : {"samples.band", "samples.resample", "samples.nodata", "samples.vertical_unit"})
             if (spec.samples.locs.has(key))
                 diags.error(spec.samples.locs.at(key),
                             fmt::format("{} is only used with a raster DEM, and {} is a table of samples "

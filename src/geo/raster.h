@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/diagnostics.h"
 #include "geo/normalize.h"
@@ -31,5 +32,28 @@ bool isRasterDem(const std::filesystem::path& path);
 std::optional<ControlNet> rasterNet(const scene::SamplesSpec& samples, const scene::FrameSpec& frame,
                                     const scene::NetSpec& net, Diagnostics& diags,
                                     const GridProgressFn& progress = {});
+
+/// Scattered samples that are a raster in disguise: one sample on every node
+/// of a regular lattice in some CRS (degrees, Web Mercator, a national grid),
+/// as when a DEM was exported to lon,lat,elev. Such samples are resampled as
+/// the raster they are (exact at the nodes, bilinear between) rather than
+/// triangulated as scattered points.
+struct SampleLattice {
+    std::string crs;           ///< as GDAL reads it: "EPSG:4326", "EPSG:2193"
+    int cols = 0, rows = 0;
+    double xWest = 0, yNorth = 0;  ///< the north-west sample, in `crs`
+    double dx = 0, dy = 0;     ///< spacing, in `crs` units
+    std::vector<double> z;     ///< metres, row 0 north
+};
+
+/// The lattice the samples form in `crs`, or nullopt: every sample must sit
+/// on a node (within 1 % of the spacing), one per node, every node taken.
+std::optional<SampleLattice> findLattice(const std::vector<GeoSample>& samples, const std::string& crs);
+
+/// The lattice as a raster (GDAL's MEM driver, bilinear) onto the net, as
+/// rasterNet; the default extent is the samples' box.
+std::optional<ControlNet> latticeNet(const SampleLattice& lattice, const scene::SamplesSpec& samples,
+                                     const scene::FrameSpec& frame, const scene::NetSpec& net,
+                                     Diagnostics& diags, const GridProgressFn& progress = {});
 
 }  // namespace relief::geo

@@ -11,7 +11,7 @@ for t in 1 2; do
     --set subdivision.depth=auto --set subdivision.tolerance_m=10 2> "$work/stderr$t.txt" || fail "compile"
 done
 cat "$work/stderr1.txt"
-grep -q "depth 4 chosen: .*1: 307 m, 2: 116 m, 3: 32.8 m, 4: 9.49 m; tolerance 10 m" "$work/stderr1.txt" \
+grep -q "depth 4 chosen: .*1: 245 m, 2: 94.8 m, 3: 27 m, 4: 7.82 m; tolerance 10 m" "$work/stderr1.txt" \
   || fail "summary line"
 cmp "$work/auto1.pov" "$work/auto2.pov" || fail "the .pov depends on the thread count"
 grep -q '^// subdivision.depth: 4 (auto, tolerance_m = 10)$' "$work/auto1.pov" || fail ".pov header"

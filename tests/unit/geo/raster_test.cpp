@@ -245,6 +245,71 @@ TEST(Raster, DefaultExtentIsTheDataNotTheBorder) {
     EXPECT_LT(result->maskedCount(), result->grid.points.size() / 10);
 }
 
+// Samples that are one per node of a regular lattice are found as such, in
+// the CRS they are regular in; a missing, doubled or displaced sample, or an
+// uneven spacing, makes them scattered samples again.
+TEST(Lattice, FoundInItsCrsAndNotOtherwise) {
+    // 30 x 20 nodes 10 m apart in NZTM, written as lon/lat to 8 decimals (as a CSV would).
+    std::vector<GeoSample> samples;
+    static const GeographicLib::TransverseMercator tm(6378137, 1 / 298.257222101, 0.9996);
+    for (int r = 0; r < 20; ++r)
+        for (int c = 0; c < 30; ++c) {
+            double lat = 0, lon = 0;
+            tm.Reverse(173, kX0 - 1600000 + 10.0 * c, kY0 - 10000000 + 10.0 * r, lat, lon);
+            samples.push_back({std::round(lon * 1e8) / 1e8, std::round(lat * 1e8) / 1e8,
+                               plane(kX0 + 10.0 * c, kY0 + 10.0 * r), {}});
+        }
+    std::swap(samples[3], samples[400]);  // order does not matter
+    const auto lattice = findLattice(samples, "EPSG:2193");
+    ASSERT_TRUE(lattice);
+    EXPECT_EQ(lattice->cols, 30);
+    EXPECT_EQ(lattice->rows, 20);
+    EXPECT_NEAR(lattice->dx, 10, 1e-3);
+    EXPECT_NEAR(lattice->dy, 10, 1e-3);
+    EXPECT_NEAR(lattice->xWest, kX0, 1e-2);
+    EXPECT_NEAR(lattice->yNorth, kY0 + 190, 1e-2);
+    EXPECT_DOUBLE_EQ(lattice->z[0], plane(kX0, kY0 + 190));  // row 0 is north
+    EXPECT_DOUBLE_EQ(lattice->z[20 * 30 - 1], plane(kX0 + 290, kY0));
+
+    EXPECT_FALSE(findLattice(samples, "EPSG:4326"));  // not regular in degrees (2 km from NZTM's meridian)
+    auto missing = samples;
+    missing.pop_back();
+    EXPECT_FALSE(findLattice(missing, "EPSG:2193"));
+    auto displaced = samples;
+    displaced[100].lonDeg += 2e-6;  // about 0.18 m: 1.8 % of the spacing
+    EXPECT_FALSE(findLattice(displaced, "EPSG:2193"));
+    auto doubled = samples;
+    doubled[100] = doubled[101];
+    EXPECT_FALSE(findLattice(doubled, "EPSG:2193"));
+}
+
+// A lattice goes the raster way: bilinear between its samples, exact at them.
+TEST(Lattice, ResampledAsARaster) {
+    std::vector<GeoSample> samples;
+    for (int r = 0; r < 40; ++r)
+        for (int c = 0; c < 50; ++c)
+            samples.push_back({174.7 + 0.0001 * c, -36.9 + 0.0001 * r, 100 + 2.0 * c - 1.0 * r, {}});
+    const auto lattice = findLattice(samples, "EPSG:4326");
+    ASSERT_TRUE(lattice);
+    scene::SamplesSpec spec;
+    spec.pathAsWritten = "lattice.csv";
+    scene::NetSpec net;
+    net.spacingM = 5;
+    Diagnostics diags;
+    const auto result = latticeNet(*lattice, spec, {}, net, diags);
+    ASSERT_TRUE(result) << (diags.all().empty() ? "" : formatDiagnostic(diags.all()[0]));
+    EXPECT_EQ(diags.warningCount(), 0);  // the CSV's elevations are metres
+    EXPECT_TRUE(result->masked.empty());
+    EXPECT_NE(result->raster.find("lattice of 50 x 40 samples in EPSG:4326"), std::string::npos) << result->raster;
+    // A plane in lon/lat is reproduced by bilinear resampling: each node's height is the plane at its
+    // lon/lat, up to the warper's positional tolerance (0.001 cells; the plane rises 2 m per cell).
+    for (const Vec3& p : result->grid.points) {
+        double lat = 0, lon = 0, h = 0;
+        ASSERT_TRUE(frameToGeodetic(result->frame, {p.x, p.y, 0}, lat, lon, h));
+        EXPECT_NEAR(p.z, 100 + 2.0 * (lon - 174.7) / 0.0001 - 1.0 * (lat + 36.9) / 0.0001, 2.5e-3);
+    }
+}
+
 // Each way a raster can be unusable is an error naming the file or key and the fix.
 TEST(Raster, UnusableRastersAreErrors) {
     const fs::path dir = freshDir("bad");
