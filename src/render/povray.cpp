@@ -81,7 +81,10 @@ std::string errorText(const std::deque<std::string>& lines) {
     if (start == lines.size()) start = lines.size() > 8 ? lines.size() - 8 : 0;
     std::string out;
     for (size_t i = start; i < lines.size(); ++i) {
-        if (i > start && lines[i].rfind(' ', 0) == 0 && lines[i].rfind("  ", 0) != 0)
+        // A line POV-Ray filled to its 80 columns goes on in the next (mid-word when a
+        // path is longer than a line); a break at a space leaves the space at the start.
+        const bool full = i > start && lines[i - 1].size() >= 80;
+        if (full || (i > start && lines[i].rfind(' ', 0) == 0 && lines[i].rfind("  ", 0) != 0))
             out += lines[i];  // continuation of a wrapped line
         else
             out += (out.empty() ? "" : "\n") + lines[i];

@@ -8,10 +8,12 @@
 set -u
 relief=$1 src=$2 work=$3
 command -v povray >/dev/null || { echo "SKIP: povray is not installed"; exit 77; }
-rm -rf "$work" && mkdir -p "$work/outside" "$work/write" "$work/read" && cd "$work" || exit 1
+# A long folder name: POV-Ray wraps its error at 80 columns, mid-word, and relief must join it.
+outside="$work/outside/a-folder-whose-name-is-long-enough-that-povray-wraps-its-error-mid-word"
+rm -rf "$work" && mkdir -p "$outside" "$work/write" "$work/read" && cd "$work" || exit 1
 echo '"s3cret",' > "$work/secret.txt"
 cp "$src/templates/scene.pov.in" write/ && cp "$src/templates/scene.pov.in" read/
-printf '#fopen Out "%s/outside/pwned.txt" write\n#write(Out, "written by the scene\\n")\n#fclose Out\n' "$work" >> write/scene.pov.in
+printf '#fopen Out "%s/pwned.txt" write\n#write(Out, "written by the scene\\n")\n#fclose Out\n' "$outside" >> write/scene.pov.in
 printf '#fopen In "%s/secret.txt" read\n#read(In, Secret)\n#fclose In\n#debug concat("read: ", Secret, "\\n")\n' "$work" >> read/scene.pov.in
 scene="$src/tests/golden/small/scene.toml"
 status=0
@@ -23,8 +25,8 @@ run() {  # expected-exit template-folder [relief options]
   [ "$got" = "$want" ] || { echo "FAIL: $tmpl $*: exit $got, expected $want"; cat "$work/stderr.txt"; status=1; }
 }
 run 3 write
-[ -e outside/pwned.txt ] && { echo "FAIL: the sandboxed POV-Ray wrote outside its folder"; status=1; }
-grep -q "Parse Error: Cannot open user file $work/outside/pwned.txt (write)" stderr.txt ||
+[ -e "$outside/pwned.txt" ] && { echo "FAIL: the sandboxed POV-Ray wrote outside its folder"; status=1; }
+grep -q "Parse Error: Cannot open user file $outside/pwned.txt (write)" stderr.txt ||
   { echo "FAIL: POV-Ray's own error is not reported:"; cat stderr.txt; status=1; }
 [ -e out/write.png ] && { echo "FAIL: a PNG was left behind"; status=1; }
 run 3 read
@@ -32,7 +34,7 @@ grep -q "Parse Error: Cannot open user file $work/secret.txt (read)" stderr.txt 
   { echo "FAIL: the read was not refused:"; cat stderr.txt; status=1; }
 # The same templates without the sandbox: what the sandbox stopped happens.
 run 0 write --no-sandbox
-[ -e outside/pwned.txt ] || { echo "FAIL: without the sandbox the write did not happen either"; status=1; }
+[ -e "$outside/pwned.txt" ] || { echo "FAIL: without the sandbox the write did not happen either"; status=1; }
 run 0 read --no-sandbox  # the same #fopen ... read, which the sandbox refused, succeeds
 # Without bwrap on PATH: a refusal that says how to install it, not a render outside the sandbox.
 mkdir -p bin && ln -sf "$(command -v povray)" bin/povray
