@@ -9,6 +9,7 @@
 
 #include "core/atomic_file.h"
 #include "core/number_format.h"
+#include "emit/height_field.h"
 #include "emit/mesh.h"
 #include "geo/raster.h"
 #include "geo/samples.h"
@@ -68,7 +69,8 @@ const char* name(scene::Gridding g) {
 
 emit::ParameterList describe(const scene::SceneSpec& s, const geo::ControlNet& net,
                              const subdiv::ResolvedScheme& scheme, int depth,
-                             const subdiv::OutputEstimate& est, const emit::Mesh& mesh) {
+                             const CompileResult& compiled) {
+    const subdiv::OutputEstimate& est = compiled.estimate;
     const scene::SubdivisionSpec& sub = s.subdivision;
     const scene::LookSpec& look = s.look;
     const scene::CameraSpec& camera = look.camera;
@@ -107,9 +109,13 @@ emit::ParameterList describe(const scene::SceneSpec& s, const geo::ControlNet& n
     add("refined.size", fmt::format("{} rows x {} cols", est.rows, est.cols));
     add("refined.vertices", fmt::format("{:.0f}", est.vertices));
     add("refined.triangles", fmt::format("{:.0f}", est.triangles));
-    if (!mesh.vertexOfNode.empty())
+    add("geometry", fmt::format("{} ({})", emit::geometryKindName(compiled.geometry.kind), compiled.geometry.reason));
+    if (compiled.geometry.kind == scene::GeometryKind::HeightField)
+        add("geometry.height_field", fmt::format("{}, 16-bit, one level = {:.3g} m", compiled.heightPng.filename().string(),
+                                                 compiled.heightStepM));
+    if (compiled.maskedNodes > 0)
         add("mesh.with_data", fmt::format("{} vertices, {} triangles (masked nodata left out)",
-                                          mesh.positions.size(), mesh.triangles));
+                                          compiled.meshVertices, compiled.meshTriangles));
     add("texture.ramp", look.ramp.preset);
     add("lighting.sun", fmt::format("azimuth {} deg, altitude {} deg",
                                     formatShortest(look.sunAzimuthDeg),
@@ -124,7 +130,7 @@ emit::ParameterList describe(const scene::SceneSpec& s, const geo::ControlNet& n
                               formatShortest(camera.fovDeg)));
     add("render", fmt::format("{} x {}, antialias {}", s.render.width, s.render.height,
                               s.render.antialias ? "on" : "off"));
-    add("scene_unit_m", formatShortest(mesh.metresPerUnit));
+    add("scene_unit_m", formatShortest(compiled.metresPerUnit));
     return p;
 }
 
@@ -169,18 +175,37 @@ std::optional<CompileResult> compileScene(const LoadedScene& loaded,
     const geo::ControlNet& net = surface->net;
 
     const auto t0 = Clock::now();
-    const emit::Mesh mesh = emit::buildMesh(surface->refined, spec.look);
+    const geo::GeoGrid& refined = surface->refined;
+    const bool heightField = surface->geometry.kind == scene::GeometryKind::HeightField;
+    // One of the two geometries: the mesh (every vertex in memory) or the
+    // height field's 16-bit levels.
+    std::optional<emit::Mesh> mesh;
+    std::optional<emit::HeightField> field;
+    emit::ScenePlacement where;
+    if (heightField) {
+        where = emit::placeTerrain(refined, spec.look);
+        field = emit::quantizeHeights(refined);
+        result.heightPng = options.povPath.parent_path() / emit::siblingPngName(options.povPath, "height");
+        result.drapePng = options.povPath.parent_path() / emit::siblingPngName(options.povPath, "drape");
+        result.heightStepM = field->stepM();
+        result.meshVertices = static_cast<long long>(refined.grid.points.size());
+        result.meshTriangles = gridMeshSize(refined.rows(), refined.cols()).triangles;
+    } else {
+        mesh = emit::buildMesh(refined, spec.look);
+        where = *mesh;
+        result.meshVertices = static_cast<long long>(mesh->positions.size());
+        result.meshTriangles = mesh->triangles;
+    }
+    result.geometry = surface->geometry;
     result.schemeFamily = loaded.resolved.family;
     result.certified = subdiv::certifiedClass(loaded.resolved.report);
     result.arity = loaded.resolved.scheme.arity;
     result.holder = loaded.resolved.report.holder;
-    result.metresPerUnit = mesh.metresPerUnit;
+    result.metresPerUnit = where.metresPerUnit;
     result.depth = surface->depth;
     result.autoDepth = surface->autoDepth;
-    result.parameters = describe(spec, net, loaded.resolved, surface->depth, result.estimate, mesh);
-    result.meshVertices = static_cast<long long>(mesh.positions.size());
-    result.meshTriangles = mesh.triangles;
-    result.maskedNodes = surface->refined.maskedCount();
+    result.maskedNodes = refined.maskedCount();
+    result.parameters = describe(spec, net, loaded.resolved, surface->depth, result);
 
     if (!options.dumpNetPath.empty()) {
         const bool asc = options.dumpNetPath.extension() == ".asc";
@@ -192,16 +217,30 @@ std::optional<CompileResult> compileScene(const LoadedScene& loaded,
             return std::nullopt;
         }
     }
-    emit::WriteProgressFn writing;
-    if (options.progress)
-        writing = [&](double fraction) {
-            options.progress({ProgressEvent::Stage::Compiling,
-                              fmt::format("writing {} ({} triangles)", options.povPath.filename().string(),
-                                          mesh.triangles),
-                              static_cast<int>(100 * fraction)});
+    emit::GeometryWriter geometry;
+    if (heightField) {
+        std::string pngError = emit::writeHeightFieldPng(*field, result.heightPng);
+        if (pngError.empty()) pngError = emit::writeDrapePng(emit::elevationDrape(refined, where), result.drapePng);
+        if (!pngError.empty()) {
+            diags.error({result.heightPng.string(), 0, 0}, "cannot write the height field: " + pngError);
+            return std::nullopt;
+        }
+        geometry = [&](std::FILE* out) {
+            emit::writeHeightFieldSdl(out, *field, refined, where, result.heightPng.filename().string(),
+                                      result.drapePng.filename().string());
         };
-    if (!emit::writeScene(options.povPath, *tmpl, mesh, spec.look, spec.render, result.parameters, diags,
-                          writing))
+    } else {
+        emit::WriteProgressFn writing;
+        if (options.progress)
+            writing = [&](double fraction) {
+                options.progress({ProgressEvent::Stage::Compiling,
+                                  fmt::format("writing {} ({} triangles)", options.povPath.filename().string(),
+                                              mesh->triangles),
+                                  static_cast<int>(100 * fraction)});
+            };
+        geometry = [&, writing](std::FILE* out) { emit::writeMesh2(*mesh, out, writing); };
+    }
+    if (!emit::writeScene(options.povPath, *tmpl, where, geometry, spec.look, spec.render, result.parameters, diags))
         return std::nullopt;
     if (!options.dumpNetPath.empty())
         writeFileAtomically(options.dumpNetPath, options.dumpNetPath.extension() == ".asc"
@@ -326,6 +365,23 @@ std::optional<Surface> buildSurface(const LoadedScene& loaded, Diagnostics& diag
         }
     }
     s.estimate = subdiv::estimateOutput(scheme, net->rows(), net->cols(), s.depth);
+    {
+        emit::GeometryFacts facts;
+        facts.triangles = s.estimate.triangles;
+        facts.masked = !net->masked.empty();
+        double zmin = 1e300, zmax = -1e300;
+        for (const Vec3& p : net->grid.points) zmin = std::min(zmin, p.z), zmax = std::max(zmax, p.z);
+        facts.zRangeM = zmax - zmin;
+        facts.extentM = std::max(net->xMax() - net->x0, net->yMax() - net->y0);
+        facts.exaggeration = spec.look.exaggeration;
+        facts.widthPx = spec.render.width;
+        facts.rough = s.depth > 0 && loaded.resolved.report.holder < 1;
+        auto geometry = emit::chooseGeometry(spec.geometry, facts, diags);
+        if (!geometry) return std::nullopt;
+        s.geometry = *geometry;
+    }
+    if (s.geometry.kind == scene::GeometryKind::HeightField)
+        s.estimate = subdiv::estimateOutput(scheme, net->rows(), net->cols(), s.depth, true);
     if (!subdiv::checkBudget(s.estimate, budget,
                              sub.locs.at(sub.depthAuto ? "subdivision.depth" : "subdivision.scheme"),
                              s.depth, diags))
@@ -400,7 +456,12 @@ JobOutcome runSceneJob(const SceneJob& job, Diagnostics& diags, const ProgressFn
     req.width = still.width;
     req.height = still.height;
     req.antialias = still.antialias;
+    // The height field's PNG is found by its name through the library path.
     req.includeDirs = {job.templatesDir};
+    if (!outcome.compiled->heightPng.empty()) {
+        req.includeDirs.push_back(std::filesystem::absolute(outcome.paths.pov).parent_path());
+        req.inputFiles = {outcome.compiled->heightPng, outcome.compiled->drapePng};
+    }
     req.threads = job.threads;
     req.sandbox = job.sandbox;
     outcome.render = render::renderPov(req, [&](const render::RenderProgress& p) {
@@ -474,7 +535,13 @@ std::string sidecarJson(const CompileResult& c, const OutputPaths& paths,
                            {"levels", levels}};
     }
     j["seconds"] = times;
+    j["geometry"] = {{"kind", emit::geometryKindName(c.geometry.kind)}, {"reason", c.geometry.reason}};
+    if (!c.heightPng.empty()) j["geometry"]["height_step_m"] = c.heightStepM;
     j["outputs"] = {{"pov", paths.pov.string()}};
+    if (!c.heightPng.empty()) {
+        j["outputs"]["height_png"] = c.heightPng.string();
+        j["outputs"]["drape_png"] = c.drapePng.string();
+    }
     if (render) j["outputs"]["png"] = paths.png.string();
     return j.dump(2) + "\n";
 }

@@ -5,7 +5,7 @@
 //     SchemeSpec      --subdiv::resolveScheme--> ResolvedScheme   (loadScene)
 //     samples, FrameSpec, NetSpec --geo::normalize--> ControlNet (a GeoGrid)
 //     ControlNet, depth --subdiv::refineGrid--> refined GeoGrid    (buildSurface)
-//     GeoGrid, LookSpec --emit::buildMesh--> Mesh --emit::writeScene--> .pov
+//     GeoGrid, LookSpec, GeometrySpec --emit::buildMesh or quantizeHeights--> Mesh or HeightField --emit::writeScene--> .pov
 //     .pov, RenderSpec --render::renderPov--> PNG                  (runSceneJob)
 //
 // Each stage is a free function in its own folder that takes its spec and
@@ -18,6 +18,7 @@
 #include <string>
 
 #include "core/diagnostics.h"
+#include "emit/geometry_kind.h"
 #include "emit/write_scene.h"
 #include "geo/normalize.h"
 #include "measure/auto_depth.h"
@@ -64,7 +65,8 @@ using ProgressFn = std::function<void(const ProgressEvent&)>;
 struct Surface {
     geo::ControlNet net;
     geo::GeoGrid refined;  ///< the net refined `depth` times: same frame and extent
-    subdiv::OutputEstimate estimate;
+    subdiv::OutputEstimate estimate;  ///< of the chosen geometry
+    emit::GeometryChoice geometry;
     int depth = 0;  ///< the scene's, or the one depth = "auto" chose
     std::optional<measure::DepthChoice> autoDepth;  ///< the change per level, for depth = "auto"
     double normalizeSeconds = 0, subdivideSeconds = 0;  ///< subdivide includes choosing the depth
@@ -99,6 +101,9 @@ struct CompileResult {
     emit::ParameterList parameters;  ///< as recorded in the .pov header
     StageTimes times;
     std::uintmax_t povBytes = 0;
+    emit::GeometryChoice geometry;
+    std::filesystem::path heightPng, drapePng;      ///< the height field's PNGs, beside the .pov
+    double heightStepM = 0;                         ///< its vertical quantization
     long long meshVertices = 0, meshTriangles = 0;  ///< as emitted: masked nodes left out
     size_t maskedNodes = 0;                         ///< refined nodes without data
 };

@@ -7,12 +7,42 @@
 
 namespace relief::emit {
 
+ScenePlacement placeTerrain(const geo::GeoGrid& refined, const scene::LookSpec& look) {
+    const Grid& g = refined.grid;
+    ScenePlacement where;
+    where.exaggeration = look.exaggeration;
+    double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300, zmin = 1e300, zmax = -1e300;
+    for (size_t i = 0; i < g.points.size(); ++i) {
+        if (!refined.masked.empty() && refined.masked[i]) continue;
+        const Vec3& p = g.points[i];
+        xmin = std::min(xmin, p.x), xmax = std::max(xmax, p.x);
+        ymin = std::min(ymin, p.y), ymax = std::max(ymax, p.y);
+        zmin = std::min(zmin, p.z), zmax = std::max(zmax, p.z);
+    }
+    where.zMinM = zmin;
+    where.zMaxM = zmax;
+    const double extent = std::max(xmax - xmin, ymax - ymin);
+    where.metresPerUnit = std::pow(10.0, std::floor(std::log10(std::max(extent, 1e-3))) - 1);
+    // Whole metres-per-unit keep the origin's digits exact in the header.
+    where.originM = {std::round(0.5 * (xmin + xmax)), std::round(0.5 * (ymin + ymax)), 0};
+    where.boundsMin = where.scenePoint({xmin, ymin, zmin});
+    where.boundsMax = where.scenePoint({xmax, ymax, zmax});
+
+    // Palette over the true (not exaggerated) elevation range.
+    const auto stops = scene::resolveRamp(look.ramp, zmin, zmax);
+    const double span = zmax > zmin ? zmax - zmin : 1.0;
+    where.paletteColors.resize(kPaletteSize);
+    for (int k = 0; k < kPaletteSize; ++k)
+        where.paletteColors[k] = scene::sampleRamp(stops, zmin + span * k / (kPaletteSize - 1));
+    return where;
+}
+
 Mesh buildMesh(const geo::GeoGrid& refined, const scene::LookSpec& look) {
     const Grid& g = refined.grid;
     Mesh mesh;
+    static_cast<ScenePlacement&>(mesh) = placeTerrain(refined, look);
     mesh.rows = g.rows;
     mesh.cols = g.cols;
-    mesh.exaggeration = look.exaggeration;
     const size_t nodes = g.points.size();
     auto kept = [&](size_t i) { return refined.masked.empty() || refined.masked[i] == 0; };
 
@@ -26,43 +56,14 @@ Mesh buildMesh(const geo::GeoGrid& refined, const scene::LookSpec& look) {
     for (int r = 0; r + 1 < g.rows; ++r)
         for (int c = 0; c + 1 < g.cols; ++c) {
             const size_t sw = static_cast<size_t>(r) * g.cols + c, se = sw + 1, nw = sw + g.cols, ne = nw + 1;
-            mesh.triangles += (kept(sw) && kept(se) && kept(ne)) + (kept(sw) && kept(ne) && kept(nw));
+            mesh.triangles += (kept(sw) && kept(se) && kept(nw)) + (kept(se) && kept(ne) && kept(nw));
         }
-
-    double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300, zmin = 1e300, zmax = -1e300;
-    for (size_t i = 0; i < nodes; ++i) {
-        if (!kept(i)) continue;
-        const Vec3& p = g.points[i];
-        xmin = std::min(xmin, p.x), xmax = std::max(xmax, p.x);
-        ymin = std::min(ymin, p.y), ymax = std::max(ymax, p.y);
-        zmin = std::min(zmin, p.z), zmax = std::max(zmax, p.z);
-    }
-    mesh.zMinM = zmin;
-    mesh.zMaxM = zmax;
-    const double extent = std::max(xmax - xmin, ymax - ymin);
-    mesh.metresPerUnit = std::pow(10.0, std::floor(std::log10(std::max(extent, 1e-3))) - 1);
-    // Whole metres-per-unit keep the origin's digits exact in the header.
-    mesh.originM = {std::round(0.5 * (xmin + xmax)), std::round(0.5 * (ymin + ymax)), 0};
-
-    const double s = 1.0 / mesh.metresPerUnit;
-    const double zs = look.exaggeration * s;
-    auto scenePoint = [&](int r, int c) {
-        const Vec3& p = g.at(r, c);
-        return Vec3{(p.x - mesh.originM.x) * s, p.z * zs, (p.y - mesh.originM.y) * s};
-    };
-    mesh.boundsMin = {(xmin - mesh.originM.x) * s, zmin * zs, (ymin - mesh.originM.y) * s};
-    mesh.boundsMax = {(xmax - mesh.originM.x) * s, zmax * zs, (ymax - mesh.originM.y) * s};
-
-    // Palette over the true (not exaggerated) elevation range.
-    const auto stops = scene::resolveRamp(look.ramp, zmin, zmax);
-    const double span = zmax > zmin ? zmax - zmin : 1.0;
-    mesh.paletteColors.resize(kPaletteSize);
-    for (int k = 0; k < kPaletteSize; ++k)
-        mesh.paletteColors[k] = scene::sampleRamp(stops, zmin + span * k / (kPaletteSize - 1));
 
     // Per vertex: position, normal and palette index. Normals in scene axes
     // from the exaggerated surface; d/dcol runs east, d/drow north, and
     // cross(north, east) points up in POV-Ray's (x, y, z) = (E, U, N).
+    auto scenePoint = [&](int r, int c) { return mesh.scenePoint(g.at(r, c)); };
+    const double zmin = mesh.zMinM, span = mesh.zMaxM > mesh.zMinM ? mesh.zMaxM - mesh.zMinM : 1.0;
     mesh.positions.resize(vertices);
     mesh.normals.resize(vertices);
     mesh.palette.resize(vertices);

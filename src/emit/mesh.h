@@ -14,11 +14,32 @@ namespace relief::emit {
 
 inline constexpr int kPaletteSize = 256;
 
+/// Where the terrain sits in POV-Ray's scene, whatever geometry carries it.
 /// POV-Ray's axes: x = east, y = up, z = north (left-handed, so the map is
 /// not mirrored). One scene unit is `metresPerUnit` metres, a power of ten
 /// chosen so the terrain spans 10-100 units: POV-Ray stores vertices as
 /// 32-bit floats and treats bounding boxes over ~2e10 cubic units as infinite.
-struct Mesh {
+struct ScenePlacement {
+    double metresPerUnit = 1;
+    Vec3 originM;                 ///< frame position (metres) of the scene origin (x, y; z = 0)
+    double exaggeration = 1;
+    double zMinM = 0, zMaxM = 0;  ///< elevation range of the nodes with data, metres
+    Vec3 boundsMin, boundsMax;    ///< scene units, scene axes
+    std::vector<scene::ColorStop> paletteColors;  ///< kPaletteSize entries (linear RGB) over zMinM..zMaxM
+
+    /// A frame point (metres) in scene units and axes, exaggerated.
+    Vec3 scenePoint(const Vec3& p) const {
+        const double s = 1.0 / metresPerUnit, zs = exaggeration * s;
+        return {(p.x - originM.x) * s, p.z * zs, (p.y - originM.y) * s};
+    }
+};
+
+/// The placement of the refined grid's nodes with data: scene unit, origin
+/// (centred), bounds, elevation range and the ramp's palette over it.
+ScenePlacement placeTerrain(const geo::GeoGrid& refined, const scene::LookSpec& look);
+
+/// The terrain as one mesh2: a vertex per refined node with data.
+struct Mesh : ScenePlacement {
     static constexpr std::uint32_t kNoVertex = 0xffffffffu;
     int rows = 0, cols = 0;       ///< the refined grid's lattice
     /// Per grid node: its vertex, or kNoVertex for a masked node (no data);
@@ -28,12 +49,6 @@ struct Mesh {
     std::vector<Vec3> positions;  ///< per vertex: scene units, relative to `originM`
     std::vector<Vec3> normals;    ///< unit length, scene axes
     std::vector<unsigned char> palette;  ///< per vertex: index into paletteColors
-    std::vector<scene::ColorStop> paletteColors;  ///< kPaletteSize entries (linear RGB)
-    double metresPerUnit = 1;
-    Vec3 originM;                 ///< frame position (metres) of the scene origin (x, y; z = 0)
-    double exaggeration = 1;
-    double zMinM = 0, zMaxM = 0;  ///< elevation range of the refined surface, metres
-    Vec3 boundsMin, boundsMax;    ///< scene units, scene axes
 };
 
 /// Builds the mesh: centres the terrain on the origin, applies the vertical

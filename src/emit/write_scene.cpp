@@ -150,17 +150,19 @@ size_t writeMesh2(const Mesh& mesh, std::FILE* out, const WriteProgressFn& progr
     for (size_t r = 0; r + 1 < static_cast<size_t>(mesh.rows); ++r) {
         report(0.5 + 0.5 * static_cast<double>(r) / mesh.rows);
         for (size_t c = 0; c + 1 < cols; ++c) {
-            // South-west, south-east, north-east, north-west corners of the quad.
+            // South-west, south-east, north-east, north-west corners of the quad, cut
+            // along the south-east to north-west diagonal as POV-Ray cuts a
+            // height_field's cells, so that the two kinds make the same surface.
             const size_t sw = r * cols + c, se = sw + 1, nw = sw + cols, ne = nw + 1;
             if (vertexOf.empty()) {
-                face(sw, se, ne);
-                face(sw, ne, nw);
+                face(sw, se, nw);
+                face(se, ne, nw);
                 continue;
             }
             const std::uint32_t vsw = vertexOf[sw], vse = vertexOf[se], vnw = vertexOf[nw], vne = vertexOf[ne];
-            if (vsw == Mesh::kNoVertex || vne == Mesh::kNoVertex) continue;
-            if (vse != Mesh::kNoVertex) face(vsw, vse, vne);
-            if (vnw != Mesh::kNoVertex) face(vsw, vne, vnw);
+            if (vse == Mesh::kNoVertex || vnw == Mesh::kNoVertex) continue;
+            if (vsw != Mesh::kNoVertex) face(vsw, vse, vnw);
+            if (vne != Mesh::kNoVertex) face(vse, vne, vnw);
         }
     }
     w->put("\n  }\n  inside_vector <0, 1, 0>\n}");
@@ -179,9 +181,8 @@ std::string sdlCommentText(std::string_view text) {
     return out;
 }
 
-Bindings sceneBindings(const Mesh& mesh, const scene::LookSpec& look,
-                       const scene::RenderSpec& render, const ParameterList& header,
-                       const WriteProgressFn& progress) {
+Bindings sceneBindings(const ScenePlacement& where, GeometryWriter geometry, const scene::LookSpec& look,
+                       const scene::RenderSpec& render, const ParameterList& header) {
     const scene::CameraSpec& camera = look.camera;
     Bindings b;
     std::string head;
@@ -189,7 +190,7 @@ Bindings sceneBindings(const Mesh& mesh, const scene::LookSpec& look,
         head += fmt::format("// {}: {}\n", sdlCommentText(key), sdlCommentText(value));
     b["header"].text = head;
 
-    const Vec3 lo = mesh.boundsMin, hi = mesh.boundsMax;
+    const Vec3 lo = where.boundsMin, hi = where.boundsMax;
     const Vec3 target{0.5 * (lo.x + hi.x), 0.5 * (lo.y + hi.y), 0.5 * (lo.z + hi.z)};
     const double radius = 0.5 * length(hi - lo);
     const double aspect = static_cast<double>(render.width) / render.height;
@@ -213,7 +214,7 @@ Bindings sceneBindings(const Mesh& mesh, const scene::LookSpec& look,
     }
     fitDistance *= 1.06;
     const double distance =
-        camera.distanceM > 0 ? camera.distanceM / mesh.metresPerUnit : fitDistance;
+        camera.distanceM > 0 ? camera.distanceM / where.metresPerUnit : fitDistance;
     const Vec3 eye = target + distance * back;
     b["camera_location"].text = vec(eye);
     b["camera_look_at"].text = vec(target);
@@ -232,7 +233,7 @@ Bindings sceneBindings(const Mesh& mesh, const scene::LookSpec& look,
     const Vec3 sunDir = direction(look.sunAzimuthDeg, look.sunAltitudeDeg);
     b["sun_position"].text = vec(target + (100.0 * radius) * sunDir);
     b["scene_center"].text = vec(target);
-    b["mesh"].writer = [&mesh, progress](std::FILE* out) { writeMesh2(mesh, out, progress); };
+    b["terrain"].writer = std::move(geometry);
     return b;
 }
 
@@ -249,10 +250,10 @@ std::optional<Template> loadSceneTemplate(const std::filesystem::path& templates
     }
 }
 
-bool writeScene(const std::filesystem::path& out, const Template& tmpl, const Mesh& mesh,
-                const scene::LookSpec& look, const scene::RenderSpec& render,
-                const ParameterList& header, Diagnostics& diags, const WriteProgressFn& progress) {
-    const Bindings bindings = sceneBindings(mesh, look, render, header, progress);
+bool writeScene(const std::filesystem::path& out, const Template& tmpl, const ScenePlacement& where,
+                GeometryWriter geometry, const scene::LookSpec& look, const scene::RenderSpec& render,
+                const ParameterList& header, Diagnostics& diags) {
+    const Bindings bindings = sceneBindings(where, std::move(geometry), look, render, header);
     if (!checkTemplate(tmpl, bindings, diags)) return false;
     AtomicFile file(out);
     renderTemplate(tmpl, bindings, file.stream());

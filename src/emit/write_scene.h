@@ -33,19 +33,22 @@ size_t writeMesh2(const Mesh& mesh, std::FILE* out, const WriteProgressFn& progr
 /// \xNN, so nothing can end the comment and become a directive.
 std::string sdlCommentText(std::string_view text);
 
+/// Writes the terrain's geometry (a mesh2, a height_field) into the .pov.
+using GeometryWriter = std::function<void(std::FILE* out)>;
+
 /// The template's bindings: header (every key and value through
-/// sdlCommentText), camera, sun, sky and the mesh.
-Bindings sceneBindings(const Mesh& mesh, const scene::LookSpec& look,
-                       const scene::RenderSpec& render, const ParameterList& header,
-                       const WriteProgressFn& progress = {});
+/// sdlCommentText), camera and sun (from the terrain's placement), and the
+/// geometry.
+Bindings sceneBindings(const ScenePlacement& where, GeometryWriter geometry, const scene::LookSpec& look,
+                       const scene::RenderSpec& render, const ParameterList& header);
 
 /// Loads `<templatesDir>/scene.pov.in`.
 std::optional<Template> loadSceneTemplate(const std::filesystem::path& templatesDir,
                                           Diagnostics& diags);
 
 /// Checks bindings, then writes the .pov atomically (temp file + rename).
-bool writeScene(const std::filesystem::path& out, const Template& tmpl, const Mesh& mesh,
-                const scene::LookSpec& look, const scene::RenderSpec& render,
-                const ParameterList& header, Diagnostics& diags, const WriteProgressFn& progress = {});
+bool writeScene(const std::filesystem::path& out, const Template& tmpl, const ScenePlacement& where,
+                GeometryWriter geometry, const scene::LookSpec& look, const scene::RenderSpec& render,
+                const ParameterList& header, Diagnostics& diags);
 
 }  // namespace relief::emit

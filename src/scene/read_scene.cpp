@@ -201,7 +201,7 @@ private:
 
 const std::vector<std::string> kSections{"samples", "frame",    "net",      "vertical",
                                          "subdivision", "limits", "texture", "lighting",
-                                         "camera",   "render"};
+                                         "camera",   "geometry", "render"};
 
 }  // namespace
 
@@ -571,6 +571,16 @@ std::optional<SceneSpec> readScene(const std::filesystem::path& path, Diagnostic
         if (auto p = s.choice("projection", {"perspective", "orthographic"}))
             camera.projection =
                 *p == "perspective" ? Projection::Perspective : Projection::Orthographic;
+        s.finish();
+    }
+
+    // [geometry]
+    {
+        Section s = sectionInto("geometry", scene.geometry.locs);
+        if (auto k = s.choice("kind", {"auto", "mesh2", "height_field"}))
+            scene.geometry.kind = *k == "auto"    ? GeometryKind::Auto
+                                  : *k == "mesh2" ? GeometryKind::Mesh2
+                                                  : GeometryKind::HeightField;
         s.finish();
     }
 

@@ -158,6 +158,19 @@ struct RenderSpec {
     KeyLocations locs;
 };
 
+/// What the terrain becomes in the .pov. Mesh2: every refined node a vertex
+/// (exact, the reference). HeightField: the refined lattice as a 16-bit PNG
+/// POV-Ray reads in a fraction of the time (heights quantized to 1/65535 of
+/// their range). Auto: mesh2 while POV-Ray would parse it quickly, else the
+/// height field (emit/geometry_kind.h says when).
+enum class GeometryKind { Auto, Mesh2, HeightField };
+
+/// [geometry]
+struct GeometrySpec {
+    GeometryKind kind = GeometryKind::Auto;
+    KeyLocations locs;
+};
+
 /// The whole scene file: one spec per stage, and where it came from.
 struct SceneSpec {
     std::filesystem::path sceneFile;  ///< as given
@@ -169,6 +182,7 @@ struct SceneSpec {
     NetSpec net;
     SubdivisionSpec subdivision;
     LookSpec look;
+    GeometrySpec geometry;
     RenderSpec render;
     LimitsSpec limits;
 };

@@ -9,7 +9,7 @@
 
 namespace relief::subdiv {
 
-OutputEstimate estimateOutput(const Scheme& scheme, int rows, int cols, int depth) {
+OutputEstimate estimateOutput(const Scheme& scheme, int rows, int cols, int depth, bool heightField) {
     OutputEstimate e;
     e.rows = rows;
     e.cols = cols;
@@ -24,6 +24,11 @@ OutputEstimate estimateOutput(const Scheme& scheme, int rows, int cols, int dept
     e.parseSeconds = e.triangles * kParseSecondsPerTriangle;
     const double coarser = depth > 0 ? e.vertices / (scheme.arity * scheme.arity) : 0;
     e.memoryBytes = e.vertices * kMemoryBytesPerVertex + 24 * coarser;
+    if (heightField) {
+        e.sdlBytes = kHeightFieldSdlBytes;
+        e.parseSeconds = e.vertices * kParseSecondsPerHeightFieldNode;
+        e.memoryBytes = e.vertices * (24 + 2) + 24 * coarser;
+    }
     return e;
 }
 

@@ -80,7 +80,7 @@ TEST(SceneHeader, UntrustedTextStaysInItsComment) {
     EXPECT_EQ(sdlCommentText("data/dem.tif"), "data/dem.tif");
     EXPECT_EQ(sdlCommentText("a\n#fopen F \"/tmp/x\" write\r\x7f"), "a\\x0a#fopen F \"/tmp/x\" write\\x0d\\x7f");
     const Mesh m = buildMesh({{}, tiltedPlane(), 300000, 5900000, 100, 100, {}}, {});
-    const Bindings b = sceneBindings(m, {}, {}, {{"samples.path", "x.csv\n#declare Evil = 1;"}});
+    const Bindings b = sceneBindings(m, {}, {}, {}, {{"samples.path", "x.csv\n#declare Evil = 1;"}});
     const std::string head = b.at("header").text;
     EXPECT_EQ(head, "// samples.path: x.csv\\x0a#declare Evil = 1;\n");
 }
@@ -96,7 +96,8 @@ TEST(Mesh2, WriterOutputShape) {
     std::free(data);
     EXPECT_EQ(written, out.size());
     EXPECT_EQ(out.rfind("mesh2 {\n  vertex_vectors {\n    12,\n<-15.00000,5.00000,-10.00000>", 0), 0u);
-    EXPECT_NE(out.find("face_indices {\n    12,\n<0,1,5>,0,85,85,\n<0,5,4>,0,85,0"), std::string::npos);
+    // Each quad cut from south-east to north-west, as POV-Ray cuts a height_field's cells.
+    EXPECT_NE(out.find("face_indices {\n    12,\n<0,1,4>,0,85,0,\n<1,5,4>,85,85,0"), std::string::npos);
     EXPECT_NE(out.find("texture_list {\n    256,\n    texture { pigment { rgb <"), std::string::npos);
 }
 
@@ -109,7 +110,7 @@ TEST(Mesh2, MaskedNodesLeaveAHole) {
     grid.grid.points[0].z = -1000;       // a filled height that nothing may show
     const Mesh m = buildMesh(grid, {});
     EXPECT_EQ(m.positions.size(), 11u);
-    EXPECT_EQ(m.triangles, 12 - 2);      // the corner cell's two triangles
+    EXPECT_EQ(m.triangles, 12 - 1);      // the corner cell's south-west triangle
     EXPECT_EQ(m.zMinM, 50.0);
     ASSERT_EQ(m.vertexOfNode.size(), 12u);
     EXPECT_EQ(m.vertexOfNode[0], Mesh::kNoVertex);
@@ -122,8 +123,10 @@ TEST(Mesh2, MaskedNodesLeaveAHole) {
     const std::string out(data, size);
     std::free(data);
     EXPECT_EQ(out.rfind("mesh2 {\n  vertex_vectors {\n    11,\n<-5.00000,6.00000,-10.00000>", 0), 0u);
-    // The first cell kept is the second of row 0: nodes 1, 2, 6, 5 -> vertices 0, 1, 5, 4.
-    EXPECT_NE(out.find("face_indices {\n    10,\n<0,1,5>,85,170,170,\n<0,5,4>,85,170,85"), std::string::npos) << out;
+    // The first cell keeps its north-east triangle: nodes 1, 5, 4 -> vertices 0, 4, 3; then the
+    // second cell: nodes 1, 2, 5 and 2, 6, 5 -> vertices 0, 1, 4 and 1, 5, 4.
+    EXPECT_NE(out.find("face_indices {\n    11,\n<0,4,3>,85,85,0,\n<0,1,4>,85,170,85,\n<1,5,4>,170,170,85"),
+              std::string::npos);
 }
 
 // A map: two layers (solid and dashed, own colours), a marker with its label,

@@ -1,0 +1,62 @@
+#include "emit/geometry_kind.h"
+
+#include <fmt/format.h>
+
+#include "subdiv/budget.h"
+
+namespace relief::emit {
+
+const char* geometryKindName(scene::GeometryKind kind) {
+    switch (kind) {
+        case scene::GeometryKind::Auto: return "auto";
+        case scene::GeometryKind::Mesh2: return "mesh2";
+        case scene::GeometryKind::HeightField: return "height_field";
+    }
+    return "?";
+}
+
+std::optional<GeometryChoice> chooseGeometry(const scene::GeometrySpec& spec, const GeometryFacts& facts,
+                                             Diagnostics& diags) {
+    using scene::GeometryKind;
+    // One 16-bit level, exaggerated, against half a pixel where the terrain
+    // fills the still's width (the camera fits it so).
+    const double stepM = facts.zRangeM / 65535.0 * facts.exaggeration;
+    const double halfPixelM = 0.5 * facts.extentM / facts.widthPx;
+    const double parseSeconds = facts.triangles * subdiv::kParseSecondsPerTriangle;
+    if (spec.kind == GeometryKind::Mesh2) return GeometryChoice{GeometryKind::Mesh2, "geometry.kind = \"mesh2\""};
+    if (spec.kind == GeometryKind::HeightField) {
+        const SourceLoc at = spec.locs.has("geometry.kind") ? spec.locs.at("geometry.kind") : SourceLoc{};
+        if (facts.masked) {
+            diags.error(at, "a height_field cannot leave out the nodes without data (nodata = \"mask\"): use "
+                            "kind = \"mesh2\", or nodata = \"fill\" in [samples]");
+            return std::nullopt;
+        }
+        if (stepM > halfPixelM) {
+            diags.error(at, fmt::format("a height_field's 16-bit heights step by {:.3g} m (exaggerated), more than "
+                                        "half a pixel ({:.3g} m): use kind = \"mesh2\"",
+                                        stepM, halfPixelM));
+            return std::nullopt;
+        }
+        return GeometryChoice{GeometryKind::HeightField, "geometry.kind = \"height_field\""};
+    }
+    if (facts.masked)
+        return GeometryChoice{GeometryKind::Mesh2, "auto: nodes without data are left out, which only a mesh2 can"};
+    if (parseSeconds <= kQuickParseSeconds)
+        return GeometryChoice{GeometryKind::Mesh2,
+                              fmt::format("auto: POV-Ray parses its {:.3g} triangles in about {:.2g} s", facts.triangles,
+                                          parseSeconds)};
+    if (facts.rough)
+        return GeometryChoice{GeometryKind::Mesh2,
+                              "auto: the surface is rough (Hölder exponent below 1), where a height_field's "
+                              "normals part from the mesh2's"};
+    if (stepM > halfPixelM)
+        return GeometryChoice{GeometryKind::Mesh2,
+                              fmt::format("auto: 16-bit heights would step by {:.3g} m, more than half a pixel",
+                                          stepM)};
+    return GeometryChoice{GeometryKind::HeightField,
+                          fmt::format("auto: a mesh2 of {:.3g} triangles would take POV-Ray about {:.0f} s to "
+                                      "parse; 16-bit heights step by {:.2g} m (half a pixel: {:.2g} m)",
+                                      facts.triangles, parseSeconds, stepM, halfPixelM)};
+}
+
+}  // namespace relief::emit
