@@ -26,6 +26,7 @@ HeightField quantizeHeights(const geo::GeoGrid& refined) {
     field.cols = g.cols;
     double zmin = 1e300, zmax = -1e300;
     for (const Vec3& p : g.points) zmin = std::min(zmin, p.z), zmax = std::max(zmax, p.z);
+    if (flatRange(zmin, zmax)) zmax = zmin;
     field.zMinM = zmin;
     field.zMaxM = zmax;
     const double perLevel = zmax > zmin ? 65535.0 / (zmax - zmin) : 0.0;  // a flat grid: every level 0

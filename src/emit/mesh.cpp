@@ -19,6 +19,7 @@ ScenePlacement placeTerrain(const geo::GeoGrid& refined, const scene::LookSpec& 
         ymin = std::min(ymin, p.y), ymax = std::max(ymax, p.y);
         zmin = std::min(zmin, p.z), zmax = std::max(zmax, p.z);
     }
+    if (flatRange(zmin, zmax)) zmax = zmin;
     where.zMinM = zmin;
     where.zMaxM = zmax;
     const double extent = std::max(xmax - xmin, ymax - ymin);

@@ -2,7 +2,9 @@
 // Stage 4 of 5 (part 1). Input: the refined GeoGrid (frame metres) and the
 // LookSpec. Output: Mesh,
 // in POV-Ray scene units and axes, with normals and an elevation palette.
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -34,8 +36,16 @@ struct ScenePlacement {
     }
 };
 
+/// An elevation range this narrow is flat: refining a flat net leaves
+/// rounding noise (~1e-13 m) that a ramp or a 16-bit quantization spread over
+/// their whole range would show as speckles.
+inline bool flatRange(double zMinM, double zMaxM) {
+    return !(zMaxM - zMinM > 1e-9 * std::max({1.0, std::fabs(zMinM), std::fabs(zMaxM)}));
+}
+
 /// The placement of the refined grid's nodes with data: scene unit, origin
-/// (centred), bounds, elevation range and the ramp's palette over it.
+/// (centred), bounds, elevation range (collapsed to one height when flat) and
+/// the ramp's palette over it.
 ScenePlacement placeTerrain(const geo::GeoGrid& refined, const scene::LookSpec& look);
 
 /// The terrain as one mesh2: a vertex per refined node with data.

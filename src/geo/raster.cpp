@@ -387,6 +387,40 @@ std::optional<ControlNet> warpedNet(const Dataset& src, const scene::SamplesSpec
         diags.error(fileLoc, "reading the resampled net back failed");
         return std::nullopt;
     }
+    // Vertical units.
+    const char* unitType = GDALGetRasterUnitType(band);
+    const std::string unit = !samples.verticalUnit.empty() ? samples.verticalUnit : unitType ? unitType : "";
+    double scale = metresPerUnit(unit);
+    if (scale == 0) {
+        diags.warning(fileLoc, fmt::format("the raster does not say its elevations are in metres (unit \"{}\"); "
+                                           "they are taken as metres: say so with vertical_unit = \"m\" "
+                                           "(or \"ft\", \"us-ft\") in [samples]",
+                                           unit));
+        scale = 1;
+    }
+    // Elevations beyond the Earth's are a unit or a file error, named at the
+    // first such cell (the raster's column and row, counted from 0 at its
+    // north-west corner).
+    if (samples.earthElevations) {
+        for (size_t i = 0; i < z.size(); ++i) {
+            const double h = scale * z[i];
+            if (!(z[i] > kNoData * 0.5) || (h >= scene::kLowestElevationM && h <= scene::kHighestElevationM)) continue;
+            const size_t r = rows - 1 - i / cols, c = i % cols;
+            double lat = 0, lon = 0, ignored = 0, px = -1, py = -1;
+            frameToGeodetic(net.frame, {net.x0 + c * net.dx, net.y0 + r * net.dy, 0}, lat, lon, ignored);
+            double cx = lon, cy = lat, cz = 0;
+            if (OCTTransform(toRaster.get(), 1, &cx, &cy, &cz))
+                px = inverse[0] + cx * inverse[1] + cy * inverse[2], py = inverse[3] + cx * inverse[4] + cy * inverse[5];
+            diags.error(fileLoc, fmt::format("the cell at column {}, row {} (lat {:.6f} lon {:.6f}) holds {} m, beyond "
+                                             "the Earth's ({} to {} m): check the band, its unit and its nodata "
+                                             "value, or set elevations = \"any\" in [samples] for data that are "
+                                             "not terrain in metres",
+                                             static_cast<long>(std::floor(px)), static_cast<long>(std::floor(py)), lat,
+                                             lon, formatShortest(h), scene::kLowestElevationM,
+                                             scene::kHighestElevationM));
+            return std::nullopt;
+        }
+    }
     size_t empty = 0, firstEmpty = z.size();
     for (size_t i = 0; i < z.size(); ++i)
         if (!(z[i] > kNoData * 0.5)) {
@@ -455,17 +489,6 @@ std::optional<ControlNet> warpedNet(const Dataset& src, const scene::SamplesSpec
         }
     }
 
-    // Vertical units.
-    const char* unitType = GDALGetRasterUnitType(band);
-    const std::string unit = !samples.verticalUnit.empty() ? samples.verticalUnit : unitType ? unitType : "";
-    double scale = metresPerUnit(unit);
-    if (scale == 0) {
-        diags.warning(fileLoc, fmt::format("the raster does not say its elevations are in metres (unit \"{}\"); "
-                                           "they are taken as metres: say so with vertical_unit = \"m\" "
-                                           "(or \"ft\", \"us-ft\") in [samples]",
-                                           unit));
-        scale = 1;
-    }
     net.grid.points.resize(z.size());
     for (int r = 0; r < rows; ++r)
         for (int c = 0; c < cols; ++c) {

@@ -74,8 +74,8 @@ bool allCollinear(const std::vector<GeoSample>& s, size_t& farIndex) {
 
 }  // namespace
 
-std::vector<GeoSample> readSamples(const std::filesystem::path& path,
-                                   const std::string& displayPath, Diagnostics& diags) {
+std::vector<GeoSample> readSamples(const std::filesystem::path& path, const std::string& displayPath,
+                                   Diagnostics& diags, bool earthElevations) {
     std::string text;
     try {
         text = readFile(path);
@@ -151,6 +151,13 @@ std::vector<GeoSample> readSamples(const std::filesystem::path& path,
                 ok = false;
             } else if (k == 1 && std::fabs(v) > 90.0) {
                 bad(f.column, fmt::format("lat = {}° is outside [-90°, 90°]", f.text));
+                ok = false;
+            } else if (k == 2 && earthElevations &&
+                       (v < scene::kLowestElevationM || v > scene::kHighestElevationM)) {
+                bad(f.column, fmt::format("elev = {} m is beyond the Earth's ({} to {} m): fix the value, or set "
+                                          "elevations = \"any\" in [samples] for data that are not terrain in "
+                                          "metres",
+                                          f.text, scene::kLowestElevationM, scene::kHighestElevationM));
                 ok = false;
             }
             values[k] = v;

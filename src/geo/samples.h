@@ -20,15 +20,16 @@ struct GeoSample {
 /// Reads a CSV with a header naming the columns lon, lat and elev (any order,
 /// further columns are an error). Reports every bad line (missing or
 /// non-numeric fields, NaN or infinite values, |lat| > 90, |lon| > 180, the
-/// same lon/lat twice with different elevations) with its line and column.
-/// Exact duplicates are merged. Fewer than 4 distinct points, or all of them
-/// on one line, is an error too. `displayPath` is the path used in messages.
-std::vector<GeoSample> readSamples(const std::filesystem::path& path,
-                                   const std::string& displayPath, Diagnostics& diags);
+/// same lon/lat twice with different elevations, with `earthElevations` an
+/// elevation beyond the Earth's) with its line and column. Exact duplicates
+/// are merged. Fewer than 4 distinct points, or all of them on one line, is
+/// an error too. `displayPath` is the path used in messages.
+std::vector<GeoSample> readSamples(const std::filesystem::path& path, const std::string& displayPath,
+                                   Diagnostics& diags, bool earthElevations = true);
 
 /// The samples a scene's [samples] names.
 inline std::vector<GeoSample> readSamples(const scene::SamplesSpec& spec, Diagnostics& diags) {
-    return readSamples(spec.path, spec.pathAsWritten, diags);
+    return readSamples(spec.path, spec.pathAsWritten, diags, spec.earthElevations);
 }
 
 }  // namespace relief::geo

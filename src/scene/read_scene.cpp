@@ -331,6 +331,7 @@ std::optional<SceneSpec> readScene(const std::filesystem::path& path, Diagnostic
             }
         }
         if (auto a = s.string("attribution")) scene.samples.attribution = *a;
+        if (auto e = s.choice("elevations", {"earth", "any"})) scene.samples.earthElevations = *e == "earth";
         if (auto b = s.integer("band", 1, 65535, "(1 = the first band)")) scene.samples.band = *b;
         if (auto c = s.string("crs")) scene.samples.crs = *c;
         if (auto r = s.choice("resample", {"bilinear", "cubic", "average", "nearest"}))

@@ -63,12 +63,20 @@ enum class Resample { Bilinear, Cubic, Average, Nearest };
 /// left out of the mesh (Mask), filled from their neighbours (Fill), or an error.
 enum class NodataPolicy { Mask, Fill, Error };
 
+/// The Earth's elevations, with a margin: the Challenger Deep (-10,935 m) and
+/// Everest (8,849 m). A value outside is a unit or a file error.
+inline constexpr double kLowestElevationM = -11100, kHighestElevationM = 8900;
+
 /// [samples]: where the elevation data are: a `lon,lat,elev` CSV of scattered
 /// samples, or any raster DEM GDAL opens (recognised by GDAL, not by name).
 struct SamplesSpec {
     std::filesystem::path path;   ///< resolved against the scene file's folder
     std::string pathAsWritten;    ///< for messages and the .pov header
     std::string attribution;      ///< the data's credit line, as its licence asks (header, sidecar)
+    /// Elevations must lie within the Earth's (kLowestElevationM..kHighestElevationM),
+    /// unless the scene says the data are not terrain in metres (elevations = "any":
+    /// other planets, synthetic surfaces).
+    bool earthElevations = true;
     // Rasters only:
     int band = 1;                 ///< the band holding elevations
     std::string crs;              ///< "" = the raster's own; e.g. "EPSG:2193" for one without
