@@ -406,10 +406,6 @@ std::filesystem::path defaultOutput(const std::filesystem::path& scenePath,
     return std::filesystem::path("out") / (scenePath.stem().string() + extension);
 }
 
-void createParentOf(const std::filesystem::path& file) {
-    if (!file.empty() && file.has_parent_path()) std::filesystem::create_directories(file.parent_path());
-}
-
 }  // namespace
 
 JobOutcome runSceneJob(const SceneJob& job, Diagnostics& diags, const ProgressFn& progress) {
@@ -438,7 +434,10 @@ JobOutcome runSceneJob(const SceneJob& job, Diagnostics& diags, const ProgressFn
     copts.dumpNetPath = job.dumpNetPath;
     copts.threads = job.threads;
     copts.progress = progress;
-    for (const auto& p : {outcome.paths.png, outcome.paths.pov, job.dumpNetPath}) createParentOf(p);
+    for (const auto& p : {outcome.paths.png, outcome.paths.pov, job.dumpNetPath})
+        if (!p.empty()) createParentFolder(p);
+    // What a killed run left (its temporary files) goes before this run writes there.
+    removeStaleTemporaries(outcome.paths.pov.parent_path());
     say(Stage::Compiling, fmt::format("compiling {} ({}, {})", job.scenePath.string(),
                                       loaded->resolved.family, depthLabel(loaded->scene.subdivision)));
     outcome.compiled = compileScene(*loaded, copts, diags);
@@ -464,6 +463,7 @@ JobOutcome runSceneJob(const SceneJob& job, Diagnostics& diags, const ProgressFn
     }
     req.threads = job.threads;
     req.sandbox = job.sandbox;
+    req.timeoutSeconds = still.timeoutS;
     outcome.render = render::renderPov(req, [&](const render::RenderProgress& p) {
         say(Stage::Rendering, p.text, p.percent);
     });

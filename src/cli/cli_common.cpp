@@ -46,9 +46,6 @@ fs::path findTemplates(const std::string& option) {
     return RELIEF_SOURCE_TEMPLATES_DIR;
 }
 
-void ensureParent(const fs::path& file) {
-    if (file.has_parent_path()) fs::create_directories(file.parent_path());
-}
 
 
 // KEY=VALUE strings -> scene overrides (`section.key=value`).

@@ -13,6 +13,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "core/atomic_file.h"
 #include "core/diagnostics.h"
 #include "pipeline.h"
 #include "scene/read_scene.h"
@@ -61,8 +62,6 @@ void printDiagnostics(const Diagnostics& diags, bool wrote);
 /// Where the templates are: --templates, $RELIEF_TEMPLATES, the installed
 /// share/relief/templates beside the binary, or the source tree.
 fs::path findTemplates(const std::string& option);
-
-void ensureParent(const fs::path& file);
 
 /// One status line, rewritten in place on a terminal, where a task with a
 /// percentage also shows the seconds spent and an estimate of those left; in

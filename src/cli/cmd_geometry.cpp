@@ -110,7 +110,7 @@ int runProfile(const ProfileOptions& o) {
     fs::path curveRefined = svg, curveNet = svg;
     curveRefined.replace_extension(".json");
     curveNet.replace_filename(svg.stem().string() + "-net.json");
-    ensureParent(svg);
+    createParentFolder(svg);
     double exaggeration = 0;
     const std::string refinedLabel =
         fmt::format("refined: {} depth {} ({})", loaded->resolved.family, surface->depth,
@@ -194,7 +194,7 @@ int runCompareGeometry(const CompareGeometryOptions& o) {
     }
     printDiagnostics(diags, true);
     if (!o.map.empty()) {
-        ensureParent(o.map);
+        createParentFolder(o.map);
         relief::writeFileAtomically(o.map, relief::measure::comparisonMapSvg(*result, o.a, o.b, A.frame().describe()));
         std::cerr << "wrote " << o.map << '\n';
     }

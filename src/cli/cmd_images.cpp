@@ -78,7 +78,7 @@ int runDiff(const DiffOptions& o) {
     using relief::compare::Verdict;
     const auto d = relief::compare::compareImages(o.a, o.b, o.t);
     if (!o.diffImage.empty() && (d.verdict != Verdict::FileError && d.verdict != Verdict::NotComparable)) {
-        ensureParent(o.diffImage);
+        createParentFolder(o.diffImage);
         const std::string err = relief::compare::writeDifferenceImage(o.a, o.b, o.diffImage);
         if (!err.empty()) {
             std::cerr << "relief: error: " << err << '\n';

@@ -198,7 +198,7 @@ int runCurve(const CurveOptions& o) {
     const fs::path svgPath = o.output.empty()
                                  ? fs::path("out") / (fs::path(o.polygon).stem().string() + ".svg")
                                  : fs::path(o.output);
-    ensureParent(svgPath);
+    createParentFolder(svgPath);
     relief::writeFileAtomically(svgPath, figure->svg);
     std::cerr << "wrote " << svgPath.string() << '\n';
     if (!o.points.empty()) {
@@ -206,7 +206,7 @@ int runCurve(const CurveOptions& o) {
             fs::path p = o.points;
             if (refinedFiles.size() > 1)
                 p = p.parent_path() / fmt::format("{}.{}{}", p.stem().string(), i + 1, p.extension().string());
-            ensureParent(p);
+            createParentFolder(p);
             relief::writeFileAtomically(p, relief::curves::curveFileJson(refinedFiles[i]));
             std::cerr << "wrote " << p.string() << " (" << refinedFiles[i].points.size() << " points)\n";
         }

@@ -1,10 +1,12 @@
 #include "core/atomic_file.h"
 
+#include <signal.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <cstring>
 #include <fstream>
+#include <regex>
 #include <sstream>
 #include <stdexcept>
 
@@ -37,8 +39,9 @@ void AtomicFile::write(std::string_view bytes) {
 }
 
 void AtomicFile::commit() {
-    const bool ok = std::fflush(file_) == 0 && ::fsync(::fileno(file_)) == 0;
-    const int err = errno;
+    // A writer that went through stream() left its errors in the stream (a full disk: ENOSPC).
+    const bool ok = std::fflush(file_) == 0 && !std::ferror(file_) && ::fsync(::fileno(file_)) == 0;
+    const int err = errno != 0 ? errno : EIO;
     const bool closed = std::fclose(file_) == 0;
     file_ = nullptr;
     if (!ok || !closed)
@@ -72,6 +75,31 @@ std::string writeThroughTemporary(const std::filesystem::path& path,
     }
     if (!error.empty()) std::filesystem::remove(temp, ec);
     return error;
+}
+
+void createParentFolder(const std::filesystem::path& file) {
+    if (!file.has_parent_path()) return;
+    std::error_code ec;
+    std::filesystem::create_directories(file.parent_path(), ec);
+    if (ec)
+        throw std::runtime_error(fmt::format("cannot create the folder {} for {}: {}", file.parent_path().string(),
+                                             file.filename().string(), ec.message()));
+}
+
+bool processRunning(long pid) { return pid > 0 && (::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM); }
+
+int removeStaleTemporaries(const std::filesystem::path& folder) {
+    static const std::regex temporary(R"(.*\.tmp-([0-9]+)(\.[A-Za-z0-9]+)?)");
+    int removed = 0;
+    std::error_code ec;
+    for (const auto& entry : std::filesystem::directory_iterator(folder.empty() ? "." : folder, ec)) {
+        std::smatch m;
+        const std::string name = entry.path().filename().string();
+        if (!entry.is_regular_file(ec) || !std::regex_match(name, m, temporary)) continue;
+        if (processRunning(std::stol(m[1].str()))) continue;
+        if (std::filesystem::remove(entry.path(), ec)) ++removed;
+    }
+    return removed;
 }
 
 std::string readFile(const std::filesystem::path& path) {

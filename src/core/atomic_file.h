@@ -44,6 +44,18 @@ void writeFileAtomically(const std::filesystem::path& path, std::string_view byt
 std::string writeThroughTemporary(const std::filesystem::path& path,
                                   const std::function<std::string(const std::filesystem::path&)>& write);
 
+/// Creates the folder `file` goes in (and its parents). Throws
+/// std::runtime_error naming the folder and the system's reason.
+void createParentFolder(const std::filesystem::path& file);
+
+/// Removes the temporary files a killed run left in `folder`: names that end
+/// in ".tmp-<pid>" (optionally followed by an extension) whose process is no
+/// longer running. Returns how many were removed.
+int removeStaleTemporaries(const std::filesystem::path& folder);
+
+/// Whether process `pid` is running (on this machine, in this PID namespace).
+bool processRunning(long pid);
+
 /// Reads a whole file; throws std::runtime_error naming the path on failure.
 std::string readFile(const std::filesystem::path& path);
 

@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <poll.h>
+#include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -30,8 +31,9 @@ namespace {
 class PovrayHome {
 public:
     PovrayHome() {
-        char pattern[] = "/tmp/relief-povray-XXXXXX";
-        if (!::mkdtemp(pattern)) throw std::runtime_error("cannot create a temporary folder");
+        removeStale();
+        std::string pattern = fmt::format("{}/{}{}-XXXXXX", kParent, kPrefix, ::getpid());
+        if (!::mkdtemp(pattern.data())) throw std::runtime_error("cannot create a temporary folder in /tmp");
         dir_ = pattern;
         std::filesystem::create_directories(dir_ / ".povray" / "3.7");
         writeFileAtomically(dir_ / ".povray" / "3.7" / "povray.conf",
@@ -45,6 +47,18 @@ public:
     const std::filesystem::path& dir() const { return dir_; }
 
 private:
+    static constexpr const char* kParent = "/tmp";
+    static constexpr const char* kPrefix = "relief-povray-";
+    // The folders of runs that were killed (their process is gone).
+    static void removeStale() {
+        std::error_code ec;
+        for (const auto& entry : std::filesystem::directory_iterator(kParent, ec)) {
+            const std::string name = entry.path().filename().string();
+            if (name.rfind(kPrefix, 0) != 0) continue;
+            const long pid = std::atol(name.c_str() + std::strlen(kPrefix));
+            if (pid > 0 && !processRunning(pid)) std::filesystem::remove_all(entry.path(), ec);
+        }
+    }
     std::filesystem::path dir_;
 };
 
@@ -234,7 +248,23 @@ RenderResult renderPov(const RenderRequest& req, const ProgressFn& progress) {
     std::deque<std::string> lastLines;
     char buf[4096];
     const std::regex parsing(R"(^Parsing \d+K tokens)");
+    const auto deadline = t0 + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                   std::chrono::duration<double>(req.timeoutSeconds));
+    bool timedOut = false;
     while (true) {
+        if (req.timeoutSeconds > 0) {
+            const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+                deadline - std::chrono::steady_clock::now());
+            pollfd pfd{pipeFd[0], POLLIN, 0};
+            const int ready = left.count() > 0 ? ::poll(&pfd, 1, static_cast<int>(left.count())) : 0;
+            if (ready < 0 && errno == EINTR) continue;
+            if (ready == 0) {
+                // Out of time: the sandbox goes with POV-Ray in it (--die-with-parent).
+                ::kill(pid, SIGKILL);
+                timedOut = true;
+                break;
+            }
+        }
         const ssize_t n = ::read(pipeFd[0], buf, sizeof buf);
         if (n < 0 && errno == EINTR) continue;
         if (n <= 0) break;
@@ -266,6 +296,12 @@ RenderResult renderPov(const RenderRequest& req, const ProgressFn& progress) {
     ::close(pipeFd[0]);
     int status = 0;
     while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    }
+    if (timedOut) {
+        result.error = fmt::format("POV-Ray did not finish within render.timeout_s = {} s and was stopped; "
+                                   "raise the limit, or lower the resolution or subdivision.depth",
+                                   req.timeoutSeconds);
+        return result;
     }
     result.parseSeconds = parseSeconds(log, "Parse Time");
     result.traceSeconds = parseSeconds(log, "Trace Time");

@@ -26,6 +26,7 @@ struct RenderRequest {
     /// private temporary folder it may write (its output); no network, no
     /// other process, no home folder.
     bool sandbox = true;
+    double timeoutSeconds = 0;  ///< POV-Ray is stopped after this long; 0: no limit
     std::vector<std::filesystem::path> inputFiles;  ///< images the .pov reads (drapes), for the sandbox
 };
 

@@ -591,6 +591,7 @@ std::optional<SceneSpec> readScene(const std::filesystem::path& path, Diagnostic
         if (auto v = s.integer("width", 16, 16384, "pixels")) scene.render.width = *v;
         if (auto v = s.integer("height", 16, 16384, "pixels")) scene.render.height = *v;
         if (auto v = s.boolean("antialias")) scene.render.antialias = *v;
+        if (auto v = s.number("timeout_s", 0, 1e7, "seconds (0: no limit)")) scene.render.timeoutS = *v;
         if (auto v = s.string("output")) {
             if (v->size() < 5 || v->substr(v->size() - 4) != ".png")
                 s.error("output", fmt::format("render.output = \"{}\" must name a .png file", *v));

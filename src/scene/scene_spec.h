@@ -163,6 +163,7 @@ struct RenderSpec {
     int height = 600;
     bool antialias = true;
     std::string output;  ///< "" = out/<scene stem>.png
+    double timeoutS = 0; ///< POV-Ray stopped after this long; 0 = no limit
     KeyLocations locs;
 };
 
