@@ -9,6 +9,7 @@
 
 #include "core/atomic_file.h"
 #include "core/number_format.h"
+#include "emit/adaptive_mesh.h"
 #include "emit/height_field.h"
 #include "emit/mesh.h"
 #include "geo/raster.h"
@@ -113,7 +114,12 @@ emit::ParameterList describe(const scene::SceneSpec& s, const geo::ControlNet& n
     if (compiled.geometry.kind == scene::GeometryKind::HeightField)
         add("geometry.height_field", fmt::format("{}, 16-bit, one level = {:.3g} m", compiled.heightPng.filename().string(),
                                                  compiled.heightStepM));
-    if (compiled.maskedNodes > 0)
+    if (compiled.geometry.kind == scene::GeometryKind::Adaptive)
+        add("geometry.adaptive", fmt::format("{} triangles of the full mesh2's {:.0f}, vertical error at most {:.3g} m "
+                                             "({:.2g} px)",
+                                             compiled.meshTriangles, est.triangles, compiled.adaptiveToleranceM,
+                                             compiled.adaptiveTolerancePx));
+    else if (compiled.maskedNodes > 0)
         add("mesh.with_data", fmt::format("{} vertices, {} triangles (masked nodata left out)",
                                           compiled.meshVertices, compiled.meshTriangles));
     add("texture.ramp", look.ramp.preset);
@@ -191,7 +197,19 @@ std::optional<CompileResult> compileScene(const LoadedScene& loaded,
         result.meshVertices = static_cast<long long>(refined.grid.points.size());
         result.meshTriangles = gridMeshSize(refined.rows(), refined.cols()).triangles;
     } else {
-        mesh = emit::buildMesh(refined, spec.look);
+        if (surface->geometry.kind == scene::GeometryKind::Adaptive) {
+            // The tolerance in metres: given, or half a pixel (by default) where the terrain is
+            // nearest the camera, in true (not exaggerated) metres.
+            const scene::GeometrySpec& g = spec.geometry;
+            const emit::ScenePlacement placed = emit::placeTerrain(refined, spec.look);
+            const double pixelM = emit::finestMetresPerPixel(emit::placeCamera(placed, spec.look, spec.render), placed,
+                                                             spec.render.width);
+            result.adaptiveToleranceM = g.toleranceM > 0 ? g.toleranceM : g.tolerancePx * pixelM / spec.look.exaggeration;
+            result.adaptiveTolerancePx = result.adaptiveToleranceM * spec.look.exaggeration / pixelM;
+            mesh = emit::buildAdaptiveMesh(refined, spec.look, result.adaptiveToleranceM);
+        } else {
+            mesh = emit::buildMesh(refined, spec.look);
+        }
         where = *mesh;
         result.meshVertices = static_cast<long long>(mesh->positions.size());
         result.meshTriangles = mesh->triangles;
@@ -537,6 +555,11 @@ std::string sidecarJson(const CompileResult& c, const OutputPaths& paths,
     j["seconds"] = times;
     j["geometry"] = {{"kind", emit::geometryKindName(c.geometry.kind)}, {"reason", c.geometry.reason}};
     if (!c.heightPng.empty()) j["geometry"]["height_step_m"] = c.heightStepM;
+    if (c.geometry.kind == scene::GeometryKind::Adaptive) {
+        j["geometry"]["tolerance_m"] = c.adaptiveToleranceM;
+        j["geometry"]["tolerance_px"] = c.adaptiveTolerancePx;
+    }
+    j["geometry"]["triangles"] = c.meshTriangles;
     j["outputs"] = {{"pov", paths.pov.string()}};
     if (!c.heightPng.empty()) {
         j["outputs"]["height_png"] = c.heightPng.string();

@@ -104,6 +104,7 @@ struct CompileResult {
     emit::GeometryChoice geometry;
     std::filesystem::path heightPng, drapePng;      ///< the height field's PNGs, beside the .pov
     double heightStepM = 0;                         ///< its vertical quantization
+    double adaptiveToleranceM = 0, adaptiveTolerancePx = 0;  ///< the adaptive mesh's bound
     long long meshVertices = 0, meshTriangles = 0;  ///< as emitted: masked nodes left out
     size_t maskedNodes = 0;                         ///< refined nodes without data
 };

@@ -10,6 +10,7 @@ const char* geometryKindName(scene::GeometryKind kind) {
     switch (kind) {
         case scene::GeometryKind::Auto: return "auto";
         case scene::GeometryKind::Mesh2: return "mesh2";
+        case scene::GeometryKind::Adaptive: return "adaptive";
         case scene::GeometryKind::HeightField: return "height_field";
     }
     return "?";
@@ -24,6 +25,8 @@ std::optional<GeometryChoice> chooseGeometry(const scene::GeometrySpec& spec, co
     const double halfPixelM = 0.5 * facts.extentM / facts.widthPx;
     const double parseSeconds = facts.triangles * subdiv::kParseSecondsPerTriangle;
     if (spec.kind == GeometryKind::Mesh2) return GeometryChoice{GeometryKind::Mesh2, "geometry.kind = \"mesh2\""};
+    if (spec.kind == GeometryKind::Adaptive)
+        return GeometryChoice{GeometryKind::Adaptive, "geometry.kind = \"adaptive\""};
     if (spec.kind == GeometryKind::HeightField) {
         const SourceLoc at = spec.locs.has("geometry.kind") ? spec.locs.at("geometry.kind") : SourceLoc{};
         if (facts.masked) {
@@ -39,12 +42,16 @@ std::optional<GeometryChoice> chooseGeometry(const scene::GeometrySpec& spec, co
         }
         return GeometryChoice{GeometryKind::HeightField, "geometry.kind = \"height_field\""};
     }
-    if (facts.masked)
-        return GeometryChoice{GeometryKind::Mesh2, "auto: nodes without data are left out, which only a mesh2 can"};
     if (parseSeconds <= kQuickParseSeconds)
         return GeometryChoice{GeometryKind::Mesh2,
                               fmt::format("auto: POV-Ray parses its {:.3g} triangles in about {:.2g} s", facts.triangles,
                                           parseSeconds)};
+    if (facts.masked)
+        return GeometryChoice{GeometryKind::Adaptive,
+                              fmt::format("auto: a mesh2 of {:.3g} triangles would take POV-Ray about {:.0f} s to "
+                                          "parse, and nodes without data are left out, which a height_field "
+                                          "cannot",
+                                          facts.triangles, parseSeconds)};
     if (facts.rough)
         return GeometryChoice{GeometryKind::Mesh2,
                               "auto: the surface is rough (Hölder exponent below 1), where a height_field's "

@@ -35,10 +35,10 @@ struct GeometryChoice {
 /// is worth its exactness; above it, auto takes the height field.
 inline constexpr double kQuickParseSeconds = 1.0;
 
-/// The kind the scene asks for, or auto's choice: mesh2 when the grid has
-/// holes, when POV-Ray parses the mesh2 within kQuickParseSeconds, when the
-/// surface is rough, or when 16-bit heights would be coarser than half a
-/// pixel; else the height field.
+/// The kind the scene asks for, or auto's choice: the mesh2 when POV-Ray
+/// parses it within kQuickParseSeconds; else the adaptive mesh when the grid
+/// has holes; the mesh2 when the surface is rough or 16-bit heights would be
+/// coarser than half a pixel; else the height field.
 /// An explicit height_field that cannot be (holes; too coarse) is an error at
 /// geometry.kind.
 std::optional<GeometryChoice> chooseGeometry(const scene::GeometrySpec& spec, const GeometryFacts& facts,

@@ -55,7 +55,10 @@ struct Mesh : ScenePlacement {
     /// Per grid node: its vertex, or kNoVertex for a masked node (no data);
     /// empty when every node is a vertex, node i being vertex i.
     std::vector<std::uint32_t> vertexOfNode;
-    long long triangles = 0;      ///< two per cell, less those touching a masked node
+    long long triangles = 0;      ///< two per cell, less those touching a masked node (or faces.size())
+    /// Explicit triangles (vertex indices, counter-clockwise from above), for a
+    /// mesh that is not the lattice's cells (the adaptive kind); empty: two per cell.
+    std::vector<std::array<std::uint32_t, 3>> faces;
     std::vector<Vec3> positions;  ///< per vertex: scene units, relative to `originM`
     std::vector<Vec3> normals;    ///< unit length, scene axes
     std::vector<unsigned char> palette;  ///< per vertex: index into paletteColors

@@ -147,7 +147,12 @@ size_t writeMesh2(const Mesh& mesh, std::FILE* out, const WriteProgressFn& progr
         w->commit(p);
     };
     const auto& vertexOf = mesh.vertexOfNode;
-    for (size_t r = 0; r + 1 < static_cast<size_t>(mesh.rows); ++r) {
+    const size_t faceStep = std::max<size_t>(mesh.faces.size() / 100, 1);
+    for (size_t i = 0; i < mesh.faces.size(); ++i) {
+        if (i % faceStep == 0) report(0.5 + 0.5 * static_cast<double>(i) / mesh.faces.size());
+        face(mesh.faces[i][0], mesh.faces[i][1], mesh.faces[i][2]);
+    }
+    for (size_t r = 0; mesh.faces.empty() && r + 1 < static_cast<size_t>(mesh.rows); ++r) {
         report(0.5 + 0.5 * static_cast<double>(r) / mesh.rows);
         for (size_t c = 0; c + 1 < cols; ++c) {
             // South-west, south-east, north-east, north-west corners of the quad, cut
@@ -181,15 +186,8 @@ std::string sdlCommentText(std::string_view text) {
     return out;
 }
 
-Bindings sceneBindings(const ScenePlacement& where, GeometryWriter geometry, const scene::LookSpec& look,
-                       const scene::RenderSpec& render, const ParameterList& header) {
+CameraView placeCamera(const ScenePlacement& where, const scene::LookSpec& look, const scene::RenderSpec& render) {
     const scene::CameraSpec& camera = look.camera;
-    Bindings b;
-    std::string head;
-    for (const auto& [key, value] : header)
-        head += fmt::format("// {}: {}\n", sdlCommentText(key), sdlCommentText(value));
-    b["header"].text = head;
-
     const Vec3 lo = where.boundsMin, hi = where.boundsMax;
     const Vec3 target{0.5 * (lo.x + hi.x), 0.5 * (lo.y + hi.y), 0.5 * (lo.z + hi.z)};
     const double radius = 0.5 * length(hi - lo);
@@ -215,19 +213,50 @@ Bindings sceneBindings(const ScenePlacement& where, GeometryWriter geometry, con
     fitDistance *= 1.06;
     const double distance =
         camera.distanceM > 0 ? camera.distanceM / where.metresPerUnit : fitDistance;
-    const Vec3 eye = target + distance * back;
-    b["camera_location"].text = vec(eye);
+    CameraView view;
+    view.eye = target + distance * back;
+    view.target = target;
+    view.radius = radius;
+    view.aspect = aspect;
+    view.tanHalfFov = tanH;
+    view.perspective = camera.projection == scene::Projection::Perspective;
+    view.orthoHeight = 2.1 * radius;
+    return view;
+}
+
+double finestMetresPerPixel(const CameraView& view, const ScenePlacement& where, int widthPx) {
+    if (!view.perspective) return view.orthoHeight * view.aspect * where.metresPerUnit / widthPx;
+    // The terrain's nearest point to the eye: there one pixel covers the least ground.
+    const Vec3 lo = where.boundsMin, hi = where.boundsMax;
+    const Vec3 nearest{std::clamp(view.eye.x, lo.x, hi.x), std::clamp(view.eye.y, lo.y, hi.y),
+                       std::clamp(view.eye.z, lo.z, hi.z)};
+    const double distance = std::max(length(view.eye - nearest), 1e-9);
+    return 2 * distance * view.tanHalfFov * where.metresPerUnit / widthPx;
+}
+
+Bindings sceneBindings(const ScenePlacement& where, GeometryWriter geometry, const scene::LookSpec& look,
+                       const scene::RenderSpec& render, const ParameterList& header) {
+    const scene::CameraSpec& camera = look.camera;
+    Bindings b;
+    std::string head;
+    for (const auto& [key, value] : header)
+        head += fmt::format("// {}: {}\n", sdlCommentText(key), sdlCommentText(value));
+    b["header"].text = head;
+
+    const CameraView view = placeCamera(where, look, render);
+    const Vec3 target = view.target;
+    const double radius = view.radius;
+    b["camera_location"].text = vec(view.eye);
     b["camera_look_at"].text = vec(target);
-    if (camera.projection == scene::Projection::Perspective) {
+    if (view.perspective) {
         b["camera_projection"].text = std::string("perspective");
-        b["camera_right"].text = fmt::format("x*{}", num(aspect));
+        b["camera_right"].text = fmt::format("x*{}", num(view.aspect));
         b["camera_up"].text = std::string("y");
         b["camera_angle"].text = fmt::format("angle {}", num(camera.fovDeg));
     } else {
-        const double h = 2.1 * radius;
         b["camera_projection"].text = "orthographic";
-        b["camera_right"].text = fmt::format("x*{}", num(h * aspect));
-        b["camera_up"].text = fmt::format("y*{}", num(h));
+        b["camera_right"].text = fmt::format("x*{}", num(view.orthoHeight * view.aspect));
+        b["camera_up"].text = fmt::format("y*{}", num(view.orthoHeight));
         b["camera_angle"].text = "";
     }
     const Vec3 sunDir = direction(look.sunAzimuthDeg, look.sunAltitudeDeg);

@@ -33,6 +33,23 @@ size_t writeMesh2(const Mesh& mesh, std::FILE* out, const WriteProgressFn& progr
 /// \xNN, so nothing can end the comment and become a directive.
 std::string sdlCommentText(std::string_view text);
 
+/// Where relief puts the camera: on an orbit around the terrain's centre at
+/// the scene's azimuth and elevation, at the scene's distance or the nearest
+/// that keeps the terrain's bounding box in view (scene units and axes).
+struct CameraView {
+    Vec3 eye, target;
+    double radius = 0;      ///< of the bounding box
+    double aspect = 1;      ///< width / height
+    double tanHalfFov = 0;  ///< horizontal
+    bool perspective = true;
+    double orthoHeight = 0; ///< orthographic: the view's height
+};
+CameraView placeCamera(const ScenePlacement& where, const scene::LookSpec& look, const scene::RenderSpec& render);
+
+/// Metres of terrain one pixel of a still `widthPx` wide covers at the
+/// terrain's nearest point to the eye (the finest detail the still can show).
+double finestMetresPerPixel(const CameraView& view, const ScenePlacement& where, int widthPx);
+
 /// Writes the terrain's geometry (a mesh2, a height_field) into the .pov.
 using GeometryWriter = std::function<void(std::FILE* out)>;
 

@@ -578,10 +578,13 @@ std::optional<SceneSpec> readScene(const std::filesystem::path& path, Diagnostic
     // [geometry]
     {
         Section s = sectionInto("geometry", scene.geometry.locs);
-        if (auto k = s.choice("kind", {"auto", "mesh2", "height_field"}))
-            scene.geometry.kind = *k == "auto"    ? GeometryKind::Auto
-                                  : *k == "mesh2" ? GeometryKind::Mesh2
-                                                  : GeometryKind::HeightField;
+        if (auto k = s.choice("kind", {"auto", "mesh2", "adaptive", "height_field"}))
+            scene.geometry.kind = *k == "auto"       ? GeometryKind::Auto
+                                  : *k == "mesh2"    ? GeometryKind::Mesh2
+                                  : *k == "adaptive" ? GeometryKind::Adaptive
+                                                     : GeometryKind::HeightField;
+        if (auto v = s.number("tolerance_px", 0, 100, "pixels", true)) scene.geometry.tolerancePx = *v;
+        if (auto v = s.number("tolerance_m", 0, 1e4, "metres", true)) scene.geometry.toleranceM = *v;
         s.finish();
     }
 

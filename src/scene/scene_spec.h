@@ -168,15 +168,17 @@ struct RenderSpec {
 };
 
 /// What the terrain becomes in the .pov. Mesh2: every refined node a vertex
-/// (exact, the reference). HeightField: the refined lattice as a 16-bit PNG
-/// POV-Ray reads in a fraction of the time (heights quantized to 1/65535 of
-/// their range). Auto: mesh2 while POV-Ray would parse it quickly, else the
-/// height field (emit/geometry_kind.h says when).
-enum class GeometryKind { Auto, Mesh2, HeightField };
+/// (exact, the reference). Adaptive: a mesh2 of the refined surface within a
+/// tolerance (emit/adaptive_mesh.h). HeightField: the refined lattice as a
+/// 16-bit PNG POV-Ray reads in a fraction of the time (heights quantized to
+/// 1/65535 of their range). Auto: chosen by emit::chooseGeometry.
+enum class GeometryKind { Auto, Mesh2, Adaptive, HeightField };
 
 /// [geometry]
 struct GeometrySpec {
     GeometryKind kind = GeometryKind::Auto;
+    double tolerancePx = 0.1;  ///< adaptive: the largest vertical error, in pixels at the nearest terrain
+    double toleranceM = 0;     ///< adaptive: the same in metres, instead; 0 = use tolerancePx
     KeyLocations locs;
 };
 

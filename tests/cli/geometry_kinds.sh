@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Every geometry kind against the full mesh2 (the reference), on real scenes at their own size:
-# the two stills must pass relief diff at --fail 0.04 --failpercent 0.5 (no more than 0.5 % of the
-# pixels off by over 4 %). Then what auto chooses: the height field for the default scene (a
+# the stills must pass relief diff at --fail 0.04 --failpercent 0.5 (no more than 0.5 % of the
+# pixels off by over 4 %); the adaptive mesh's triangles and POV-Ray's parse time are printed
+# against the mesh2's. Then what auto chooses: the height field for the default scene (a
 # mesh2 of 886,600 triangles), the mesh2 for a rough surface (mountain-sharp) and for a small one.
 # Usage: geometry_kinds.sh RELIEF SOURCE_DIR WORK_DIR
 set -u
@@ -10,16 +11,21 @@ command -v povray >/dev/null || { echo "SKIP: povray is not installed"; exit 77;
 rm -rf "$work" && mkdir -p "$work" || exit 1
 status=0
 for scene in default mt-eden-lidar castilla-y-leon mountain-gentle; do
-  for kind in mesh2 height_field; do
+  for kind in mesh2 height_field adaptive; do
     "$relief" render -q "$src/scenes/$scene.toml" --set geometry.kind=$kind -o "$work/$scene-$kind.png" ||
       { echo "FAIL: $scene ($kind) did not render"; status=1; continue 2; }
   done
-  "$relief" diff "$work/$scene-mesh2.png" "$work/$scene-height_field.png" --fail 0.04 --failpercent 0.5 \
-    > "$work/$scene.diff.txt"
-  code=$?
-  echo "$scene, height_field against mesh2: $(grep -E '^  all ' "$work/$scene.diff.txt" | awk '{print "max error " $2 ", PSNR " $NF " dB"}');" \
-       "$(grep -o '[0-9]* pixels ([0-9.]* %) over fail 0.04' "$work/$scene.diff.txt")"
-  [ "$code" -le 1 ] || { echo "FAIL: $scene: the height field's still is not the mesh2's"; cat "$work/$scene.diff.txt"; status=1; }
+  for kind in height_field adaptive; do
+    "$relief" diff "$work/$scene-mesh2.png" "$work/$scene-$kind.png" --fail 0.04 --failpercent 0.5 \
+      > "$work/$scene-$kind.diff.txt"
+    code=$?
+    echo "$scene, $kind against mesh2: $(grep -E '^  all ' "$work/$scene-$kind.diff.txt" | awk '{print "max error " $2 ", PSNR " $NF " dB"}');" \
+         "$(grep -o '[0-9]* pixels ([0-9.]* %) over fail 0.04' "$work/$scene-$kind.diff.txt")"
+    [ "$code" -le 1 ] || { echo "FAIL: $scene: the $kind still is not the mesh2's"; cat "$work/$scene-$kind.diff.txt"; status=1; }
+  done
+  parse() { sed -n 's/^ *"povray_parse": \([0-9.]*\),*$/\1/p' "$1"; }
+  triangles() { sed -n 's/^ *"triangles": \([0-9]*\),*$/\1/p' "$1" | tail -1; }
+  echo "$scene, adaptive: $(triangles "$work/$scene-adaptive.json") triangles against $(triangles "$work/$scene-mesh2.json"), POV-Ray parse $(parse "$work/$scene-adaptive.json") s against $(parse "$work/$scene-mesh2.json") s"
 done
 kind_of() { sed -n 's/^ *"kind": "\(.*\)",*$/\1/p' "$1" | head -1; }
 "$relief" compile -q "$src/scenes/default.toml" -o "$work/auto/default.pov" || status=1
@@ -29,5 +35,5 @@ kind_of() { sed -n 's/^ *"kind": "\(.*\)",*$/\1/p' "$1" | head -1; }
 [ "$(kind_of "$work/auto/sharp.json")" = mesh2 ] || { echo "FAIL: auto took the height field for a rough surface"; status=1; }
 "$relief" compile -q "$src/tests/golden/small/scene.toml" -o "$work/auto/small.pov" || status=1
 [ "$(kind_of "$work/auto/small.json")" = mesh2 ] || { echo "FAIL: auto took the height field for a small mesh"; status=1; }
-[ "$status" = 0 ] && echo "every height field matches its mesh2; auto chose as expected"
+[ "$status" = 0 ] && echo "every height field and adaptive mesh matches its mesh2; auto chose as expected"
 exit $status

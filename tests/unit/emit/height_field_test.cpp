@@ -118,9 +118,12 @@ TEST(GeometryKind, AutoAndExplicitChoices) {
     GeometryFacts small = big;
     small.triangles = 2e5;  // 0.8 s of parsing
     EXPECT_EQ(chooseGeometry({}, small, diags)->kind, scene::GeometryKind::Mesh2);
-    GeometryFacts holes = big;
+    GeometryFacts holes = big;  // a height field has none: the adaptive mesh
     holes.masked = true;
-    EXPECT_EQ(chooseGeometry({}, holes, diags)->kind, scene::GeometryKind::Mesh2);
+    EXPECT_EQ(chooseGeometry({}, holes, diags)->kind, scene::GeometryKind::Adaptive);
+    GeometryFacts smallHoles = small;
+    smallHoles.masked = true;
+    EXPECT_EQ(chooseGeometry({}, smallHoles, diags)->kind, scene::GeometryKind::Mesh2);
     GeometryFacts rough = big;
     rough.rough = true;
     EXPECT_EQ(chooseGeometry({}, rough, diags)->kind, scene::GeometryKind::Mesh2);
@@ -141,6 +144,8 @@ TEST(GeometryKind, AutoAndExplicitChoices) {
               "kind = \"mesh2\", or nodata = \"fill\" in [samples]");
     EXPECT_FALSE(chooseGeometry(asked, coarse, diags));
     EXPECT_EQ(diags.errorCount(), 2);
+    asked.kind = scene::GeometryKind::Adaptive;
+    EXPECT_EQ(chooseGeometry(asked, holes, diags)->kind, scene::GeometryKind::Adaptive);
 }
 
 }  // namespace
