@@ -7,11 +7,9 @@
 # resampled to 1,000 x 1,000 cells of 1.44 m (cubic) in its own CRS.
 # Needs gdal-bin (gdalwarp, gdalinfo) and bc, which relief itself does not.
 # Usage: bench/raster_vs_gdalwarp.sh [build/relief] [raster]
-set -euo pipefail
+source "$(dirname "$0")/common.sh"
 relief=$(realpath "${1:-build/relief}")
 raster=$(realpath "${2:-../shared/data/rasters/volcano2hires.tif}")
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
 cd "$work"
 gdalwarp -q -ts 1000 1000 -r cubic "$raster" dem.tif
 cell=$(gdalinfo dem.tif | sed -n 's/^Pixel Size = (\([0-9.]*\),.*/\1/p')
@@ -24,7 +22,6 @@ zone=$(sed -n 's/.*"frame": "UTM zone \([0-9]*\)\([NS]\)".*/\1 \2/p' net.json | 
 epsg=$(awk -v z="${zone% *}" -v h="${zone#* }" 'BEGIN {print (h == "N" ? 32600 : 32700) + z}')
 ext=$(awk -v x0="$x0" -v y0="$y0" -v r="$rows" -v c="$cols" -v d="$cell" \
       'BEGIN {printf "%.6f %.6f %.6f %.6f", x0 - d / 2, y0 - d / 2, x0 + (c - 0.5) * d, y0 + (r - 0.5) * d}')
-time_of() { local t0 t1; t0=$(date +%s.%N); "$@" >/dev/null 2>&1; t1=$(date +%s.%N); echo "$t1 - $t0" | bc -l; }
 r=(); s=(); g=()
 for run in 1 2 3 4 5; do
   r+=("$(time_of "$relief" compile -q scene.toml -o run.pov)")
@@ -32,7 +29,6 @@ for run in 1 2 3 4 5; do
   # shellcheck disable=SC2086
   g+=("$(time_of gdalwarp -q -overwrite -t_srs "EPSG:$epsg" -te $ext -ts "$cols" "$rows" -r bilinear -ot Float64 dem.tif warped.tif)")
 done
-median() { printf '%s\n' "$@" | sort -g | sed -n 3p; }
 rm=$(median "${r[@]}"); sm=$(median "${s[@]}"); gm=$(median "${g[@]}")
 printf '1000 x 1000 cells of %s m onto %s x %s nodes (EPSG:%s)\n' "$cell" "$rows" "$cols" "$epsg"
 printf 'relief compile (depth 0), whole process: %.3f s (its .pov: %s bytes)\n' "$rm" "$(stat -c %s run.pov)"

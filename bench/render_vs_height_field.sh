@@ -8,14 +8,10 @@
 # The DEMs: ../shared/data/rasters/holyroodpark.tif on a 1.7 m net and volcano2hires.tif on a
 # 1,025 x 1,025 net, both at depth 1. Needs povray and bc.
 # Usage: bench/render_vs_height_field.sh [build/relief] [rasters folder]
-set -euo pipefail
+source "$(dirname "$0")/common.sh"
 relief=$(realpath "${1:-build/relief}")
 rasters=$(realpath "${2:-../shared/data/rasters}")
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
 cd "$work"
-time_of() { local t0 t1; t0=$(date +%s.%N); "$@" >/dev/null 2>&1; t1=$(date +%s.%N); echo "$t1 - $t0" | bc -l; }
-median() { printf '%s\n' "$@" | sort -g | sed -n 2p; }
 one_case() {  # name raster net-keys
   local name=$1 raster=$2 net=$3
   printf '[samples]\npath = "%s"\nvertical_unit = "m"\n[net]\n%s\n[subdivision]\nscheme = "four-point-4p"\ndepth = 1\n[render]\nwidth = 1280\nheight = 720\n' \

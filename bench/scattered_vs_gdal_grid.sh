@@ -5,11 +5,9 @@
 # alternating, 5 runs each; prints each median and the ratio of the medians.
 # Needs gdal-bin (gdal_translate, gdaltransform, gdal_grid), which relief itself does not.
 # Usage: bench/scattered_vs_gdal_grid.sh [build/relief] [raster]
-set -euo pipefail
+source "$(dirname "$0")/common.sh"
 relief=$(realpath "${1:-build/relief}")
 raster=$(realpath "${2:-../shared/data/rasters/holyroodpark.tif}")
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
 cd "$work"
 gdal_translate -q -of XYZ "$raster" cells.xyz
 awk '$3 != "nan" && $3 != "-nan"' cells.xyz > valid.xyz
@@ -26,14 +24,12 @@ cols=$(sed -n 's/^ *"cols": \([0-9]*\),/\1/p' net.json | head -1)
 printf '<OGRVRTDataSource><OGRVRTLayer name="utm"><SrcDataSource>%s/utm.csv</SrcDataSource><GeometryType>wkbPoint</GeometryType><GeometryField encoding="PointFromColumns" x="x" y="y" z="z"/></OGRVRTLayer></OGRVRTDataSource>\n' "$work" > utm.vrt
 ext=$(awk -v x0="$x0" -v y0="$y0" -v r="$rows" -v c="$cols" \
       'BEGIN {printf "-txe %.6f %.6f -tye %.6f %.6f", x0 - 1.25, x0 + (c - 0.5) * 2.5, y0 - 1.25, y0 + (r - 0.5) * 2.5}')
-time_of() { local t0 t1; t0=$(date +%s.%N); "$@" >/dev/null 2>&1; t1=$(date +%s.%N); echo "$t1 - $t0" | bc -l; }
 r=(); g=()
 for run in 1 2 3 4 5; do
   r+=("$(time_of "$relief" compile -q scene.toml -o run.pov)")
   # shellcheck disable=SC2086
   g+=("$(time_of gdal_grid -q -a linear:radius=0 $ext -outsize "$cols" "$rows" -ot Float64 utm.vrt grid.tif)")
 done
-median() { printf '%s\n' "$@" | sort -g | sed -n 3p; }
 rm=$(median "${r[@]}"); gm=$(median "${g[@]}")
 printf '%d points onto %s x %s nodes\nrelief compile (depth 0): %.2f s\ngdal_grid -a linear:     %.2f s\nratio relief / gdal_grid: %.2f\n' \
   "$(($(wc -l < points.csv) - 1))" "$rows" "$cols" "$rm" "$gm" "$(echo "$rm / $gm" | bc -l)"

@@ -171,20 +171,12 @@ Mesh buildAdaptiveMesh(const geo::GeoGrid& refined, const scene::LookSpec& look,
     mesh.positions.resize(next);
     mesh.normals.resize(next);
     mesh.palette.resize(next);
-    auto scenePoint = [&](int r, int c) { return mesh.scenePoint(g.at(r, c)); };
     for (int r = 0; r < g.rows; ++r)
         for (int c = 0; c < g.cols; ++c) {
             const std::uint32_t v = mesh.vertexOfNode[static_cast<size_t>(r) * g.cols + c];
             if (v == Mesh::kNoVertex) continue;
-            // The full surface's normal: central differences over the refined lattice.
-            const int c0 = c > 0 && !refined.isMasked(r, c - 1) ? c - 1 : c;
-            const int c1 = c + 1 < g.cols && !refined.isMasked(r, c + 1) ? c + 1 : c;
-            const int r0 = r > 0 && !refined.isMasked(r - 1, c) ? r - 1 : r;
-            const int r1 = r + 1 < g.rows && !refined.isMasked(r + 1, c) ? r + 1 : r;
-            const Vec3 n = cross(scenePoint(r1, c) - scenePoint(r0, c), scenePoint(r, c1) - scenePoint(r, c0));
-            const double len = length(n);
-            mesh.positions[v] = scenePoint(r, c);
-            mesh.normals[v] = len > 0 ? (1.0 / len) * n : Vec3{0, 1, 0};
+            mesh.positions[v] = mesh.scenePoint(g.at(r, c));
+            mesh.normals[v] = surfaceNormal(refined, mesh, r, c);  // of the full surface
             mesh.palette[v] = paletteIndex(g.at(r, c).z);
         }
 

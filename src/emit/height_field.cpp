@@ -3,10 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
 
-#include "core/atomic_file.h"
+#include "core/png_file.h"
 #include "core/number_format.h"
 
 namespace relief::emit {
@@ -40,15 +39,7 @@ HeightField quantizeHeights(const geo::GeoGrid& refined) {
 }
 
 std::string writeHeightFieldPng(const HeightField& field, const std::filesystem::path& png) {
-    OIIO::ImageSpec spec(field.cols, field.rows, 1, OIIO::TypeDesc::UINT16);
-    spec.attribute("png:compressionLevel", kPngCompression);
-    return writeThroughTemporary(png, [&](const std::filesystem::path& temp) {
-        auto output = OIIO::ImageOutput::create(temp.string());
-        if (!output || !output->open(temp.string(), spec) ||
-            !output->write_image(OIIO::TypeDesc::UINT16, field.levels.data()) || !output->close())
-            return output ? output->geterror() : OIIO::geterror();
-        return std::string();
-    });
+    return writePngAtomically(png, {field.cols, field.rows, 1, true, field.levels.data(), kPngCompression});
 }
 
 namespace {
@@ -111,15 +102,7 @@ Drape elevationDrape(const geo::GeoGrid& refined, const ScenePlacement& where) {
 }
 
 std::string writeDrapePng(const Drape& drape, const std::filesystem::path& png) {
-    OIIO::ImageSpec spec(drape.cols, drape.rows, 3, OIIO::TypeDesc::UINT16);
-    spec.attribute("png:compressionLevel", kPngCompression);
-    return writeThroughTemporary(png, [&](const std::filesystem::path& temp) {
-        auto output = OIIO::ImageOutput::create(temp.string());
-        if (!output || !output->open(temp.string(), spec) ||
-            !output->write_image(OIIO::TypeDesc::UINT16, drape.rgb.data()) || !output->close())
-            return output ? output->geterror() : OIIO::geterror();
-        return std::string();
-    });
+    return writePngAtomically(png, {drape.cols, drape.rows, 3, true, drape.rgb.data(), kPngCompression});
 }
 
 std::string siblingPngName(const std::filesystem::path& pov, const std::string& what) {

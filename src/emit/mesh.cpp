@@ -38,6 +38,18 @@ ScenePlacement placeTerrain(const geo::GeoGrid& refined, const scene::LookSpec& 
     return where;
 }
 
+Vec3 surfaceNormal(const geo::GeoGrid& refined, const ScenePlacement& where, int r, int c) {
+    const Grid& g = refined.grid;
+    auto at = [&](int row, int col) { return where.scenePoint(g.at(row, col)); };
+    const int c0 = c > 0 && !refined.isMasked(r, c - 1) ? c - 1 : c;
+    const int c1 = c + 1 < g.cols && !refined.isMasked(r, c + 1) ? c + 1 : c;
+    const int r0 = r > 0 && !refined.isMasked(r - 1, c) ? r - 1 : r;
+    const int r1 = r + 1 < g.rows && !refined.isMasked(r + 1, c) ? r + 1 : r;
+    const Vec3 n = cross(at(r1, c) - at(r0, c), at(r, c1) - at(r, c0));
+    const double len = length(n);
+    return len > 0 ? (1.0 / len) * n : Vec3{0, 1, 0};
+}
+
 Mesh buildMesh(const geo::GeoGrid& refined, const scene::LookSpec& look) {
     const Grid& g = refined.grid;
     Mesh mesh;
@@ -60,10 +72,7 @@ Mesh buildMesh(const geo::GeoGrid& refined, const scene::LookSpec& look) {
             mesh.triangles += (kept(sw) && kept(se) && kept(nw)) + (kept(se) && kept(ne) && kept(nw));
         }
 
-    // Per vertex: position, normal and palette index. Normals in scene axes
-    // from the exaggerated surface; d/dcol runs east, d/drow north, and
-    // cross(north, east) points up in POV-Ray's (x, y, z) = (E, U, N).
-    auto scenePoint = [&](int r, int c) { return mesh.scenePoint(g.at(r, c)); };
+    // Per vertex: position, normal and palette index.
     const double zmin = mesh.zMinM, span = mesh.zMaxM > mesh.zMinM ? mesh.zMaxM - mesh.zMinM : 1.0;
     mesh.positions.resize(vertices);
     mesh.normals.resize(vertices);
@@ -73,16 +82,8 @@ Mesh buildMesh(const geo::GeoGrid& refined, const scene::LookSpec& look) {
         for (int c = 0; c < g.cols; ++c) {
             const size_t i = static_cast<size_t>(r) * g.cols + c;
             if (!kept(i)) continue;
-            const int c0 = c > 0 && !refined.isMasked(r, c - 1) ? c - 1 : c;
-            const int c1 = c + 1 < g.cols && !refined.isMasked(r, c + 1) ? c + 1 : c;
-            const int r0 = r > 0 && !refined.isMasked(r - 1, c) ? r - 1 : r;
-            const int r1 = r + 1 < g.rows && !refined.isMasked(r + 1, c) ? r + 1 : r;
-            const Vec3 east = scenePoint(r, c1) - scenePoint(r, c0);
-            const Vec3 north = scenePoint(r1, c) - scenePoint(r0, c);
-            const Vec3 n = cross(north, east);
-            const double len = length(n);
-            mesh.positions[v] = scenePoint(r, c);
-            mesh.normals[v] = len > 0 ? (1.0 / len) * n : Vec3{0, 1, 0};
+            mesh.positions[v] = mesh.scenePoint(g.at(r, c));
+            mesh.normals[v] = surfaceNormal(refined, mesh, r, c);
             const double t = (g.points[i].z - zmin) / span;
             mesh.palette[v] = static_cast<unsigned char>(
                 std::clamp(std::lround(t * (kPaletteSize - 1)), 0L, long{kPaletteSize - 1}));

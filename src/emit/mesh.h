@@ -48,6 +48,12 @@ inline bool flatRange(double zMinM, double zMaxM) {
 /// the ramp's palette over it.
 ScenePlacement placeTerrain(const geo::GeoGrid& refined, const scene::LookSpec& look);
 
+/// The full surface's normal at node (r, c), in scene axes: central
+/// differences over the refined lattice (one-sided at its edges and next to
+/// masked nodes); d/dcol runs east, d/drow north, and cross(north, east)
+/// points up in POV-Ray's (x, y, z) = (E, U, N).
+Vec3 surfaceNormal(const geo::GeoGrid& refined, const ScenePlacement& where, int r, int c);
+
 /// The terrain as one mesh2: a vertex per refined node with data.
 struct Mesh : ScenePlacement {
     static constexpr std::uint32_t kNoVertex = 0xffffffffu;

@@ -7,7 +7,7 @@
 #include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
 
-#include "core/atomic_file.h"
+#include "core/png_file.h"
 
 namespace relief::render {
 
@@ -18,16 +18,8 @@ std::string writeCanonicalPng(const std::filesystem::path& in, const std::filesy
     std::vector<unsigned char> pixels(src.image_bytes());
     if (!input->read_image(0, 0, 0, src.nchannels, OIIO::TypeDesc::UINT8, pixels.data()))
         return fmt::format("cannot read {}: {}", in.string(), input->geterror());
-    OIIO::ImageSpec spec(src.width, src.height, src.nchannels, OIIO::TypeDesc::UINT8);
     input->close();
-
-    return writeThroughTemporary(out, [&](const std::filesystem::path& temp) {
-        auto output = OIIO::ImageOutput::create(temp.string());
-        if (!output || !output->open(temp.string(), spec) ||
-            !output->write_image(OIIO::TypeDesc::UINT8, pixels.data()) || !output->close())
-            return output ? output->geterror() : OIIO::geterror();
-        return std::string();
-    });
+    return writePngAtomically(out, {src.width, src.height, src.nchannels, false, pixels.data()});
 }
 
 }  // namespace relief::render
