@@ -190,7 +190,7 @@ std::optional<CompileResult> compileScene(const LoadedScene& loaded,
     emit::ScenePlacement where;
     if (heightField) {
         where = emit::placeTerrain(refined, spec.look);
-        field = emit::quantizeHeights(refined);
+        field = emit::quantizeHeights(refined, where);
         result.heightPng = options.povPath.parent_path() / emit::siblingPngName(options.povPath, "height");
         result.drapePng = options.povPath.parent_path() / emit::siblingPngName(options.povPath, "drape");
         result.heightStepM = field->stepM();

@@ -24,8 +24,9 @@ public:
     // blue to green) a large triangle would smear it, so a midpoint whose colour
     // the interpolation misses by more than kColourTolerance forces a split as a
     // node without data does.
-    Rtin(const geo::GeoGrid& grid, std::function<scene::ColorStop(double)> colour)
-        : grid_(grid), cols_(grid.cols()), rows_(grid.rows()), colour_(std::move(colour)) {
+    // Heights are the drawn ones (ScenePlacement::drawnHeight), colours by elevation.
+    Rtin(const geo::GeoGrid& grid, const ScenePlacement& where, std::function<scene::ColorStop(double)> colour)
+        : grid_(grid), where_(where), cols_(grid.cols()), rows_(grid.rows()), colour_(std::move(colour)) {
         size_ = 1;
         while (size_ < std::max(cols_ - 1, rows_ - 1)) size_ *= 2;
         error_.assign(static_cast<size_t>(size_ + 1) * (size_ + 1), 0.0f);
@@ -40,7 +41,8 @@ public:
 
 private:
     size_t index(Node n) const { return static_cast<size_t>(n.y) * (size_ + 1) + n.x; }
-    double z(Node n) const { return grid_.grid.at(n.y, n.x).z; }
+    double z(Node n) const { return where_.drawnHeight(grid_.grid.at(n.y, n.x)); }
+    scene::ColorStop colourOf(Node n) const { return colour_(where_.elevation(grid_.grid.at(n.y, n.x))); }
 
     // The vertical error at midpoint m of hypotenuse (a, b); infinite when the
     // triangle pair around it touches a node without data (the right-angle
@@ -51,7 +53,7 @@ private:
         const bool in1 = c1.x >= 0 && c1.y >= 0 && c1.x <= size_ && c1.y <= size_;
         const bool in2 = c2.x >= 0 && c2.y >= 0 && c2.x <= size_ && c2.y <= size_;
         if ((in1 && !hasData(c1)) || (in2 && !hasData(c2))) return kInf;
-        const scene::ColorStop ca = colour_(z(a)), cb = colour_(z(b)), cm = colour_(z(m));
+        const scene::ColorStop ca = colourOf(a), cb = colourOf(b), cm = colourOf(m);
         const double miss = std::max({std::fabs(cm.r - 0.5 * (ca.r + cb.r)), std::fabs(cm.g - 0.5 * (ca.g + cb.g)),
                                       std::fabs(cm.b - 0.5 * (ca.b + cb.b))});
         if (miss > kColourTolerance) return kInf;
@@ -116,6 +118,7 @@ private:
     }
 
     const geo::GeoGrid& grid_;
+    const ScenePlacement& where_;
     int cols_, rows_;
     std::function<scene::ColorStop(double)> colour_;
     int size_ = 1;
@@ -136,7 +139,7 @@ Mesh buildAdaptiveMesh(const geo::GeoGrid& refined, const scene::LookSpec& look,
         return static_cast<unsigned char>(std::clamp(std::lround((z - zmin) / span * (kPaletteSize - 1)), 0L,
                                                      long{kPaletteSize - 1}));
     };
-    const Rtin rtin(refined, [&](double z) { return mesh.paletteColors[paletteIndex(z)]; });
+    const Rtin rtin(refined, mesh, [&](double z) { return mesh.paletteColors[paletteIndex(z)]; });
     const int S = rtin.size();
 
     // Top down: split while the midpoint's error exceeds the tolerance.
@@ -177,7 +180,7 @@ Mesh buildAdaptiveMesh(const geo::GeoGrid& refined, const scene::LookSpec& look,
             if (v == Mesh::kNoVertex) continue;
             mesh.positions[v] = mesh.scenePoint(g.at(r, c));
             mesh.normals[v] = surfaceNormal(refined, mesh, r, c);  // of the full surface
-            mesh.palette[v] = paletteIndex(g.at(r, c).z);
+            mesh.palette[v] = paletteIndex(mesh.elevation(g.at(r, c)));
         }
 
     // Faces counter-clockwise seen from above (x east, y north), in a fixed order.

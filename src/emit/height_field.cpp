@@ -18,13 +18,16 @@ namespace {
 constexpr int kPngCompression = 0;
 }  // namespace
 
-HeightField quantizeHeights(const geo::GeoGrid& refined) {
+HeightField quantizeHeights(const geo::GeoGrid& refined, const ScenePlacement& where) {
     const Grid& g = refined.grid;
     HeightField field;
     field.rows = g.rows;
     field.cols = g.cols;
     double zmin = 1e300, zmax = -1e300;
-    for (const Vec3& p : g.points) zmin = std::min(zmin, p.z), zmax = std::max(zmax, p.z);
+    for (const Vec3& p : g.points) {
+        const double h = where.drawnHeight(p);
+        zmin = std::min(zmin, h), zmax = std::max(zmax, h);
+    }
     if (flatRange(zmin, zmax)) zmax = zmin;
     field.zMinM = zmin;
     field.zMaxM = zmax;
@@ -33,7 +36,8 @@ HeightField quantizeHeights(const geo::GeoGrid& refined) {
     for (int r = 0; r < g.rows; ++r) {
         std::uint16_t* row = field.levels.data() + static_cast<size_t>(g.rows - 1 - r) * g.cols;
         for (int c = 0; c < g.cols; ++c)
-            row[c] = static_cast<std::uint16_t>(std::clamp(std::lround((g.at(r, c).z - zmin) * perLevel), 0L, 65535L));
+            row[c] = static_cast<std::uint16_t>(
+                std::clamp(std::lround((where.drawnHeight(g.at(r, c)) - zmin) * perLevel), 0L, 65535L));
     }
     return field;
 }
@@ -53,8 +57,9 @@ void writeHeightFieldSdl(std::FILE* out, const HeightField& field, const geo::Ge
                          const ScenePlacement& where, const std::string& heightPng, const std::string& drapePng) {
     // The unit square's corners and the unit height, in scene units: exactly
     // where the mesh2 would put the nodes.
-    const Vec3 sw = where.scenePoint({refined.x0, refined.y0, field.zMinM});
-    const Vec3 ne = where.scenePoint({refined.xMax(), refined.yMax(), field.zMaxM});
+    const double s = 1.0 / where.metresPerUnit, zs = where.exaggeration * s;
+    const Vec3 sw{(refined.x0 - where.originM.x) * s, field.zMinM * zs, (refined.y0 - where.originM.y) * s};
+    const Vec3 ne{(refined.xMax() - where.originM.x) * s, field.zMaxM * zs, (refined.yMax() - where.originM.y) * s};
     const double height = field.zMaxM > field.zMinM ? ne.y - sw.y : 1e-6;
     // The image map spans the unit square with its pixels' edges; the nodes
     // are at i / (n - 1): so pixel centres (i + 0.5) / n go onto them.
@@ -93,7 +98,7 @@ Drape elevationDrape(const geo::GeoGrid& refined, const ScenePlacement& where) {
         std::uint16_t* row = drape.rgb.data() + static_cast<size_t>(g.rows - 1 - r) * g.cols * 3;
         for (int c = 0; c < g.cols; ++c) {
             // The mesh2's palette index for this node (emit/mesh.cpp), and its colour.
-            const long k = std::clamp(std::lround((g.at(r, c).z - zmin) / span * top), 0L, long{top});
+            const long k = std::clamp(std::lround((where.elevation(g.at(r, c)) - zmin) / span * top), 0L, long{top});
             const auto& colour = where.paletteColors[static_cast<size_t>(k)];
             row[3 * c] = level(colour.r), row[3 * c + 1] = level(colour.g), row[3 * c + 2] = level(colour.b);
         }

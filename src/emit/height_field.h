@@ -27,9 +27,10 @@ struct HeightField {
     double stepM() const { return (zMaxM - zMinM) / 65535.0; }
 };
 
-/// Quantizes the grid's heights (to the nearest level). The grid must have
-/// no masked nodes: a height_field has no holes.
-HeightField quantizeHeights(const geo::GeoGrid& refined);
+/// Quantizes the grid's heights as drawn (ScenePlacement::drawnHeight: in a
+/// local frame the Earth's curvature is not exaggerated) to the nearest
+/// level. The grid must have no masked nodes: a height_field has no holes.
+HeightField quantizeHeights(const geo::GeoGrid& refined, const ScenePlacement& where);
 
 /// The colour draped on the height field: per node, the palette colour the
 /// mesh2 gives its vertex (the ramp over zMinM..zMaxM), linear RGB in 16 bits,

@@ -11,13 +11,19 @@ ScenePlacement placeTerrain(const geo::GeoGrid& refined, const scene::LookSpec& 
     const Grid& g = refined.grid;
     ScenePlacement where;
     where.exaggeration = look.exaggeration;
+    if (refined.frame.kind == scene::FrameKind::Local)
+        where.curvature = std::make_shared<geo::CurvatureDrop>(refined.frame, refined.x0, refined.y0, refined.xMax(),
+                                                               refined.yMax());
     double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300, zmin = 1e300, zmax = -1e300;
+    double drawnMin = 1e300, drawnMax = -1e300;
     for (size_t i = 0; i < g.points.size(); ++i) {
         if (!refined.masked.empty() && refined.masked[i]) continue;
         const Vec3& p = g.points[i];
         xmin = std::min(xmin, p.x), xmax = std::max(xmax, p.x);
         ymin = std::min(ymin, p.y), ymax = std::max(ymax, p.y);
-        zmin = std::min(zmin, p.z), zmax = std::max(zmax, p.z);
+        const double elevation = where.elevation(p), drawn = where.drawnHeight(p);
+        zmin = std::min(zmin, elevation), zmax = std::max(zmax, elevation);
+        drawnMin = std::min(drawnMin, drawn), drawnMax = std::max(drawnMax, drawn);
     }
     if (flatRange(zmin, zmax)) zmax = zmin;
     where.zMinM = zmin;
@@ -26,8 +32,9 @@ ScenePlacement placeTerrain(const geo::GeoGrid& refined, const scene::LookSpec& 
     where.metresPerUnit = std::pow(10.0, std::floor(std::log10(std::max(extent, 1e-3))) - 1);
     // Whole metres-per-unit keep the origin's digits exact in the header.
     where.originM = {std::round(0.5 * (xmin + xmax)), std::round(0.5 * (ymin + ymax)), 0};
-    where.boundsMin = where.scenePoint({xmin, ymin, zmin});
-    where.boundsMax = where.scenePoint({xmax, ymax, zmax});
+    const double s = 1.0 / where.metresPerUnit, zs = where.exaggeration * s;
+    where.boundsMin = {(xmin - where.originM.x) * s, drawnMin * zs, (ymin - where.originM.y) * s};
+    where.boundsMax = {(xmax - where.originM.x) * s, drawnMax * zs, (ymax - where.originM.y) * s};
 
     // Palette over the true (not exaggerated) elevation range.
     const auto stops = scene::resolveRamp(look.ramp, zmin, zmax);
@@ -84,7 +91,7 @@ Mesh buildMesh(const geo::GeoGrid& refined, const scene::LookSpec& look) {
             if (!kept(i)) continue;
             mesh.positions[v] = mesh.scenePoint(g.at(r, c));
             mesh.normals[v] = surfaceNormal(refined, mesh, r, c);
-            const double t = (g.points[i].z - zmin) / span;
+            const double t = (mesh.elevation(g.points[i]) - zmin) / span;
             mesh.palette[v] = static_cast<unsigned char>(
                 std::clamp(std::lround(t * (kPaletteSize - 1)), 0L, long{kPaletteSize - 1}));
             ++v;

@@ -6,9 +6,11 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "core/types.h"
+#include "geo/curvature_drop.h"
 #include "geo/geo_grid.h"
 #include "scene/scene_spec.h"
 
@@ -28,11 +30,23 @@ struct ScenePlacement {
     double zMinM = 0, zMaxM = 0;  ///< elevation range of the nodes with data, metres
     Vec3 boundsMin, boundsMax;    ///< scene units, scene axes
     std::vector<scene::ColorStop> paletteColors;  ///< kPaletteSize entries (linear RGB) over zMinM..zMaxM
+    /// The Earth's fall below a local frame's tangent plane; null in UTM.
+    std::shared_ptr<const geo::CurvatureDrop> curvature;
 
+    double fallAt(const Vec3& p) const { return curvature ? curvature->at(p.x, p.y) : 0.0; }
+    /// A frame point's elevation: its height above the ellipsoid (in UTM, its z).
+    double elevation(const Vec3& p) const { return p.z - fallAt(p); }
+    /// Its height as drawn, in metres before exaggeration: the elevation plus
+    /// the fall divided by the exaggeration, so that exaggerating it scales the
+    /// elevation and keeps the Earth's curvature as it is.
+    double drawnHeight(const Vec3& p) const {
+        const double fall = fallAt(p);
+        return p.z - fall + fall / exaggeration;
+    }
     /// A frame point (metres) in scene units and axes, exaggerated.
     Vec3 scenePoint(const Vec3& p) const {
         const double s = 1.0 / metresPerUnit, zs = exaggeration * s;
-        return {(p.x - originM.x) * s, p.z * zs, (p.y - originM.y) * s};
+        return {(p.x - originM.x) * s, drawnHeight(p) * zs, (p.y - originM.y) * s};
     }
 };
 

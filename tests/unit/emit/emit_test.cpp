@@ -4,6 +4,7 @@
 #include <string>
 
 #include "emit/mesh.h"
+#include "geo/normalize.h"
 #include "emit/svg.h"
 #include "emit/template.h"
 #include "emit/write_scene.h"
@@ -127,6 +128,43 @@ TEST(Mesh2, MaskedNodesLeaveAHole) {
     // second cell: nodes 1, 2, 5 and 2, 6, 5 -> vertices 0, 1, 4 and 1, 5, 4.
     EXPECT_NE(out.find("face_indices {\n    11,\n<0,4,3>,85,85,0,\n<0,1,4>,85,170,85,\n<1,5,4>,170,170,85"),
               std::string::npos);
+}
+
+// In a local frame a grid's heights include the Earth's fall below the tangent plane (20 km at
+// 500 km). Drawn, the elevation is exaggerated and the fall is not, and colours follow elevation:
+// a region 400 km across whose elevation rises eastward only (100 m to 500 m) has one colour
+// down each column, and is not domed by the exaggeration.
+TEST(Mesh, LocalFrameExaggeratesElevationNotCurvature) {
+    geo::GeoGrid grid;
+    grid.frame.kind = scene::FrameKind::Local;
+    grid.frame.originLatDeg = 1.5;
+    grid.frame.originLonDeg = 114;
+    grid.grid.rows = grid.grid.cols = 41;
+    grid.x0 = grid.y0 = -200000;
+    grid.dx = grid.dy = 10000;
+    for (int r = 0; r < 41; ++r)
+        for (int c = 0; c < 41; ++c) {
+            const double x = -200000 + 10000.0 * c, y = -200000 + 10000.0 * r;
+            double lat = 0, lon = 0, h = 0;
+            Vec3 above;
+            ASSERT_TRUE(geo::frameToGeodetic(grid.frame, {x, y, 0}, lat, lon, h));
+            ASSERT_TRUE(geo::geodeticToFrame(grid.frame, lat, lon, 300 + x / 1000, above));  // above the ellipsoid
+            grid.grid.points.push_back({x, y, above.z});
+        }
+    EXPECT_LT(grid.grid.at(0, 0).z, -6000);  // the fall at the corner, 283 km out: about 6.3 km
+    scene::LookSpec look;
+    look.exaggeration = 10;
+    const Mesh m = buildMesh(grid, look);
+    EXPECT_NEAR(m.zMinM, 100, 0.5);
+    EXPECT_NEAR(m.zMaxM, 500, 0.5);
+    for (int c = 0; c < 41; ++c)
+        for (int r = 0; r < 41; ++r) EXPECT_NEAR(m.palette[r * 41 + c], m.palette[20 * 41 + c], 1) << r << " " << c;
+    // Drawn: 10 x 100 m above the fall, not 10 x (100 m + the fall).
+    const Vec3& corner = grid.grid.at(0, 0);
+    const double fall = m.fallAt(corner);
+    EXPECT_NEAR(fall, corner.z - 100, 0.5);
+    EXPECT_NEAR(m.positions[0].y * m.metresPerUnit, 10 * 100 + fall, 5);
+    EXPECT_NEAR(m.positions[20 * 41 + 20].y * m.metresPerUnit, 10 * 300, 1);  // the tangent point: no fall
 }
 
 // A map: two layers (solid and dashed, own colours), a marker with its label,

@@ -43,7 +43,7 @@ std::string sdlOf(const HeightField& field, const geo::GeoGrid& grid, const Scen
 // Levels: 0 at the lowest node, 65535 at the highest, row 0 of the image north.
 TEST(HeightField, QuantizesNorthFirst) {
     const auto grid = tiltedPlane();
-    const HeightField field = quantizeHeights(grid);
+    const HeightField field = quantizeHeights(grid, placeTerrain(grid, {}));
     ASSERT_EQ(field.levels.size(), 12u);
     EXPECT_EQ(field.zMinM, 50);
     EXPECT_EQ(field.zMaxM, 82);
@@ -58,7 +58,8 @@ TEST(HeightField, PngRoundTripAndDeterminism) {
     const fs::path dir = fs::temp_directory_path() / "relief-height-field";
     fs::remove_all(dir);
     fs::create_directories(dir);
-    const HeightField field = quantizeHeights(tiltedPlane());
+    const auto plane = tiltedPlane();
+    const HeightField field = quantizeHeights(plane, placeTerrain(plane, {}));
     ASSERT_EQ(writeHeightFieldPng(field, dir / "a.png"), "");
     ASSERT_EQ(writeHeightFieldPng(field, dir / "b.png"), "");
     EXPECT_EQ(readFile(dir / "a.png"), readFile(dir / "b.png"));
@@ -91,7 +92,7 @@ TEST(HeightField, DrapeColoursAreTheMeshPalette) {
 TEST(HeightField, SdlPlacesItWhereTheMeshIs) {
     const auto grid = tiltedPlane();
     const ScenePlacement where = placeTerrain(grid, {});
-    const std::string sdl = sdlOf(quantizeHeights(grid), grid, where);
+    const std::string sdl = sdlOf(quantizeHeights(grid, where), grid, where);
     EXPECT_NE(sdl.find("png \"t.height.png\"\n  smooth"), std::string::npos) << sdl;
     EXPECT_NE(sdl.find("image_map { png \"t.drape.png\" gamma 1.0 map_type 0 interpolate 2 }"), std::string::npos);
     EXPECT_NE(sdl.find("scale <1.333333, 1, 1.500000>\n      translate <-0.166667, 0, -0.250000>"), std::string::npos)
