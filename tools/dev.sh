@@ -24,7 +24,7 @@ esac
 packages=(cmake make g++ pkg-config
           libgeographiclib-dev libgdal-dev libopenimageio-dev openimageio-tools libtomlplusplus-dev
           libcli11-dev libfmt-dev nlohmann-json3-dev libnanoflann-dev libgtest-dev libbenchmark-dev
-          povray bubblewrap chromium fonts-dejavu-core locales)
+          povray bubblewrap chromium fonts-dejavu-core locales clang libfuzzer-14-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -41,7 +41,7 @@ if [ ${#missing[@]} -gt 0 ]; then
 fi
 
 jobs=$(nproc)
-build() {  # build DIR [cmake args...]
+build() {  # build DIR [cmake args...]; TARGETS="a b" builds only those
   local dir=$1; shift
   # CMake writes CMakeCache.txt before it checks anything, and the build system (Makefile) only
   # when configuring succeeded; without a Makefile the folder is half-configured: start afresh.
@@ -49,7 +49,9 @@ build() {  # build DIR [cmake args...]
     rm -rf "$dir"
     cmake -S . -B "$dir" "$@" >/dev/null
   fi
-  cmake --build "$dir" -j "$jobs"
+  local targets=()
+  for t in ${TARGETS:-}; do targets+=(--target "$t"); done
+  cmake --build "$dir" -j "$jobs" "${targets[@]}"
 }
 
 case "$mode" in
@@ -64,6 +66,11 @@ case "$mode" in
     echo "== unit and command-line tests under AddressSanitizer + UBSan"
     build build-asan -DCMAKE_BUILD_TYPE=Debug -DRELIEF_SANITIZE=ON -DRELIEF_BUILD_BENCH=OFF
     (cd build-asan && ctest --output-on-failure -j "$jobs" -L "unit|cli")
+    echo "== the readers under libFuzzer (AddressSanitizer + UBSan), ${RELIEF_FUZZ_SECONDS:-30} s each"
+    TARGETS="fuzz_scene fuzz_samples fuzz_curve fuzz_manifest" \
+      build build-fuzz -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRELIEF_FUZZ=ON \
+        -DRELIEF_BUILD_TESTS=OFF -DRELIEF_BUILD_BENCH=OFF -DRELIEF_FUZZ_SECONDS="${RELIEF_FUZZ_SECONDS:-30}"
+    (cd build-fuzz && ctest --output-on-failure -j "$jobs" -L fuzz)
     ;;
   bench)
     build build -DCMAKE_BUILD_TYPE=Release

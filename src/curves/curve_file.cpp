@@ -32,6 +32,10 @@ std::optional<CurveFile> readCurveFile(const std::filesystem::path& path, Diagno
         diags.error({file, line, col}, "invalid JSON; expected {\"type\": \"polyline\", "
                                        "\"closed\": false, \"points\": [[x, y], ...]}");
         return std::nullopt;
+    } catch (const nlohmann::json::out_of_range&) {
+        // A number too large for a double (found by fuzzing: 1e1114846).
+        diags.error({file, 0, 0}, "a number in the curve file is out of range (beyond about 1e308)");
+        return std::nullopt;
     }
     CurveFile c;
     if (!j.is_object()) {

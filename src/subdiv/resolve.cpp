@@ -31,7 +31,7 @@ bool resolvePreset(const scene::SchemeSpec& spec, Diagnostics& diags, std::strin
     bool ok = true;
     for (const auto& [key, value] : spec.params) {
         const auto known = std::find_if(preset->params.begin(), preset->params.end(),
-                                        [&](const ParamSpec& s) { return s.name == key; });
+                                        [&name = key](const ParamSpec& s) { return s.name == name; });
         if (known == preset->params.end()) {
             diags.error(spec.locs.at("subdivision." + key),
                         fmt::format("preset \"{}\" fixes every parameter of \"{}\"{}; remove "

@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# Runs one fuzz target for SECONDS (or, with RUNS=N in the environment, N executions) on a corpus
+# seeded from the project's own files of its kind; a finding (crash, leak, undefined behaviour,
+# timeout) fails it and leaves the input as crash-* / leak-* / timeout-* in the corpus folder.
+# Usage: fuzz/run.sh TARGET_BINARY scene|samples|curve|manifest CORPUS_DIR SECONDS
+set -u
+bin=$(realpath "$1") kind=$2 corpus=$3 seconds=$4
+src=$(cd "$(dirname "$0")/.." && pwd)
+mkdir -p "$corpus"
+seed() { for f in "$@"; do [ -f "$f" ] && [ "$(stat -c %s "$f")" -le 65536 ] && cp "$f" "$corpus/seed-$(echo "$f" | md5sum | cut -c1-12)"; done; }
+case "$kind" in
+  scene) seed "$src"/scenes/*.toml "$src"/tests/golden/*/scene.toml "$src"/tests/cli/bad/*/scene.toml ;;
+  samples) seed "$src"/tests/golden/*/samples.csv "$src"/tests/cli/bad/*/*.csv "$src"/scenes/data/volcano_samples_*.csv ;;
+  curve) seed "$src"/tests/cli/curves/*.json "$src"/scenes/figures/*.json ;;
+  manifest) seed "$src"/tests/golden/manifest.toml "$src"/tests/cli/report/manifest.toml ;;
+  *) echo "unknown kind $kind"; exit 2 ;;
+esac
+limit=(-max_total_time="$seconds")
+[ -n "${RUNS:-}" ] && limit=(-runs="$RUNS")
+cd "$corpus" || exit 1
+exec "$bin" "${limit[@]}" -timeout=10 -rss_limit_mb=2048 -max_len=65536 -print_final_stats=1 "$corpus"
