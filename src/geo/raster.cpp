@@ -272,13 +272,16 @@ std::optional<ControlNet> warpedNet(const Dataset& src, const scene::SamplesSpec
     // easternmost point, the east edge's westernmost, and so on.
     double west = -1e300, east = 1e300, south = -1e300, north = 1e300;
     int outside = 0;
+    // Which pixel edge is which: rows usually run south (negative pixel height), but may run north.
+    const double westPx = geo[1] > 0 ? box.x0 : box.x1, eastPx = geo[1] > 0 ? box.x1 : box.x0;
+    const double northPx = geo[5] < 0 ? box.y0 : box.y1, southPx = geo[5] < 0 ? box.y1 : box.y0;
     for (int i = 0; i <= kEdgePoints; ++i) {
         const double f = static_cast<double>(i) / kEdgePoints;
         Vec3 p;
-        framed(box.x0, box.y0 + f * boxH, p) ? void(west = std::max(west, p.x)) : void(++outside);
-        framed(box.x1, box.y0 + f * boxH, p) ? void(east = std::min(east, p.x)) : void(++outside);
-        framed(box.x0 + f * boxW, box.y1, p) ? void(south = std::max(south, p.y)) : void(++outside);
-        framed(box.x0 + f * boxW, box.y0, p) ? void(north = std::min(north, p.y)) : void(++outside);
+        framed(westPx, box.y0 + f * boxH, p) ? void(west = std::max(west, p.x)) : void(++outside);
+        framed(eastPx, box.y0 + f * boxH, p) ? void(east = std::min(east, p.x)) : void(++outside);
+        framed(box.x0 + f * boxW, southPx, p) ? void(south = std::max(south, p.y)) : void(++outside);
+        framed(box.x0 + f * boxW, northPx, p) ? void(north = std::min(north, p.y)) : void(++outside);
     }
     if (outside > 0 && !window) {
         double lonMin = 180, lonMax = -180, latMin = 90, latMax = -90;
@@ -411,12 +414,26 @@ std::optional<ControlNet> warpedNet(const Dataset& src, const scene::SamplesSpec
             double cx = lon, cy = lat, cz = 0;
             if (OCTTransform(toRaster.get(), 1, &cx, &cy, &cz))
                 px = inverse[0] + cx * inverse[1] + cy * inverse[2], py = inverse[3] + cx * inverse[4] + cy * inverse[5];
-            diags.error(fileLoc, fmt::format("the cell at column {}, row {} (lat {:.6f} lon {:.6f}) holds {} m, beyond "
-                                             "the Earth's ({} to {} m): check the band, its unit and its nodata "
-                                             "value, or set elevations = \"any\" in [samples] for data that are "
-                                             "not terrain in metres",
-                                             static_cast<long>(std::floor(px)), static_cast<long>(std::floor(py)), lat,
-                                             lon, formatShortest(h), scene::kLowestElevationM,
+            // The node mixes up to four cells (bilinear): name the one that holds such a value.
+            long cellX = static_cast<long>(std::floor(px)), cellY = static_cast<long>(std::floor(py));
+            double held = h;
+            for (int k = 0; k < 4; ++k) {
+                const long tx = std::clamp(static_cast<long>(std::floor(px - 0.5)) + (k & 1), 0L, long{width - 1});
+                const long ty = std::clamp(static_cast<long>(std::floor(py - 0.5)) + (k >> 1), 0L, long{height - 1});
+                double v = 0;
+                if (GDALRasterIO(band, GF_Read, static_cast<int>(tx), static_cast<int>(ty), 1, 1, &v, 1, 1, GDT_Float64, 0,
+                                 0) != CE_None || std::isnan(v) || v == srcNoData)
+                    continue;
+                if (scale * v < scene::kLowestElevationM || scale * v > scene::kHighestElevationM) {
+                    cellX = tx, cellY = ty, held = scale * v;
+                    break;
+                }
+            }
+            diags.error(fileLoc, fmt::format("the cell at column {}, row {} (near lat {:.6f} lon {:.6f}) holds {} m, "
+                                             "beyond the Earth's ({} to {} m): check the band, its unit and its "
+                                             "nodata value, or set elevations = \"any\" in [samples] for data that "
+                                             "are not terrain in metres",
+                                             cellX, cellY, lat, lon, formatShortest(held), scene::kLowestElevationM,
                                              scene::kHighestElevationM));
             return std::nullopt;
         }

@@ -162,6 +162,14 @@ public:
             error(key, fmt::format("{} must be {}", qualified(key), what));
             return std::nullopt;
         }
+        // TOML has inf and nan; no extent is either, and none reaches past the Earth (1e8 m).
+        for (const double v : out)
+            if (!std::isfinite(v) || std::fabs(v) > 1e8) {
+                error(key, fmt::format("{} = [{}, {}, {}, {}] must be finite numbers within ±1e8 (a frame's metres "
+                                       "or degrees)",
+                                       qualified(key), out[0], out[1], out[2], out[3]));
+                return std::nullopt;
+            }
         return out;
     }
 

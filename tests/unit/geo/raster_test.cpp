@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -308,6 +309,56 @@ TEST(Lattice, ResampledAsARaster) {
         ASSERT_TRUE(frameToGeodetic(result->frame, {p.x, p.y, 0}, lat, lon, h));
         EXPECT_NEAR(p.z, 100 + 2.0 * (lon - 174.7) / 0.0001 - 1.0 * (lat + 36.9) / 0.0001, 2.5e-3);
     }
+}
+
+// Crafted rasters: what GDAL returns that relief must not trust (sizes, geotransforms, cells).
+TEST(Raster, CraftedRastersAreErrorsOrHandled) {
+    const fs::path dir = freshDir("crafted");
+    registerGdalDrivers();
+    scene::NetSpec net;
+    net.spacingM = kCell;
+    auto first = [&](const scene::SamplesSpec& spec, const scene::NetSpec& n) {
+        Diagnostics diags;
+        const bool ok = rasterNet(spec, {}, n, diags).has_value();
+        return std::make_pair(ok, diags.all().empty() ? std::string() : formatDiagnostic(diags.all()[0]));
+    };
+    auto tiff = [&](const std::string& name, double pixelX, double pixelY, std::vector<float> cells) {
+        const fs::path path = dir / name;
+        GDALDatasetH ds = GDALCreate(GDALGetDriverByName("GTiff"), path.c_str(), 4, 4, 1, GDT_Float32, nullptr);
+        double geo[6] = {kX0, pixelX, 0, kY0, 0, pixelY};
+        GDALSetGeoTransform(ds, geo);
+        GDALSetProjection(ds, "EPSG:2193");
+        EXPECT_EQ(GDALRasterIO(GDALGetRasterBand(ds, 1), GF_Write, 0, 0, 4, 4, cells.data(), 4, 4, GDT_Float32, 0, 0),
+                  CE_None);
+        GDALClose(ds);
+        auto spec = rasterSpec(path, "");
+        spec.verticalUnit = "m";
+        return spec;
+    };
+    const std::vector<float> plain(16, 100.0f);
+    // A cell of size 0 (a VRT keeps the geotransform as written): it cannot be inverted.
+    std::ofstream(dir / "zero.vrt") << "<VRTDataset rasterXSize=\"4\" rasterYSize=\"4\"><SRS>EPSG:2193</SRS>"
+                                       "<GeoTransform>1757000, 0, 0, 5917000, 0, -10</GeoTransform>"
+                                       "<VRTRasterBand dataType=\"Float32\" band=\"1\"/></VRTDataset>";
+    EXPECT_EQ(first(rasterSpec(dir / "zero.vrt", ""), net).second,
+              "zero.vrt: error: the raster's geotransform cannot be inverted (a cell of size 0?)");
+    const auto southUp = first(tiff("south-up.tif", kCell, kCell, plain), {});
+    EXPECT_TRUE(southUp.first) << southUp.second;
+    // An infinite cell is beyond the Earth's elevations, named by its cell; NaN is no data (masked).
+    std::vector<float> odd = plain;
+    odd[5] = std::numeric_limits<float>::infinity();
+    const auto inf = first(tiff("inf.tif", kCell, -kCell, odd), {});
+    EXPECT_EQ(inf.second.rfind("inf.tif: error: the cell at column 1, row 1", 0), 0u) << inf.second;
+    odd[5] = std::numeric_limits<float>::quiet_NaN();
+    EXPECT_TRUE(first(tiff("nan.tif", kCell, -kCell, odd), {}).first);
+    // A declared size of 2^32 cells (a VRT with no source: GDAL reads it as zeros) is refused
+    // by the net's size before anything is allocated for it.
+    std::ofstream(dir / "huge.vrt") << "<VRTDataset rasterXSize=\"65536\" rasterYSize=\"65536\">"
+                                       "<SRS>EPSG:2193</SRS><GeoTransform>1757000, 0.01, 0, 5917000, 0, -0.01"
+                                       "</GeoTransform><VRTRasterBand dataType=\"Float32\" band=\"1\"/></VRTDataset>";
+    const auto huge = first(rasterSpec(dir / "huge.vrt", ""), {});
+    EXPECT_FALSE(huge.first);
+    EXPECT_NE(huge.second.find("1e9"), std::string::npos) << huge.second;
 }
 
 // Each way a raster can be unusable is an error naming the file or key and the fix.
