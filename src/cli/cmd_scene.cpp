@@ -46,9 +46,23 @@ int runScene(const CommonOptions& o, const std::string& dumpNet, relief::SceneJo
         std::cerr << fmt::format("scheme {}: {}\n", c.schemeFamily, c.certified);
         if (c.autoDepth)
             std::cerr << relief::autoDepthSummary(*c.autoDepth, c.scene.subdivision.toleranceM) << '\n';
-        std::cerr << fmt::format("wrote {} ({} x {} vertices, {:.0f} triangles, {:.1f} MB)\n",
-                                 outcome.paths.pov.string(), c.estimate.rows, c.estimate.cols,
-                                 c.estimate.triangles, c.povBytes / 1e6);
+        // What POV-Ray gets: every vertex, the adaptive mesh, or the height field's PNGs.
+        switch (c.geometry.kind) {
+            case scene::GeometryKind::HeightField:
+                std::cerr << fmt::format("wrote {} (a height field of {} x {} nodes: {}, {})\n",
+                                         outcome.paths.pov.string(), c.estimate.rows, c.estimate.cols,
+                                         c.heightPng.string(), c.drapePng.string());
+                break;
+            case scene::GeometryKind::Adaptive:
+                std::cerr << fmt::format("wrote {} (an adaptive mesh2: {} triangles of the full {:.0f}, {:.1f} MB)\n",
+                                         outcome.paths.pov.string(), c.meshTriangles, c.estimate.triangles,
+                                         c.povBytes / 1e6);
+                break;
+            default:
+                std::cerr << fmt::format("wrote {} ({} x {} vertices, {} triangles, {:.1f} MB)\n",
+                                         outcome.paths.pov.string(), c.estimate.rows, c.estimate.cols,
+                                         c.meshTriangles, c.povBytes / 1e6);
+        }
         if (until == relief::SceneJob::Until::Png)
             std::cerr << fmt::format("wrote {} ({} x {}; POV-Ray parse {:.2f} s, trace {:.2f} s)\n",
                                      outcome.paths.png.string(), c.scene.render.width,
