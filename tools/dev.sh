@@ -21,12 +21,13 @@ esac
 # openimageio-tools: Debian 12's OpenImageIO CMake config names its command-line tools
 # (/usr/bin/iconvert, ...) as imported targets, so find_package fails without them.
 # locales: the definitions the tests build a decimal-comma locale from.
-# clang, libfuzzer-14-dev: the fuzz targets; libomp-14-dev: OpenMP for clang (g++ has its own).
+# clang, libfuzzer-14-dev, libclang-rt-14-dev (the sanitizers' and libFuzzer's runtimes): the fuzz
+# targets; libomp-14-dev: OpenMP for clang (g++ has its own).
 # bubblewrap: POV-Ray's sandbox.
 packages=(cmake make g++ pkg-config
           libgeographiclib-dev libgdal-dev libopenimageio-dev openimageio-tools libtomlplusplus-dev
           libcli11-dev libfmt-dev nlohmann-json3-dev libnanoflann-dev libgtest-dev libbenchmark-dev
-          povray bubblewrap chromium fonts-dejavu-core locales clang libfuzzer-14-dev libomp-14-dev)
+          povray bubblewrap chromium fonts-dejavu-core locales clang libfuzzer-14-dev libclang-rt-14-dev libomp-14-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
