@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <iostream>
 #include <tuple>
 
@@ -40,13 +41,58 @@ fs::path findTemplates(const std::string& option) {
     std::error_code ec;
     const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
     if (!ec) {
-        const fs::path installed = exe.parent_path().parent_path() / "share/relief/templates";
-        if (fs::exists(installed / "scene.pov.in", ec)) return installed;
+        // <prefix>/bin/relief, or <prefix>/libexec/relief/relief-images
+        for (fs::path prefix = exe.parent_path().parent_path(); !prefix.empty() && prefix != prefix.root_path();
+             prefix = prefix.parent_path()) {
+            const fs::path installed = prefix / "share/relief/templates";
+            if (fs::exists(installed / "scene.pov.in", ec)) return installed;
+            if (prefix.filename() != "libexec") break;
+        }
     }
     return RELIEF_SOURCE_TEMPLATES_DIR;
 }
 
 
+
+const ImageCommandInfo kImageCommands[3] = {
+    {"diff", "compare two images (OpenImageIO), with idiff's thresholds and exit codes: "
+             "0 PASS, 1 WARNING, 2 FAILURE, 3 not comparable (different sizes or channel "
+             "counts), 4 file error or bad arguments"},
+    {"test", "render every case of a manifest, compare with its reference images, write an "
+             "HTML report (and summary.json, junit.xml); exit 1 when a case fails"},
+    {"sweep", "render one still per combination of --vary values and assemble a labelled "
+              "contact sheet (one PNG)"},
+};
+
+bool isImageCommand(const char* name) {
+    for (const auto& c : kImageCommands)
+        if (std::strcmp(name, c.name) == 0) return true;
+    return false;
+}
+
+int runCommands(CLI::App& app, const std::vector<Command>& commands, int argc, char** argv) {
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::Success& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        app.exit(e);
+        for (const auto& c : commands)
+            if (c.app->parsed()) return c.parseErrorCode;
+        return code(Exit::BadInput);
+    }
+    try {
+        for (const auto& c : commands)
+            if (c.app->parsed()) return c.run();
+        return code(Exit::BadInput);
+    } catch (const std::runtime_error& e) {  // I/O: cannot write an output
+        std::cerr << "relief: error: " << e.what() << '\n';
+        return code(Exit::BadInput);
+    } catch (const std::exception& e) {
+        std::cerr << "relief: internal error: " << e.what() << '\n';
+        return code(Exit::Internal);
+    }
+}
 
 // KEY=VALUE strings -> scene overrides (`section.key=value`).
 bool parseOverrides(const std::vector<std::string>& list, scene::SceneOverrides& out) {

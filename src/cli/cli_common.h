@@ -53,8 +53,26 @@ struct Command {
 // Registration, one function per cmd_*.cpp.
 void addSceneCommands(CLI::App& app, std::vector<Command>& out);     // compile, render
 void addSchemeCommands(CLI::App& app, std::vector<Command>& out);    // check, curve
-void addImageCommands(CLI::App& app, std::vector<Command>& out);     // diff, test, sweep
 void addGeometryCommands(CLI::App& app, std::vector<Command>& out);  // hausdorff, profile, compare-geometry
+void addImageCommands(CLI::App& app, std::vector<Command>& out);     // diff, test, sweep (relief-images)
+
+/// The image commands run in a helper executable, relief-images, because
+/// OpenImageIO's 260 shared libraries cost every process that links it 0.15 s
+/// of start-up; `relief` lists them and hands their command lines over.
+struct ImageCommandInfo {
+    const char* name;
+    const char* description;
+};
+extern const ImageCommandInfo kImageCommands[3];
+bool isImageCommand(const char* name);
+/// Lists the image commands in `relief --help` (their options are the helper's).
+void addImageCommandEntries(CLI::App& app);
+/// Replaces this process with relief-images, same arguments; returns only on
+/// failure, with the exit code after printing why.
+int runImageHelper(int argc, char** argv);
+
+/// Parses, dispatches and maps exceptions to exit codes: main() of both executables.
+int runCommands(CLI::App& app, const std::vector<Command>& commands, int argc, char** argv);
 
 /// Errors and warnings in file order, then the count line.
 void printDiagnostics(const Diagnostics& diags, bool wrote);

@@ -226,10 +226,7 @@ int runSweep(const SweepOptions& o) {
 
 void addImageCommands(CLI::App& app, std::vector<Command>& out) {
     auto diff = std::make_shared<DiffOptions>();
-    CLI::App* diffCmd = app.add_subcommand(
-        "diff", "compare two images (OpenImageIO), with idiff's thresholds and exit codes: "
-                "0 PASS, 1 WARNING, 2 FAILURE, 3 not comparable (different sizes or channel "
-                "counts), 4 file error or bad arguments");
+    CLI::App* diffCmd = app.add_subcommand(kImageCommands[0].name, kImageCommands[0].description);
     diffCmd->add_option("a", diff->a, "first image")->required();
     diffCmd->add_option("b", diff->b, "second image")->required();
     diffCmd->add_option("--fail", diff->t.fail, "a pixel fails when a channel differs by more (default 1e-6)");
@@ -244,9 +241,7 @@ void addImageCommands(CLI::App& app, std::vector<Command>& out) {
     out.push_back({diffCmd, [diff] { return runDiff(*diff); }, code(Exit::DiffFileError)});  // idiff's code for bad arguments
 
     auto test = std::make_shared<TestOptions>();
-    CLI::App* testCmd = app.add_subcommand(
-        "test", "render every case of a manifest, compare with its reference images, write an "
-                "HTML report (and summary.json, junit.xml); exit 1 when a case fails");
+    CLI::App* testCmd = app.add_subcommand(kImageCommands[1].name, kImageCommands[1].description);
     testCmd->add_option("manifest", test->manifest, "manifest (TOML): [defaults] and [[case]] entries")->required();
     testCmd->add_option("--report", test->report, "report folder (default out/test-report)");
     testCmd->add_option("--jobs,-j", test->jobs, "renders at a time (default 2: measured faster on 2 cores)")
@@ -257,9 +252,7 @@ void addImageCommands(CLI::App& app, std::vector<Command>& out) {
     out.push_back({testCmd, [test] { return runTest(*test); }});
 
     auto sweep = std::make_shared<SweepOptions>();
-    CLI::App* sweepCmd = app.add_subcommand(
-        "sweep", "render one still per combination of --vary values and assemble a labelled "
-                 "contact sheet (one PNG)");
+    CLI::App* sweepCmd = app.add_subcommand(kImageCommands[2].name, kImageCommands[2].description);
     sweepCmd->add_option("scene", sweep->common.scene, "scene file (TOML)")->required();
     sweepCmd->add_option("--vary", sweep->vary, "section.key=V1,V2,... (fractions allowed); repeatable")->required();
     sweepCmd->add_option("--set", sweep->common.sets, "fixed override section.key=value; repeatable");

@@ -1,22 +1,118 @@
 #include "core/png_file.h"
 
-#include <OpenImageIO/imageio.h>
+#include <csetjmp>
+#include <cstdio>
+#include <memory>
+
+#include <fmt/format.h>
+#include <png.h>
 
 #include "core/atomic_file.h"
 
 namespace relief {
 
-std::string writePngAtomically(const std::filesystem::path& path, const PngPixels& pixels) {
-    const OIIO::TypeDesc type = pixels.sixteenBit ? OIIO::TypeDesc::UINT16 : OIIO::TypeDesc::UINT8;
-    OIIO::ImageSpec spec(pixels.width, pixels.height, pixels.channels, type);
-    if (pixels.compression >= 0) spec.attribute("png:compressionLevel", pixels.compression);
-    return writeThroughTemporary(path, [&](const std::filesystem::path& temp) {
-        auto output = OIIO::ImageOutput::create(temp.string());
-        if (!output || !output->open(temp.string(), spec) || !output->write_image(type, pixels.data) ||
-            !output->close())
-            return output ? output->geterror() : OIIO::geterror();
-        return std::string();
-    });
+namespace {
+
+// libpng reports errors through a callback that must not return: it records
+// the message and long-jumps back to the setjmp in encode()/decode(). Those
+// functions keep every object with a destructor outside the jump's reach.
+[[noreturn]] void onPngError(png_structp png, png_const_charp message) {
+    if (auto* error = static_cast<std::string*>(png_get_error_ptr(png))) *error = message;
+    png_longjmp(png, 1);
+}
+
+void onPngWarning(png_structp, png_const_charp) {}
+
+int colourType(int channels) {
+    switch (channels) {
+        case 1: return PNG_COLOR_TYPE_GRAY;
+        case 2: return PNG_COLOR_TYPE_GRAY_ALPHA;
+        case 3: return PNG_COLOR_TYPE_RGB;
+        default: return PNG_COLOR_TYPE_RGB_ALPHA;
+    }
+}
+
+bool encode(std::FILE* file, const PngPixels& p, png_bytep* rows, std::string& error) {
+    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &error, onPngError, onPngWarning);
+    if (!png) return false;
+    png_infop info = png_create_info_struct(png);
+    if (!info || setjmp(png_jmpbuf(png))) {
+        png_destroy_write_struct(&png, &info);
+        return false;
+    }
+    png_init_io(png, file);
+    if (p.compression >= 0) png_set_compression_level(png, p.compression);
+    if (p.compression == 0) png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_NONE);  // nothing to compress for
+    png_set_IHDR(png, info, png_uint_32(p.width), png_uint_32(p.height), p.sixteenBit ? 16 : 8,
+                 colourType(p.channels), PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
+                 PNG_FILTER_TYPE_DEFAULT);
+    png_write_info(png, info);
+    if (p.sixteenBit) png_set_swap(png);  // PNG stores 16-bit samples big-endian
+    png_write_image(png, rows);
+    png_write_end(png, nullptr);
+    png_destroy_write_struct(&png, &info);
+    return true;
+}
+
+bool decode(std::FILE* file, PngImage8& image, std::vector<png_bytep>& rows, std::string& error) {
+    png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &error, onPngError, onPngWarning);
+    if (!png) return false;
+    png_infop info = png_create_info_struct(png);
+    if (!info || setjmp(png_jmpbuf(png))) {
+        png_destroy_read_struct(&png, &info, nullptr);
+        return false;
+    }
+    png_init_io(png, file);
+    png_read_info(png, info);
+    png_set_expand(png);  // palette -> RGB, grey < 8 bits -> 8 bits, tRNS -> alpha
+    png_set_scale_16(png);
+    png_read_update_info(png, info);
+    image.width = int(png_get_image_width(png, info));
+    image.height = int(png_get_image_height(png, info));
+    image.channels = int(png_get_channels(png, info));
+    const size_t rowBytes = png_get_rowbytes(png, info);
+    image.pixels.resize(rowBytes * size_t(image.height));
+    rows.resize(size_t(image.height));
+    for (size_t y = 0; y < rows.size(); ++y) rows[y] = image.pixels.data() + y * rowBytes;
+    png_read_image(png, rows.data());
+    png_read_end(png, nullptr);
+    png_destroy_read_struct(&png, &info, nullptr);
+    return true;
+}
+
+}  // namespace
+
+std::string writePngAtomically(const std::filesystem::path& path, const PngPixels& p) {
+    if (p.width <= 0 || p.height <= 0 || p.channels < 1 || p.channels > 4 || !p.data)
+        return fmt::format("cannot write {}: no pixels", path.string());
+    const size_t rowBytes = size_t(p.width) * size_t(p.channels) * (p.sixteenBit ? 2 : 1);
+    std::vector<png_bytep> rows(size_t(p.height));
+    for (size_t y = 0; y < rows.size(); ++y)
+        rows[y] = const_cast<png_bytep>(static_cast<const png_byte*>(p.data) + y * rowBytes);
+    try {
+        AtomicFile out(path);
+        std::string error;
+        if (!encode(out.stream(), p, rows.data(), error))
+            return fmt::format("cannot write {}: {}", path.string(), error.empty() ? "libpng failed" : error);
+        out.commit();
+    } catch (const std::exception& e) {
+        return e.what();
+    }
+    return {};
+}
+
+std::string readPng8(const std::filesystem::path& path, PngImage8& image) {
+    std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), std::fclose);
+    if (!file) return fmt::format("cannot read {}: cannot open it", path.string());
+    png_byte signature[8] = {};
+    if (std::fread(signature, 1, 8, file.get()) != 8 || png_sig_cmp(signature, 0, 8) != 0)
+        return fmt::format("cannot read {}: not a PNG file", path.string());
+    std::rewind(file.get());
+    std::vector<png_bytep> rows;
+    std::string error;
+    if (!decode(file.get(), image, rows, error))
+        return fmt::format("cannot read {}: {}", path.string(), error.empty() ? "libpng failed" : error);
+    return {};
 }
 
 }  // namespace relief

@@ -1,21 +1,32 @@
 #pragma once
-// Writing a PNG whole or not at all: pixels only (no date or software
-// chunks), so the same pixels give the same bytes, through a temporary file
-// renamed into place.
+// PNG files through libpng: written whole or not at all, with pixels only (no
+// date, software or gamma chunks), so the same pixels give the same bytes.
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace relief {
 
 struct PngPixels {
-    int width = 0, height = 0, channels = 1;
-    bool sixteenBit = false;     ///< 16-bit samples (else 8-bit)
+    int width = 0, height = 0, channels = 1;  ///< channels: 1 grey, 2 grey+alpha, 3 RGB, 4 RGBA
+    bool sixteenBit = false;     ///< 16-bit samples in native byte order (else 8-bit)
     const void* data = nullptr;  ///< rows top first, channels interleaved
-    int compression = -1;        ///< zlib level 0..9; -1: the library's default
+    int compression = -1;        ///< zlib level 0..9 (0: stored); -1: zlib's default
 };
 
+/// Writes `pixels` to `path` through a temporary file renamed into place.
 /// Returns "" or the error, naming `path`.
 std::string writePngAtomically(const std::filesystem::path& path, const PngPixels& pixels);
+
+struct PngImage8 {
+    int width = 0, height = 0, channels = 0;
+    std::vector<std::uint8_t> pixels;  ///< rows top first, channels interleaved
+};
+
+/// Reads a PNG as 8-bit samples: palettes expand to RGB (RGBA with a tRNS
+/// chunk), low bit depths to 8 and 16-bit samples are rounded to 8 bits.
+/// Returns "" or the error, naming `path`.
+std::string readPng8(const std::filesystem::path& path, PngImage8& image);
 
 }  // namespace relief

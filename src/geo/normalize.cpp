@@ -14,6 +14,7 @@
 #include <fmt/format.h>
 
 #include "core/number_format.h"
+#include "geo/linear_gridding.h"
 
 namespace relief::geo {
 
@@ -311,18 +312,23 @@ std::optional<ControlNet> gridSamples(const scene::NetSpec& spec, const std::str
         ys.push_back(fp.p.y);
         zs.push_back(fp.p.z);
     }
-    const std::string noData = fmt::format("{}", kNoData);
-    std::string algorithm;
-    switch (spec.gridding) {
-        case scene::Gridding::Linear: algorithm = "linear:radius=0:nodata=" + noData; break;
-        case scene::Gridding::InverseDistance:
-            algorithm = "invdist:power=2:smoothing=0:nodata=" + noData;
-            break;
-        case scene::Gridding::Nearest: break;  // every node from the k-d tree below
-    }
     std::vector<double> z(static_cast<size_t>(rows) * cols, kNoData);
     std::string error;
-    if (!algorithm.empty() && !gdalGrid(algorithm.c_str(), xs, ys, zs, net, z, error, progress)) {
+    switch (spec.gridding) {
+        case scene::Gridding::Linear: {
+            const GridLayout layout{net.x0 - 0.5 * net.dx, net.x0 + (cols - 0.5) * net.dx,
+                                    net.y0 - 0.5 * net.dy, net.y0 + (rows - 0.5) * net.dy, cols, rows};
+            error = gridLinear(xs, ys, zs, layout, kNoData, z, nullptr, 0, progress);
+            break;
+        }
+        case scene::Gridding::InverseDistance: {
+            const std::string algorithm = fmt::format("invdist:power=2:smoothing=0:nodata={}", kNoData);
+            gdalGrid(algorithm.c_str(), xs, ys, zs, net, z, error, progress);
+            break;
+        }
+        case scene::Gridding::Nearest: break;  // every node from the k-d tree below
+    }
+    if (!error.empty()) {
         diags.error({csv, 0, 0}, fmt::format("GDAL gridding failed: {}", error));
         return std::nullopt;
     }

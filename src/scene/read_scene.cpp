@@ -8,8 +8,8 @@
 #include <cstring>
 #include <set>
 
-#include <OpenImageIO/hash.h>
 #include <fmt/format.h>
+#include <openssl/evp.h>
 #include <toml++/toml.h>
 
 #include "core/atomic_file.h"
@@ -30,6 +30,16 @@ namespace {
 
 SourceLoc locOf(const std::string& file, const toml::source_region& r) {
     return {file, static_cast<int>(r.begin.line), static_cast<int>(r.begin.column)};
+}
+
+// The scene file's fingerprint for headers and sidecars: SHA-1 as upper-case hex.
+std::string sha1Hex(std::string_view bytes) {
+    unsigned char digest[EVP_MAX_MD_SIZE];
+    unsigned int size = 0;
+    if (!EVP_Digest(bytes.data(), bytes.size(), digest, &size, EVP_sha1(), nullptr)) return {};
+    std::string hex;
+    for (unsigned int i = 0; i < size; ++i) hex += fmt::format("{:02X}", digest[i]);
+    return hex;
 }
 
 std::string quoteName(std::string_view s) { return fmt::format("\"{}\"", s); }
@@ -291,10 +301,7 @@ std::optional<SceneSpec> readScene(const std::filesystem::path& path, Diagnostic
     SceneSpec scene;
     scene.sceneFile = path;
     scene.overrides = overrides;
-    {
-        OIIO::SHA1 sha(text.data(), text.size());
-        scene.sceneSha1 = sha.digest();
-    }
+    scene.sceneSha1 = sha1Hex(text);
 
     // Unknown or mistyped top-level sections.
     for (auto&& [k, v] : root) {
