@@ -207,6 +207,13 @@ std::optional<CompileResult> compileScene(const LoadedScene& loaded,
             result.adaptiveToleranceM = g.toleranceM > 0 ? g.toleranceM : g.tolerancePx * pixelM / spec.look.exaggeration;
             result.adaptiveTolerancePx = result.adaptiveToleranceM * spec.look.exaggeration / pixelM;
             mesh = emit::buildAdaptiveMesh(refined, spec.look, result.adaptiveToleranceM);
+            const scene::SubdivisionSpec& sub = spec.subdivision;
+            if (!subdiv::checkBudget(subdiv::withBuiltMesh(surface->estimate, double(mesh->positions.size()),
+                                                           double(mesh->triangles)),
+                                     budgetOf(spec.limits),
+                                     sub.locs.at(sub.depthAuto ? "subdivision.depth" : "subdivision.scheme"),
+                                     surface->depth, diags, true))
+                return std::nullopt;
         } else {
             mesh = emit::buildMesh(refined, spec.look);
         }
@@ -399,7 +406,11 @@ std::optional<Surface> buildSurface(const LoadedScene& loaded, Diagnostics& diag
         s.geometry = *geometry;
     }
     if (s.geometry.kind == scene::GeometryKind::HeightField)
-        s.estimate = subdiv::estimateOutput(scheme, net->rows(), net->cols(), s.depth, true);
+        s.estimate = subdiv::estimateOutput(scheme, net->rows(), net->cols(), s.depth,
+                                            subdiv::GeometryCost::HeightField);
+    else if (s.geometry.kind == scene::GeometryKind::Adaptive)
+        s.estimate = subdiv::estimateOutput(scheme, net->rows(), net->cols(), s.depth,
+                                            subdiv::GeometryCost::Adaptive);
     if (!subdiv::checkBudget(s.estimate, budget,
                              sub.locs.at(sub.depthAuto ? "subdivision.depth" : "subdivision.scheme"),
                              s.depth, diags))

@@ -2,6 +2,9 @@
 
 #include <unistd.h>
 
+#include <algorithm>
+#include <bit>
+
 #include <fmt/format.h>
 
 #include "core/number_format.h"
@@ -9,7 +12,7 @@
 
 namespace relief::subdiv {
 
-OutputEstimate estimateOutput(const Scheme& scheme, int rows, int cols, int depth, bool heightField) {
+OutputEstimate estimateOutput(const Scheme& scheme, int rows, int cols, int depth, GeometryCost kind) {
     OutputEstimate e;
     e.rows = rows;
     e.cols = cols;
@@ -24,11 +27,27 @@ OutputEstimate estimateOutput(const Scheme& scheme, int rows, int cols, int dept
     e.parseSeconds = e.triangles * kParseSecondsPerTriangle;
     const double coarser = depth > 0 ? e.vertices / (scheme.arity * scheme.arity) : 0;
     e.memoryBytes = e.vertices * kMemoryBytesPerVertex + 24 * coarser;
-    if (heightField) {
+    if (kind == GeometryCost::HeightField) {
         e.sdlBytes = kHeightFieldSdlBytes;
         e.parseSeconds = e.vertices * kParseSecondsPerHeightFieldNode;
         e.memoryBytes = e.vertices * (24 + 2) + 24 * coarser;
+    } else if (kind == GeometryCost::Adaptive) {
+        // Beside the full mesh's bound: the RTIN's error per node of the
+        // 2^k + 1 square that holds the grid, a float each.
+        const double side = static_cast<double>(std::bit_ceil(static_cast<unsigned long long>(
+                                std::max<long long>(std::max(e.rows, e.cols) - 1, 1)))) + 1;
+        e.memoryBytes += 4 * side * side;
+        e.meshAfterBuild = true;
     }
+    return e;
+}
+
+OutputEstimate withBuiltMesh(OutputEstimate e, double vertices, double triangles) {
+    e.vertices = vertices;
+    e.triangles = triangles;
+    e.sdlBytes = vertices * kSdlBytesPerVertex + triangles * kSdlBytesPerTriangle;
+    e.parseSeconds = triangles * kParseSecondsPerTriangle;
+    e.meshAfterBuild = false;
     return e;
 }
 
@@ -38,6 +57,7 @@ double defaultMemoryBudgetMB() {
 }
 
 bool withinBudget(const OutputEstimate& est, const Budget& budget) {
+    if (est.meshAfterBuild) return est.memoryBytes / 1e6 <= budget.maxMemoryMB;
     return est.triangles <= budget.maxTriangles && est.sdlBytes / 1e6 <= budget.maxSdlMB &&
            est.parseSeconds <= budget.maxParseS && est.memoryBytes / 1e6 <= budget.maxMemoryMB;
 }
@@ -49,25 +69,32 @@ int deepestWithinBudget(const Scheme& scheme, int rows, int cols, const Budget& 
 }
 
 bool checkBudget(const OutputEstimate& est, const Budget& budget, const SourceLoc& where,
-                 int depth, Diagnostics& diags) {
+                 int depth, Diagnostics& diags, bool adaptive) {
     if (withinBudget(est, budget)) return true;
     std::string over;
     auto add = [&](std::string s) { over += (over.empty() ? "" : "; ") + s; };
-    if (est.triangles > budget.maxTriangles)
+    const bool meshFigures = !est.meshAfterBuild;
+    if (meshFigures && est.triangles > budget.maxTriangles)
         add(fmt::format("{:.3g} triangles > limits.max_triangles = {:.3g}", est.triangles,
                         budget.maxTriangles));
-    if (est.sdlBytes / 1e6 > budget.maxSdlMB)
+    if (meshFigures && est.sdlBytes / 1e6 > budget.maxSdlMB)
         add(fmt::format("{:.0f} MB of SDL > limits.max_sdl_mb = {}", est.sdlBytes / 1e6,
                         formatShortest(budget.maxSdlMB)));
-    if (est.parseSeconds > budget.maxParseS)
+    if (meshFigures && est.parseSeconds > budget.maxParseS)
         add(fmt::format("~{:.1f} s of POV-Ray parsing > limits.max_parse_s = {}",
                         est.parseSeconds, formatShortest(budget.maxParseS)));
     if (est.memoryBytes / 1e6 > budget.maxMemoryMB)
         add(fmt::format("{:.0f} MB of memory > limits.max_memory_mb = {:.0f}", est.memoryBytes / 1e6,
                         budget.maxMemoryMB));
-    diags.error(where, fmt::format("depth {} refines the net to {} x {} vertices: {}; lower "
-                                   "subdivision.depth, use a coarser net, or raise [limits]",
-                                   depth, est.rows, est.cols, over));
+    if (adaptive)
+        diags.error(where, fmt::format("depth {} refines the net to {} x {} vertices, and their adaptive "
+                                       "mesh2 still has {}; raise geometry.tolerance_px (or tolerance_m), "
+                                       "lower subdivision.depth, or raise [limits]",
+                                       depth, est.rows, est.cols, over));
+    else
+        diags.error(where, fmt::format("depth {} refines the net to {} x {} vertices: {}; lower "
+                                       "subdivision.depth, use a coarser net, or raise [limits]",
+                                       depth, est.rows, est.cols, over));
     return false;
 }
 

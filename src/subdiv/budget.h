@@ -14,7 +14,13 @@ struct OutputEstimate {
     double sdlBytes = 0;  ///< the .pov's size, from the writer's bytes per vertex and face
     double parseSeconds = 0;  ///< POV-Ray's parse time at ~4 us per triangle (measured here)
     double memoryBytes = 0;   ///< relief's peak: the refined grid, its mesh, the last coarser level
+    /// The adaptive mesh: triangles, SDL and parse time are the full mesh2's (an
+    /// upper bound) until the mesh is built; the budget checks them on the built one.
+    bool meshAfterBuild = false;
 };
+
+/// What the geometry of the refined grid costs depends on its kind.
+enum class GeometryCost { Mesh2, Adaptive, HeightField };
 
 struct Budget {
     double maxTriangles;
@@ -45,11 +51,16 @@ inline constexpr double kGriddingBytesPerSample = 2200;
 inline constexpr double kHeightFieldSdlBytes = 16e3;
 inline constexpr double kParseSecondsPerHeightFieldNode = 0.15e-6;
 
-/// The refined grid's size and what its geometry costs: the full mesh2, or
-/// (heightField) the height field of the same grid.
-OutputEstimate estimateOutput(const Scheme& scheme, int rows, int cols, int depth, bool heightField = false);
+/// The refined grid's size and what its geometry costs: the full mesh2, the
+/// height field of the same grid, or the adaptive mesh (its memory at most
+/// the full mesh's, its triangles known once it is built: see meshAfterBuild).
+OutputEstimate estimateOutput(const Scheme& scheme, int rows, int cols, int depth,
+                              GeometryCost kind = GeometryCost::Mesh2);
 
-/// Every figure of the estimate within the budget.
+/// The estimate with a built mesh2's own vertices and triangles.
+OutputEstimate withBuiltMesh(OutputEstimate est, double vertices, double triangles);
+
+/// Every figure of the estimate within the budget (only memory while meshAfterBuild).
 bool withinBudget(const OutputEstimate& est, const Budget& budget);
 
 /// The deepest depth, at most maxDepth, whose output is within the budget
@@ -57,8 +68,9 @@ bool withinBudget(const OutputEstimate& est, const Budget& budget);
 int deepestWithinBudget(const Scheme& scheme, int rows, int cols, const Budget& budget, int maxDepth);
 
 /// Reports an error at `where` when the estimate exceeds the budget, naming
-/// each exceeded figure and the ways out. Returns true when within budget.
+/// each exceeded figure and the ways out (`adaptive`: the built adaptive mesh,
+/// whose tolerance is one of them). Returns true when within budget.
 bool checkBudget(const OutputEstimate& est, const Budget& budget, const SourceLoc& where,
-                 int depth, Diagnostics& diags);
+                 int depth, Diagnostics& diags, bool adaptive = false);
 
 }  // namespace relief::subdiv
