@@ -29,11 +29,6 @@ std::optional<GeometryChoice> chooseGeometry(const scene::GeometrySpec& spec, co
         return GeometryChoice{GeometryKind::Adaptive, "geometry.kind = \"adaptive\""};
     if (spec.kind == GeometryKind::HeightField) {
         const SourceLoc at = spec.locs.has("geometry.kind") ? spec.locs.at("geometry.kind") : SourceLoc{};
-        if (facts.masked) {
-            diags.error(at, "a height_field cannot leave out the nodes without data (nodata = \"mask\"): use "
-                            "kind = \"mesh2\", or nodata = \"fill\" in [samples]");
-            return std::nullopt;
-        }
         if (stepM > halfPixelM) {
             diags.error(at, fmt::format("a height_field's 16-bit heights step by {:.3g} m (exaggerated), more than "
                                         "half a pixel ({:.3g} m): use kind = \"mesh2\"",

@@ -24,10 +24,12 @@ HeightField quantizeHeights(const geo::GeoGrid& refined, const ScenePlacement& w
     field.rows = g.rows;
     field.cols = g.cols;
     double zmin = 1e300, zmax = -1e300;
-    for (const Vec3& p : g.points) {
-        const double h = where.drawnHeight(p);
+    for (size_t i = 0; i < g.points.size(); ++i) {
+        if (!refined.masked.empty() && refined.masked[i]) continue;
+        const double h = where.drawnHeight(g.points[i]);
         zmin = std::min(zmin, h), zmax = std::max(zmax, h);
     }
+    if (zmin > zmax) zmin = zmax = 0;  // every node masked: nothing to see
     if (flatRange(zmin, zmax)) zmax = zmin;
     field.zMinM = zmin;
     field.zMaxM = zmax;
@@ -90,24 +92,28 @@ Drape elevationDrape(const geo::GeoGrid& refined, const ScenePlacement& where) {
     Drape drape;
     drape.rows = g.rows;
     drape.cols = g.cols;
-    drape.rgb.resize(g.points.size() * 3);
+    drape.channels = refined.masked.empty() ? 3 : 4;
+    const size_t n = static_cast<size_t>(drape.channels);
+    drape.pixels.resize(g.points.size() * n);
     const double zmin = where.zMinM, span = where.zMaxM > where.zMinM ? where.zMaxM - where.zMinM : 1.0;
     const int top = static_cast<int>(where.paletteColors.size()) - 1;
     auto level = [](double v) { return static_cast<std::uint16_t>(std::clamp(std::lround(v * 65535), 0L, 65535L)); };
     for (int r = 0; r < g.rows; ++r) {
-        std::uint16_t* row = drape.rgb.data() + static_cast<size_t>(g.rows - 1 - r) * g.cols * 3;
+        std::uint16_t* row = drape.pixels.data() + static_cast<size_t>(g.rows - 1 - r) * g.cols * n;
         for (int c = 0; c < g.cols; ++c) {
             // The mesh2's palette index for this node (emit/mesh.cpp), and its colour.
             const long k = std::clamp(std::lround((where.elevation(g.at(r, c)) - zmin) / span * top), 0L, long{top});
             const auto& colour = where.paletteColors[static_cast<size_t>(k)];
-            row[3 * c] = level(colour.r), row[3 * c + 1] = level(colour.g), row[3 * c + 2] = level(colour.b);
+            std::uint16_t* px = row + n * static_cast<size_t>(c);
+            px[0] = level(colour.r), px[1] = level(colour.g), px[2] = level(colour.b);
+            if (n == 4) px[3] = refined.isMasked(r, c) ? 0 : 65535;
         }
     }
     return drape;
 }
 
 std::string writeDrapePng(const Drape& drape, const std::filesystem::path& png) {
-    return writePngAtomically(png, {drape.cols, drape.rows, 3, true, drape.rgb.data(), kPngCompression});
+    return writePngAtomically(png, {drape.cols, drape.rows, drape.channels, true, drape.pixels.data(), kPngCompression});
 }
 
 std::string siblingPngName(const std::filesystem::path& pov, const std::string& what) {

@@ -29,16 +29,26 @@ struct HeightField {
 
 /// Quantizes the grid's heights as drawn (ScenePlacement::drawnHeight: in a
 /// local frame the Earth's curvature is not exaggerated) to the nearest
-/// level. The grid must have no masked nodes: a height_field has no holes.
+/// level, over the range of the nodes with data (masked nodes keep their
+/// filled heights, clamped to it: the drape makes them transparent).
 HeightField quantizeHeights(const geo::GeoGrid& refined, const ScenePlacement& where);
 
 /// The colour draped on the height field: per node, the palette colour the
 /// mesh2 gives its vertex (the ramp over zMinM..zMaxM), linear RGB in 16 bits,
-/// rows x cols x 3, row 0 north. POV-Ray interpolates it bilinearly between
-/// the nodes, as it interpolates a mesh2's vertex colours across a triangle.
+/// rows x cols x channels, row 0 north. POV-Ray interpolates it bilinearly
+/// between the nodes, as it interpolates a mesh2's vertex colours across a
+/// triangle.
+///
+/// A height_field has no holes, so a grid with masked nodes gets a fourth
+/// channel, alpha, 0 at the masked nodes: POV-Ray takes a PNG's alpha as
+/// transmit, so the surface there lets every ray and the sun's light through
+/// (no colour, no shadow). Alpha is interpolated like the colour, so the
+/// hole's edge lies between a node with data and one without, where the
+/// mesh2's lies on the node with data: half a cell, under a pixel at the
+/// grid sizes the height field is for.
 struct Drape {
-    int rows = 0, cols = 0;
-    std::vector<std::uint16_t> rgb;
+    int rows = 0, cols = 0, channels = 3;  ///< RGB, or RGBA when nodes are masked
+    std::vector<std::uint16_t> pixels;
 };
 Drape elevationDrape(const geo::GeoGrid& refined, const ScenePlacement& where);
 

@@ -80,11 +80,43 @@ TEST(HeightField, DrapeColoursAreTheMeshPalette) {
     for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 4; ++c) {
             const auto& colour = mesh.paletteColors[mesh.palette[static_cast<size_t>(r) * 4 + c]];
-            const std::uint16_t* px = &drape.rgb[(static_cast<size_t>(2 - r) * 4 + c) * 3];
+            const std::uint16_t* px = &drape.pixels[(static_cast<size_t>(2 - r) * 4 + c) * 3];
             EXPECT_EQ(px[0], std::lround(colour.r * 65535)) << r << " " << c;
             EXPECT_EQ(px[1], std::lround(colour.g * 65535));
             EXPECT_EQ(px[2], std::lround(colour.b * 65535));
         }
+}
+
+// A height_field has no holes: masked nodes are transparent in the drape (alpha 0), and their
+// filled heights do not stretch the levels' range.
+TEST(HeightField, MaskedNodesAreTransparent) {
+    auto grid = tiltedPlane();
+    grid.masked.assign(12, 0);
+    grid.masked[2 * 4 + 3] = 1;                  // the north-east node...
+    grid.grid.at(2, 3).z = 5000;                 // ...with a wild filled height
+    const ScenePlacement where = placeTerrain(grid, {});
+    const HeightField field = quantizeHeights(grid, where);
+    EXPECT_EQ(field.zMaxM, 81);                  // the highest node with data (2, 2)
+    EXPECT_EQ(field.levels[3], 65535);           // the masked node, clamped
+    const Drape drape = elevationDrape(grid, where);
+    ASSERT_EQ(drape.channels, 4);
+    ASSERT_EQ(drape.pixels.size(), 48u);
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 4; ++c)
+            EXPECT_EQ(drape.pixels[(static_cast<size_t>(2 - r) * 4 + c) * 4 + 3], r == 2 && c == 3 ? 0 : 65535)
+                << r << " " << c;
+    const fs::path png = fs::temp_directory_path() / "relief-hf-masked" / "d.png";
+    fs::create_directories(png.parent_path());
+    ASSERT_EQ(writeDrapePng(drape, png), "");
+    OIIO::ImageSpec asStored;  // not premultiplied: the colours under alpha 0 as written
+    asStored.attribute("oiio:UnassociatedAlpha", 1);
+    auto in = OIIO::ImageInput::open(png.string(), &asStored);
+    ASSERT_TRUE(in);
+    EXPECT_EQ(in->spec().nchannels, 4);
+    EXPECT_EQ(in->spec().alpha_channel, 3);
+    std::vector<std::uint16_t> back(48);
+    ASSERT_TRUE(in->read_image(0, 0, 0, 4, OIIO::TypeDesc::UINT16, back.data()));
+    EXPECT_EQ(back, drape.pixels);
 }
 
 // The height field lands where the mesh2 puts the nodes: 10 m per unit, centred; its image map's
@@ -138,13 +170,11 @@ TEST(GeometryKind, AutoAndExplicitChoices) {
     asked.kind = scene::GeometryKind::HeightField;
     asked.locs.keys["geometry.kind"] = {"s.toml", 2, 8};
     EXPECT_EQ(chooseGeometry(asked, small, diags)->kind, scene::GeometryKind::HeightField);
-    EXPECT_FALSE(chooseGeometry(asked, holes, diags));
-    ASSERT_EQ(diags.errorCount(), 1);
-    EXPECT_EQ(formatDiagnostic(diags.all()[0]),
-              "s.toml:2:8: error: a height_field cannot leave out the nodes without data (nodata = \"mask\"): use "
-              "kind = \"mesh2\", or nodata = \"fill\" in [samples]");
+    // Holes are transparent pixels of the drape (HeightField.MaskedNodesAreTransparent).
+    EXPECT_EQ(chooseGeometry(asked, holes, diags)->kind, scene::GeometryKind::HeightField);
+    EXPECT_EQ(diags.errorCount(), 0);
     EXPECT_FALSE(chooseGeometry(asked, coarse, diags));
-    EXPECT_EQ(diags.errorCount(), 2);
+    EXPECT_EQ(diags.errorCount(), 1);
     asked.kind = scene::GeometryKind::Adaptive;
     EXPECT_EQ(chooseGeometry(asked, holes, diags)->kind, scene::GeometryKind::Adaptive);
 }
