@@ -183,7 +183,7 @@ std::optional<CompileResult> compileScene(const LoadedScene& loaded,
     const auto t0 = Clock::now();
     const geo::GeoGrid& refined = surface->refined;
     const bool heightField = surface->geometry.kind == scene::GeometryKind::HeightField;
-    // One of the two geometries: the mesh (every vertex in memory) or the
+    // One of the two geometries: the mesh (a view of the refined grid) or the
     // height field's 16-bit levels.
     std::optional<emit::Mesh> mesh;
     std::optional<emit::HeightField> field;
@@ -208,7 +208,7 @@ std::optional<CompileResult> compileScene(const LoadedScene& loaded,
             result.adaptiveTolerancePx = result.adaptiveToleranceM * spec.look.exaggeration / pixelM;
             mesh = emit::buildAdaptiveMesh(refined, spec.look, result.adaptiveToleranceM);
             const scene::SubdivisionSpec& sub = spec.subdivision;
-            if (!subdiv::checkBudget(subdiv::withBuiltMesh(surface->estimate, double(mesh->positions.size()),
+            if (!subdiv::checkBudget(subdiv::withBuiltMesh(surface->estimate, double(mesh->vertices),
                                                            double(mesh->triangles)),
                                      budgetOf(spec.limits),
                                      sub.locs.at(sub.depthAuto ? "subdivision.depth" : "subdivision.scheme"),
@@ -218,7 +218,7 @@ std::optional<CompileResult> compileScene(const LoadedScene& loaded,
             mesh = emit::buildMesh(refined, spec.look);
         }
         where = *mesh;
-        result.meshVertices = static_cast<long long>(mesh->positions.size());
+        result.meshVertices = static_cast<long long>(mesh->vertices);
         result.meshTriangles = mesh->triangles;
     }
     result.geometry = surface->geometry;

@@ -131,15 +131,11 @@ Mesh buildAdaptiveMesh(const geo::GeoGrid& refined, const scene::LookSpec& look,
     const Grid& g = refined.grid;
     Mesh mesh;
     static_cast<ScenePlacement&>(mesh) = placeTerrain(refined, look);
+    mesh.grid = &refined;
     mesh.rows = g.rows;
     mesh.cols = g.cols;
     // The colour each vertex gets (its palette entry), as a function of height.
-    const double zmin = mesh.zMinM, span = mesh.zMaxM > mesh.zMinM ? mesh.zMaxM - mesh.zMinM : 1.0;
-    auto paletteIndex = [&](double z) {
-        return static_cast<unsigned char>(std::clamp(std::lround((z - zmin) / span * (kPaletteSize - 1)), 0L,
-                                                     long{kPaletteSize - 1}));
-    };
-    const Rtin rtin(refined, mesh, [&](double z) { return mesh.paletteColors[paletteIndex(z)]; });
+    const Rtin rtin(refined, mesh, [&](double z) { return mesh.paletteColors[paletteIndex(mesh, z)]; });
     const int S = rtin.size();
 
     // Top down: split while the midpoint's error exceeds the tolerance.
@@ -171,23 +167,13 @@ Mesh buildAdaptiveMesh(const geo::GeoGrid& refined, const scene::LookSpec& look,
     std::uint32_t next = 0;
     for (auto& v : mesh.vertexOfNode)
         if (v != Mesh::kNoVertex) v = next++;
-    mesh.positions.resize(next);
-    mesh.normals.resize(next);
-    mesh.palette.resize(next);
-    for (int r = 0; r < g.rows; ++r)
-        for (int c = 0; c < g.cols; ++c) {
-            const std::uint32_t v = mesh.vertexOfNode[static_cast<size_t>(r) * g.cols + c];
-            if (v == Mesh::kNoVertex) continue;
-            mesh.positions[v] = mesh.scenePoint(g.at(r, c));
-            mesh.normals[v] = surfaceNormal(refined, mesh, r, c);  // of the full surface
-            mesh.palette[v] = paletteIndex(mesh.elevation(g.at(r, c)));
-        }
+    mesh.vertices = next;
 
     // Faces counter-clockwise seen from above (x east, y north), in a fixed order.
     mesh.faces.reserve(kept.size());
     for (const auto& tri : kept) {
         std::array<std::uint32_t, 3> f;
-        for (int k = 0; k < 3; ++k) f[k] = mesh.vertexOfNode[static_cast<size_t>(tri[k].y) * g.cols + tri[k].x];
+        for (int k = 0; k < 3; ++k) f[k] = static_cast<std::uint32_t>(static_cast<size_t>(tri[k].y) * g.cols + tri[k].x);
         const long cross2 = static_cast<long>(tri[1].x - tri[0].x) * (tri[2].y - tri[0].y) -
                             static_cast<long>(tri[1].y - tri[0].y) * (tri[2].x - tri[0].x);
         if (cross2 < 0) std::swap(f[1], f[2]);

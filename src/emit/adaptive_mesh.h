@@ -27,5 +27,6 @@ namespace relief::emit {
 /// vertical): vertices are refined nodes with the full surface's normals
 /// (central differences) and palette colours; `faces` lists the triangles.
 Mesh buildAdaptiveMesh(const geo::GeoGrid& refined, const scene::LookSpec& look, double toleranceM);
+Mesh buildAdaptiveMesh(geo::GeoGrid&& refined, const scene::LookSpec& look, double toleranceM) = delete;
 
 }  // namespace relief::emit

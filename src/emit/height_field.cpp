@@ -95,15 +95,12 @@ Drape elevationDrape(const geo::GeoGrid& refined, const ScenePlacement& where) {
     drape.channels = refined.masked.empty() ? 3 : 4;
     const size_t n = static_cast<size_t>(drape.channels);
     drape.pixels.resize(g.points.size() * n);
-    const double zmin = where.zMinM, span = where.zMaxM > where.zMinM ? where.zMaxM - where.zMinM : 1.0;
-    const int top = static_cast<int>(where.paletteColors.size()) - 1;
     auto level = [](double v) { return static_cast<std::uint16_t>(std::clamp(std::lround(v * 65535), 0L, 65535L)); };
     for (int r = 0; r < g.rows; ++r) {
         std::uint16_t* row = drape.pixels.data() + static_cast<size_t>(g.rows - 1 - r) * g.cols * n;
         for (int c = 0; c < g.cols; ++c) {
-            // The mesh2's palette index for this node (emit/mesh.cpp), and its colour.
-            const long k = std::clamp(std::lround((where.elevation(g.at(r, c)) - zmin) / span * top), 0L, long{top});
-            const auto& colour = where.paletteColors[static_cast<size_t>(k)];
+            // The mesh2's palette entry for this node, and its colour.
+            const auto& colour = where.paletteColors[paletteIndex(where, where.elevation(g.at(r, c)))];
             std::uint16_t* px = row + n * static_cast<size_t>(c);
             px[0] = level(colour.r), px[1] = level(colour.g), px[2] = level(colour.b);
             if (n == 4) px[3] = refined.isMasked(r, c) ? 0 : 65535;

@@ -57,46 +57,33 @@ Vec3 surfaceNormal(const geo::GeoGrid& refined, const ScenePlacement& where, int
     return len > 0 ? (1.0 / len) * n : Vec3{0, 1, 0};
 }
 
+Vec3 Mesh::normal(size_t node) const {
+    return surfaceNormal(*grid, *this, static_cast<int>(node / static_cast<size_t>(cols)),
+                         static_cast<int>(node % static_cast<size_t>(cols)));
+}
+
 Mesh buildMesh(const geo::GeoGrid& refined, const scene::LookSpec& look) {
     const Grid& g = refined.grid;
     Mesh mesh;
     static_cast<ScenePlacement&>(mesh) = placeTerrain(refined, look);
+    mesh.grid = &refined;
     mesh.rows = g.rows;
     mesh.cols = g.cols;
     const size_t nodes = g.points.size();
     auto kept = [&](size_t i) { return refined.masked.empty() || refined.masked[i] == 0; };
 
-    size_t vertices = nodes;
+    mesh.vertices = nodes;
     if (!refined.masked.empty()) {
         mesh.vertexOfNode.resize(nodes);
         std::uint32_t next = 0;
         for (size_t i = 0; i < nodes; ++i) mesh.vertexOfNode[i] = kept(i) ? next++ : Mesh::kNoVertex;
-        vertices = next;
+        mesh.vertices = next;
     }
     for (int r = 0; r + 1 < g.rows; ++r)
         for (int c = 0; c + 1 < g.cols; ++c) {
             const size_t sw = static_cast<size_t>(r) * g.cols + c, se = sw + 1, nw = sw + g.cols, ne = nw + 1;
             mesh.triangles += (kept(sw) && kept(se) && kept(nw)) + (kept(se) && kept(ne) && kept(nw));
         }
-
-    // Per vertex: position, normal and palette index.
-    const double zmin = mesh.zMinM, span = mesh.zMaxM > mesh.zMinM ? mesh.zMaxM - mesh.zMinM : 1.0;
-    mesh.positions.resize(vertices);
-    mesh.normals.resize(vertices);
-    mesh.palette.resize(vertices);
-    size_t v = 0;
-    for (int r = 0; r < g.rows; ++r) {
-        for (int c = 0; c < g.cols; ++c) {
-            const size_t i = static_cast<size_t>(r) * g.cols + c;
-            if (!kept(i)) continue;
-            mesh.positions[v] = mesh.scenePoint(g.at(r, c));
-            mesh.normals[v] = surfaceNormal(refined, mesh, r, c);
-            const double t = (mesh.elevation(g.points[i]) - zmin) / span;
-            mesh.palette[v] = static_cast<unsigned char>(
-                std::clamp(std::lround(t * (kPaletteSize - 1)), 0L, long{kPaletteSize - 1}));
-            ++v;
-        }
-    }
     return mesh;
 }
 

@@ -57,6 +57,15 @@ inline bool flatRange(double zMinM, double zMaxM) {
     return !(zMaxM - zMinM > 1e-9 * std::max({1.0, std::fabs(zMinM), std::fabs(zMaxM)}));
 }
 
+/// The palette entry of a true elevation: its place on the ramp over
+/// zMinM..zMaxM, rounded to one of kPaletteSize entries. Every geometry kind
+/// colours a node by it.
+inline unsigned char paletteIndex(const ScenePlacement& where, double elevationM) {
+    const double span = where.zMaxM > where.zMinM ? where.zMaxM - where.zMinM : 1.0;
+    const double t = (elevationM - where.zMinM) / span;
+    return static_cast<unsigned char>(std::clamp(std::lround(t * (kPaletteSize - 1)), 0L, long{kPaletteSize - 1}));
+}
+
 /// The placement of the refined grid's nodes with data: scene unit, origin
 /// (centred), bounds, elevation range (collapsed to one height when flat) and
 /// the ramp's palette over it.
@@ -68,27 +77,43 @@ ScenePlacement placeTerrain(const geo::GeoGrid& refined, const scene::LookSpec& 
 /// points up in POV-Ray's (x, y, z) = (E, U, N).
 Vec3 surfaceNormal(const geo::GeoGrid& refined, const ScenePlacement& where, int r, int c);
 
-/// The terrain as one mesh2: a vertex per refined node with data.
+/// The terrain as one mesh2, as a view of the refined grid: its vertices are
+/// grid nodes, whose position, normal (the full surface's) and palette index
+/// are computed from the grid as the writer streams them, so that a mesh
+/// holds no copy of the grid (positions and normals would be 48 bytes a
+/// vertex beside the grid's 24). Vertices are numbered in the grid's order.
 struct Mesh : ScenePlacement {
     static constexpr std::uint32_t kNoVertex = 0xffffffffu;
+    const geo::GeoGrid* grid = nullptr;  ///< the refined grid; it must outlive the mesh
     int rows = 0, cols = 0;       ///< the refined grid's lattice
-    /// Per grid node: its vertex, or kNoVertex for a masked node (no data);
-    /// empty when every node is a vertex, node i being vertex i.
+    /// Per grid node: its vertex, or kNoVertex for a node that is not one (no
+    /// data, or left out by the adaptive kind); empty when every node is a
+    /// vertex, node i being vertex i.
     std::vector<std::uint32_t> vertexOfNode;
+    size_t vertices = 0;
     long long triangles = 0;      ///< two per cell, less those touching a masked node (or faces.size())
-    /// Explicit triangles (vertex indices, counter-clockwise from above), for a
+    /// Explicit triangles as grid nodes, counter-clockwise from above, for a
     /// mesh that is not the lattice's cells (the adaptive kind); empty: two per cell.
     std::vector<std::array<std::uint32_t, 3>> faces;
-    std::vector<Vec3> positions;  ///< per vertex: scene units, relative to `originM`
-    std::vector<Vec3> normals;    ///< unit length, scene axes
-    std::vector<unsigned char> palette;  ///< per vertex: index into paletteColors
+
+    bool isVertex(size_t node) const { return vertexOfNode.empty() || vertexOfNode[node] != kNoVertex; }
+    std::uint32_t vertexOf(size_t node) const {
+        return vertexOfNode.empty() ? static_cast<std::uint32_t>(node) : vertexOfNode[node];
+    }
+    /// Node `node`'s vertex in scene units, relative to `originM`.
+    Vec3 position(size_t node) const { return scenePoint(grid->grid.points[node]); }
+    /// The full surface's unit normal at node `node`, scene axes (surfaceNormal).
+    Vec3 normal(size_t node) const;
+    /// Node `node`'s entry of paletteColors: its true elevation on the ramp.
+    unsigned char palette(size_t node) const { return paletteIndex(*this, elevation(grid->grid.points[node])); }
 };
 
-/// Builds the mesh: centres the terrain on the origin, applies the vertical
-/// exaggeration, computes normals from the grid (central differences, one-sided
-/// at the edges and next to masked nodes) and maps each vertex's true
-/// elevation to the palette. Masked nodes are left out, with every triangle
-/// that touches one; bounds and the palette's range are those of the rest.
+/// The full mesh2 of `refined` (which it refers to): centred on the origin,
+/// exaggerated, normals from the grid (central differences, one-sided at the
+/// edges and next to masked nodes), each vertex's true elevation on the
+/// palette. Masked nodes are left out, with every triangle that touches one;
+/// bounds and the palette's range are those of the rest.
 Mesh buildMesh(const geo::GeoGrid& refined, const scene::LookSpec& look);
+Mesh buildMesh(geo::GeoGrid&& refined, const scene::LookSpec& look) = delete;  // the mesh refers to the grid
 
 }  // namespace relief::emit

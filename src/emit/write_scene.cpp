@@ -90,21 +90,24 @@ size_t writeMesh2(const Mesh& mesh, std::FILE* out, const WriteProgressFn& progr
         const int percent = static_cast<int>(100 * fraction);
         if (progress && percent != lastPercent) progress(fraction), lastPercent = percent;
     };
-    // `name { count, <x,y,z>, ... }` for the vertex and the normal arrays.
-    auto vectorSection = [&](const char* open, const std::vector<Vec3>& vectors, int decimals, double from) {
+    // `name { count, <x,y,z>, ... }` for the vertex and the normal arrays, each
+    // vector computed from the grid as it is written (Mesh::position, normal).
+    const size_t nodes = static_cast<size_t>(mesh.rows) * static_cast<size_t>(mesh.cols);
+    auto vectorSection = [&](const char* open, auto vectorAt, int decimals, double from) {
         w->put(open);
-        w->commit(writeUnsigned(w->reserve(24), vectors.size()));
-        const size_t step = std::max<size_t>(vectors.size() / 100, 1);
-        for (size_t i = 0; i < vectors.size(); ++i) {
+        w->commit(writeUnsigned(w->reserve(24), mesh.vertices));
+        const size_t step = std::max<size_t>(nodes / 100, 1);
+        for (size_t i = 0; i < nodes; ++i) {
+            if (i % step == 0) report(from + 0.25 * static_cast<double>(i) / static_cast<double>(nodes));
+            if (!mesh.isVertex(i)) continue;
             char* p = w->reserve(128);
             *p++ = ',';
             *p++ = '\n';
-            w->commit(writeVector(p, vectors[i], decimals));
-            if (i % step == 0) report(from + 0.25 * static_cast<double>(i) / vectors.size());
+            w->commit(writeVector(p, vectorAt(i), decimals));
         }
     };
-    vectorSection("mesh2 {\n  vertex_vectors {\n    ", mesh.positions, kPositionDecimals, 0);
-    vectorSection("\n  }\n  normal_vectors {\n    ", mesh.normals, kNormalDecimals, 0.25);
+    vectorSection("mesh2 {\n  vertex_vectors {\n    ", [&](size_t i) { return mesh.position(i); }, kPositionDecimals, 0);
+    vectorSection("\n  }\n  normal_vectors {\n    ", [&](size_t i) { return mesh.normal(i); }, kNormalDecimals, 0.25);
     w->put("\n  }\n  texture_list {\n    ");
     {
         char* p = w->reserve(24);
@@ -126,27 +129,27 @@ size_t writeMesh2(const Mesh& mesh, std::FILE* out, const WriteProgressFn& progr
         char* p = w->reserve(24);
         w->commit(writeUnsigned(p, static_cast<std::uint64_t>(mesh.triangles)));
     }
+    // A face by its corner nodes: their vertices, then their palette entries.
     const size_t cols = static_cast<size_t>(mesh.cols);
     auto face = [&](size_t a, size_t b, size_t c) {
         char* p = w->reserve(96);
         *p++ = ',';
         *p++ = '\n';
         *p++ = '<';
-        p = writeUnsigned(p, a);
+        p = writeUnsigned(p, mesh.vertexOf(a));
         *p++ = ',';
-        p = writeUnsigned(p, b);
+        p = writeUnsigned(p, mesh.vertexOf(b));
         *p++ = ',';
-        p = writeUnsigned(p, c);
+        p = writeUnsigned(p, mesh.vertexOf(c));
         *p++ = '>';
         *p++ = ',';
-        p = writeUnsigned(p, mesh.palette[a]);
+        p = writeUnsigned(p, mesh.palette(a));
         *p++ = ',';
-        p = writeUnsigned(p, mesh.palette[b]);
+        p = writeUnsigned(p, mesh.palette(b));
         *p++ = ',';
-        p = writeUnsigned(p, mesh.palette[c]);
+        p = writeUnsigned(p, mesh.palette(c));
         w->commit(p);
     };
-    const auto& vertexOf = mesh.vertexOfNode;
     const size_t faceStep = std::max<size_t>(mesh.faces.size() / 100, 1);
     for (size_t i = 0; i < mesh.faces.size(); ++i) {
         if (i % faceStep == 0) report(0.5 + 0.5 * static_cast<double>(i) / mesh.faces.size());
@@ -159,15 +162,9 @@ size_t writeMesh2(const Mesh& mesh, std::FILE* out, const WriteProgressFn& progr
             // along the south-east to north-west diagonal as POV-Ray cuts a
             // height_field's cells, so that the two kinds make the same surface.
             const size_t sw = r * cols + c, se = sw + 1, nw = sw + cols, ne = nw + 1;
-            if (vertexOf.empty()) {
-                face(sw, se, nw);
-                face(se, ne, nw);
-                continue;
-            }
-            const std::uint32_t vsw = vertexOf[sw], vse = vertexOf[se], vnw = vertexOf[nw], vne = vertexOf[ne];
-            if (vse == Mesh::kNoVertex || vnw == Mesh::kNoVertex) continue;
-            if (vsw != Mesh::kNoVertex) face(vsw, vse, vnw);
-            if (vne != Mesh::kNoVertex) face(vse, vne, vnw);
+            if (!mesh.isVertex(se) || !mesh.isVertex(nw)) continue;
+            if (mesh.isVertex(sw)) face(sw, se, nw);
+            if (mesh.isVertex(ne)) face(se, ne, nw);
         }
     }
     w->put("\n  }\n  inside_vector <0, 1, 0>\n}");

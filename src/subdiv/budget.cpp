@@ -32,11 +32,11 @@ OutputEstimate estimateOutput(const Scheme& scheme, int rows, int cols, int dept
         e.parseSeconds = e.vertices * kParseSecondsPerHeightFieldNode;
         e.memoryBytes = e.vertices * (24 + 2) + 24 * coarser;
     } else if (kind == GeometryCost::Adaptive) {
-        // Beside the full mesh's bound: the RTIN's error per node of the
-        // 2^k + 1 square that holds the grid, a float each.
+        // Beside the grid: the faces (at most the full mesh's), and the
+        // RTIN's error per node of the 2^k + 1 square that holds the grid.
         const double side = static_cast<double>(std::bit_ceil(static_cast<unsigned long long>(
                                 std::max<long long>(std::max(e.rows, e.cols) - 1, 1)))) + 1;
-        e.memoryBytes += 4 * side * side;
+        e.memoryBytes += e.vertices * kAdaptiveFaceBytesPerVertex + 4 * side * side;
         e.meshAfterBuild = true;
     }
     return e;

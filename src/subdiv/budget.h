@@ -37,9 +37,12 @@ inline constexpr double kParseSecondsPerTriangle = 4e-6;
 // its normal line, and a face line with its three palette indices.
 inline constexpr double kSdlBytesPerVertex = 58;
 inline constexpr double kSdlBytesPerTriangle = 31;
-// Per refined vertex: the grid (3 doubles), the mesh's position and normal (3 doubles each) and
-// its palette index; the last coarser level is counted at its own size.
-inline constexpr double kMemoryBytesPerVertex = 3 * 8 + 3 * 8 + 3 * 8 + 1;
+// Per refined vertex: the grid (3 doubles), its mask byte and the mesh's vertex number (masked
+// grids); the mesh2 is a view of the grid, its vectors computed as they are written. The last
+// coarser level is counted at its own size.
+inline constexpr double kMemoryBytesPerVertex = 3 * 8 + 1 + 4;
+// The adaptive mesh's faces beside that: at most two a node, three node numbers each.
+inline constexpr double kAdaptiveFaceBytesPerVertex = 2 * 3 * 4;
 // GDAL's gridding of scattered samples (its Delaunay triangulation and search
 // structures) at its peak, per sample: 989 MB for 458,845 samples, measured
 // with /usr/bin/time on relief compile of holyroodpark.tif's cells as a CSV.

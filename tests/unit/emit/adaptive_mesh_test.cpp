@@ -34,18 +34,18 @@ struct Checked {
 // Walks every triangle: its area, the nodes it covers and their distance from its plane, its edges.
 Checked check(const Mesh& m, const geo::GeoGrid& g) {
     Checked out;
-    std::vector<std::pair<int, int>> nodeOf(m.positions.size());
+    // Faces are grid nodes: node n is column n % cols, row n / cols.
+    const auto nodeOf = [&](std::uint32_t n) { return std::pair<int, int>{int(n % g.cols()), int(n / g.cols())}; };
+    std::set<std::pair<int, int>> vertices;
     for (int r = 0; r < g.rows(); ++r)
         for (int c = 0; c < g.cols(); ++c)
-            if (const auto v = m.vertexOfNode.empty() ? Mesh::kNoVertex : m.vertexOfNode[r * g.cols() + c];
-                v != Mesh::kNoVertex)
-                nodeOf[v] = {c, r};
+            if (m.isVertex(size_t(r) * g.cols() + c)) vertices.insert({c, r});
+    EXPECT_EQ(vertices.size(), m.vertices);
     std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;
-    std::set<std::pair<int, int>> vertices(nodeOf.begin(), nodeOf.end());
     for (const auto& f : m.faces) {
-        const auto [x0, y0] = nodeOf[f[0]];
-        const auto [x1, y1] = nodeOf[f[1]];
-        const auto [x2, y2] = nodeOf[f[2]];
+        const auto [x0, y0] = nodeOf(f[0]);
+        const auto [x1, y1] = nodeOf(f[1]);
+        const auto [x2, y2] = nodeOf(f[2]);
         const double twice = double(x1 - x0) * (y2 - y0) - double(y1 - y0) * (x2 - x0);
         EXPECT_GT(twice, 0) << "not counter-clockwise";
         out.area += 0.5 * twice;
@@ -53,8 +53,8 @@ Checked check(const Mesh& m, const geo::GeoGrid& g) {
             const auto a = f[k], b = f[(k + 1) % 3];
             ++edges[{std::min(a, b), std::max(a, b)}];
             // Lattice nodes strictly inside the edge must not be vertices (T-junctions).
-            const auto [ax, ay] = nodeOf[a];
-            const auto [bx, by] = nodeOf[b];
+            const auto [ax, ay] = nodeOf(a);
+            const auto [bx, by] = nodeOf(b);
             const int steps = std::gcd(std::abs(bx - ax), std::abs(by - ay));
             for (int s = 1; s < steps; ++s)
                 if (vertices.count({ax + (bx - ax) / steps * s, ay + (by - ay) / steps * s})) out.tJunction = true;
@@ -89,7 +89,7 @@ TEST(AdaptiveMesh, APlaneIsTwoTrianglesUnlessItsColoursBend) {
     const auto g = lattice(17, 17, [](double x, double y) { return 100 + 0.1 * x - 0.05 * y; });
     const Mesh m = buildAdaptiveMesh(g, grey(), 0.01);
     EXPECT_EQ(m.faces.size(), 2u);
-    EXPECT_EQ(m.positions.size(), 4u);
+    EXPECT_EQ(m.vertices, 4u);
     EXPECT_GT(buildAdaptiveMesh(g, {}, 0.01).faces.size(), 2u);
 }
 

@@ -60,19 +60,21 @@ Grid tiltedPlane() {
 TEST(Mesh, NormalsOfATiltedPlaneAndSceneUnits) {
     scene::LookSpec look;
     look.exaggeration = 2;
-    const Mesh m = buildMesh({{}, tiltedPlane(), 300000, 5900000, 100, 100, {}}, look);
+    const geo::GeoGrid grid{{}, tiltedPlane(), 300000, 5900000, 100, 100, {}};
+    const Mesh m = buildMesh(grid, look);
     EXPECT_EQ(m.metresPerUnit, 10.0);  // 300 m extent -> 10 m per unit
     // Height rises 20 (exaggerated) per 100 m east: normal ~ (-0.2, 1, 0) normalised.
     const double n = std::sqrt(1 + 0.04);
-    for (const Vec3& v : m.normals) {
+    for (size_t i = 0; i < m.vertices; ++i) {
+        const Vec3 v = m.normal(i);
         EXPECT_NEAR(v.x, -0.2 / n, 1e-12);
         EXPECT_NEAR(v.y, 1.0 / n, 1e-12);
         EXPECT_NEAR(v.z, 0.0, 1e-12);
     }
-    EXPECT_NEAR(m.positions[0].x, -15.0, 1e-9);  // centred: x from -150 m to +150 m
-    EXPECT_NEAR(m.positions[0].y, 10.0, 1e-9);   // 50 m * 2 / 10 m per unit
-    EXPECT_EQ(m.palette.front(), 0);
-    EXPECT_EQ(m.palette.back(), 255);
+    EXPECT_NEAR(m.position(0).x, -15.0, 1e-9);  // centred: x from -150 m to +150 m
+    EXPECT_NEAR(m.position(0).y, 10.0, 1e-9);   // 50 m * 2 / 10 m per unit
+    EXPECT_EQ(m.palette(0), 0);
+    EXPECT_EQ(m.palette(m.vertices - 1), 255);
 }
 
 // A string from a scene or a data file cannot leave the header's comments:
@@ -80,14 +82,16 @@ TEST(Mesh, NormalsOfATiltedPlaneAndSceneUnits) {
 TEST(SceneHeader, UntrustedTextStaysInItsComment) {
     EXPECT_EQ(sdlCommentText("data/dem.tif"), "data/dem.tif");
     EXPECT_EQ(sdlCommentText("a\n#fopen F \"/tmp/x\" write\r\x7f"), "a\\x0a#fopen F \"/tmp/x\" write\\x0d\\x7f");
-    const Mesh m = buildMesh({{}, tiltedPlane(), 300000, 5900000, 100, 100, {}}, {});
+    const geo::GeoGrid grid{{}, tiltedPlane(), 300000, 5900000, 100, 100, {}};
+    const Mesh m = buildMesh(grid, {});
     const Bindings b = sceneBindings(m, {}, {}, {}, {{"samples.path", "x.csv\n#declare Evil = 1;"}});
     const std::string head = b.at("header").text;
     EXPECT_EQ(head, "// samples.path: x.csv\\x0a#declare Evil = 1;\n");
 }
 
 TEST(Mesh2, WriterOutputShape) {
-    const Mesh m = buildMesh({{}, tiltedPlane(), 300000, 5900000, 100, 100, {}}, {});
+    const geo::GeoGrid grid{{}, tiltedPlane(), 300000, 5900000, 100, 100, {}};
+    const Mesh m = buildMesh(grid, {});
     char* data = nullptr;
     size_t size = 0;
     std::FILE* f = open_memstream(&data, &size);
@@ -110,7 +114,7 @@ TEST(Mesh2, MaskedNodesLeaveAHole) {
     grid.masked[0] = 1;                  // the south-west corner
     grid.grid.points[0].z = -1000;       // a filled height that nothing may show
     const Mesh m = buildMesh(grid, {});
-    EXPECT_EQ(m.positions.size(), 11u);
+    EXPECT_EQ(m.vertices, 11u);
     EXPECT_EQ(m.triangles, 12 - 1);      // the corner cell's south-west triangle
     EXPECT_EQ(m.zMinM, 50.0);
     ASSERT_EQ(m.vertexOfNode.size(), 12u);
@@ -158,13 +162,13 @@ TEST(Mesh, LocalFrameExaggeratesElevationNotCurvature) {
     EXPECT_NEAR(m.zMinM, 100, 0.5);
     EXPECT_NEAR(m.zMaxM, 500, 0.5);
     for (int c = 0; c < 41; ++c)
-        for (int r = 0; r < 41; ++r) EXPECT_NEAR(m.palette[r * 41 + c], m.palette[20 * 41 + c], 1) << r << " " << c;
+        for (int r = 0; r < 41; ++r) EXPECT_NEAR(m.palette(r * 41 + c), m.palette(20 * 41 + c), 1) << r << " " << c;
     // Drawn: 10 x 100 m above the fall, not 10 x (100 m + the fall).
     const Vec3& corner = grid.grid.at(0, 0);
     const double fall = m.fallAt(corner);
     EXPECT_NEAR(fall, corner.z - 100, 0.5);
-    EXPECT_NEAR(m.positions[0].y * m.metresPerUnit, 10 * 100 + fall, 5);
-    EXPECT_NEAR(m.positions[20 * 41 + 20].y * m.metresPerUnit, 10 * 300, 1);  // the tangent point: no fall
+    EXPECT_NEAR(m.position(0).y * m.metresPerUnit, 10 * 100 + fall, 5);
+    EXPECT_NEAR(m.position(20 * 41 + 20).y * m.metresPerUnit, 10 * 300, 1);  // the tangent point: no fall
 }
 
 // A map: two layers (solid and dashed, own colours), a marker with its label,

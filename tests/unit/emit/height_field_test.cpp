@@ -79,7 +79,7 @@ TEST(HeightField, DrapeColoursAreTheMeshPalette) {
     const Drape drape = elevationDrape(grid, mesh);
     for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 4; ++c) {
-            const auto& colour = mesh.paletteColors[mesh.palette[static_cast<size_t>(r) * 4 + c]];
+            const auto& colour = mesh.paletteColors[mesh.palette(static_cast<size_t>(r) * 4 + c)];
             const std::uint16_t* px = &drape.pixels[(static_cast<size_t>(2 - r) * 4 + c) * 3];
             EXPECT_EQ(px[0], std::lround(colour.r * 65535)) << r << " " << c;
             EXPECT_EQ(px[1], std::lround(colour.g * 65535));

@@ -279,18 +279,19 @@ TEST(Budget, RefusesOversizedOutputNamingTheLimit) {
 }
 
 // The memory budget, known before anything is allocated: a 3601 x 3601
-// one-arc-second tile refined once (7201 x 7201) needs about 4.1 GB, which a
-// 24 GiB machine has; refused, with the numbers, under a smaller budget.
+// one-arc-second tile refined once (7201 x 7201) needs about 1.8 GB (the
+// grid; the mesh2 is a view of it), which a 24 GiB machine has; refused, with
+// the numbers, under a smaller budget.
 TEST(Budget, MemoryIsEstimatedAndRefused) {
     const auto est = estimateOutput(dlgFourPoint(1.0 / 16), 3601, 3601, 1);
-    EXPECT_NEAR(est.memoryBytes / 1e9, 7201.0 * 7201 * 73 / 1e9 + 3601.0 * 3601 * 24 / 1e9, 0.01);
+    EXPECT_NEAR(est.memoryBytes / 1e9, 7201.0 * 7201 * 29 / 1e9 + 3601.0 * 3601 * 24 / 1e9, 0.01);
     EXPECT_LT(est.memoryBytes, 0.75 * 24 * 1024.0 * 1024 * 1024);
     Diagnostics diags;
-    EXPECT_FALSE(checkBudget(est, {1e9, 1e9, 1e9, 2000}, {"s.toml", 4, 1}, 1, diags));
+    EXPECT_FALSE(checkBudget(est, {1e9, 1e9, 1e9, 1000}, {"s.toml", 4, 1}, 1, diags));
     ASSERT_EQ(diags.errorCount(), 1);
     EXPECT_EQ(formatDiagnostic(diags.all()[0]),
-              "s.toml:4:1: error: depth 1 refines the net to 7201 x 7201 vertices: 4096 MB of memory > "
-              "limits.max_memory_mb = 2000; lower subdivision.depth, use a coarser net, or raise [limits]");
+              "s.toml:4:1: error: depth 1 refines the net to 7201 x 7201 vertices: 1815 MB of memory > "
+              "limits.max_memory_mb = 1000; lower subdivision.depth, use a coarser net, or raise [limits]");
     EXPECT_GT(defaultMemoryBudgetMB(), 100);
 }
 
