@@ -577,7 +577,7 @@ std::string sidecarJson(const CompileResult& c, const OutputPaths& paths,
         j["outputs"]["drape_png"] = c.drapePng.string();
     }
     if (render) j["outputs"]["png"] = paths.png.string();
-    return j.dump(2) + "\n";
+    return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
 }  // namespace relief

@@ -56,7 +56,7 @@ int runHausdorff(const HausdorffOptions& o) {
         j["H"] = r.H;
         j["witness_ab"] = side(r.ab);
         j["witness_ba"] = side(r.ba);
-        std::cout << j.dump(2) << '\n';
+        std::cout << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << '\n';
         return code(Exit::Ok);
     }
     auto print = [](const char* name, const relief::curves::OneSided& s, const char* from, const char* to) {
@@ -230,7 +230,7 @@ int runCompareGeometry(const CompareGeometryOptions& o) {
         j["contours"] = contours;
         j["max_profile_H"] = worstProfile;
         j["max_contour_H"] = jsonNumber(worstContour);
-        std::cout << j.dump(2) << '\n';
+        std::cout << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << '\n';
         return code(Exit::Ok);
     }
     std::cout << fmt::format("a: {} ({})\nb: {} ({})\n", o.a, describe(*loadedA, *surfA), o.b,

@@ -86,7 +86,7 @@ int runDiff(const DiffOptions& o) {
         }
     }
     if (o.json) {
-        std::cout << differenceJson(d, o.t).dump(2) << '\n';
+        std::cout << differenceJson(d, o.t).dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << '\n';
         return code(exitFor(d.verdict));
     }
     if (d.verdict == Verdict::FileError || d.verdict == Verdict::NotComparable) {

@@ -103,7 +103,7 @@ int runCheck(const CheckOptions& o) {
                              {"best_norm_root", t.bestNormRoot}});
         j["difference_tests"] = tests;
         j["notes"] = notes;
-        std::cout << j.dump(2) << '\n';
+        std::cout << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << '\n';
         return code(Exit::Ok);
     }
     std::cout << fmt::format("scheme {}{}: arity {}\n", family,

@@ -5,23 +5,14 @@
 
 #include <fmt/format.h>
 
+#include "core/text_escape.h"
+
 namespace relief::emit {
 
 namespace {
 
 constexpr const char* kColors[] = {"#d62728", "#1f77b4", "#2ca02c", "#9467bd",
                                    "#ff7f0e", "#8c564b", "#e377c2", "#17becf"};
-
-std::string escape(const std::string& s) {
-    std::string out;
-    for (char c : s) {
-        if (c == '&') out += "&amp;";
-        else if (c == '<') out += "&lt;";
-        else if (c == '>') out += "&gt;";
-        else out += c;
-    }
-    return out;
-}
 
 }  // namespace
 
@@ -55,7 +46,7 @@ std::string plotSvg(const std::string& title, const std::vector<SvgLayer>& layer
         "viewBox=\"0 0 {:.0f} {:.0f}\" font-family=\"sans-serif\" font-size=\"14\">\n"
         "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
         "<text x=\"{}\" y=\"20\" font-size=\"16\">{}</text>\n",
-        width, height, width, height, margin, escape(title));
+        width, height, width, height, margin, markupText(title));
     if (axes.show) {
         // Ticks at 1, 2 or 5 times a power of ten, about five per axis.
         auto step = [](double range) {
@@ -77,10 +68,10 @@ std::string plotSvg(const std::string& title, const std::vector<SvgLayer>& layer
                              "<text x=\"{3:.1f}\" y=\"{4:.1f}\" text-anchor=\"end\" font-size=\"11\">{5}</text>\n",
                              x0 - 5, Y(v), x0, x0 - 8, Y(v) + 4, tick(v));
         s += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"middle\">{}</text>\n", 0.5 * (x0 + x1),
-                         y0 + 42, escape(axes.xLabel));
+                         y0 + 42, markupText(axes.xLabel));
         s += fmt::format("<text x=\"14\" y=\"{:.1f}\" transform=\"rotate(-90 14 {:.1f})\" "
                          "text-anchor=\"middle\">{}</text>\n",
-                         0.5 * (y0 + y1), 0.5 * (y0 + y1), escape(axes.yLabel));
+                         0.5 * (y0 + y1), 0.5 * (y0 + y1), markupText(axes.yLabel));
     }
     // Layers, then markers, then the legend.
     std::vector<std::string> colours;
@@ -105,7 +96,7 @@ std::string plotSvg(const std::string& title, const std::vector<SvgLayer>& layer
         const bool right = X(m.from.x) > margin + 0.6 * plotW;  // keep the label inside the plot
         s += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"{}\" font-size=\"12\" stroke=\"white\" "
                          "stroke-width=\"3\" paint-order=\"stroke\">{}</text>\n",
-                         X(m.from.x) + (right ? -8 : 8), Y(m.from.y) - 8, right ? "end" : "start", escape(m.label));
+                         X(m.from.x) + (right ? -8 : 8), Y(m.from.y) - 8, right ? "end" : "start", markupText(m.label));
     }
     double ly = titleH + plotH + 2 * margin + (axes.show ? 0 : 10);
     for (size_t i = 0; i < layers.size(); ++i, ly += 20)
@@ -113,7 +104,7 @@ std::string plotSvg(const std::string& title, const std::vector<SvgLayer>& layer
                          "<text x=\"{5}\" y=\"{6}\">{7}</text>\n",
                          margin, ly, margin + 30, colours[i],
                          layers[i].dashed ? "stroke-dasharray=\"5,4\"" : "stroke-width=\"2\"", margin + 40,
-                         ly + 5, escape(layers[i].label));
+                         ly + 5, markupText(layers[i].label));
     s += "</svg>\n";
     return s;
 }

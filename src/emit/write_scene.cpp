@@ -10,6 +10,7 @@
 
 #include "core/atomic_file.h"
 #include "core/number_format.h"
+#include "core/text_escape.h"
 
 namespace relief::emit {
 
@@ -172,17 +173,6 @@ size_t writeMesh2(const Mesh& mesh, std::FILE* out, const WriteProgressFn& progr
     return w->total();
 }
 
-std::string sdlCommentText(std::string_view text) {
-    std::string out;
-    out.reserve(text.size());
-    for (const char ch : text) {
-        const auto c = static_cast<unsigned char>(ch);
-        if (c < 0x20 || c == 0x7f) out += fmt::format("\\x{:02x}", c);
-        else out += ch;
-    }
-    return out;
-}
-
 CameraView placeCamera(const ScenePlacement& where, const scene::LookSpec& look, const scene::RenderSpec& render) {
     const scene::CameraSpec& camera = look.camera;
     const Vec3 lo = where.boundsMin, hi = where.boundsMax;
@@ -237,7 +227,7 @@ Bindings sceneBindings(const ScenePlacement& where, GeometryWriter geometry, con
     Bindings b;
     std::string head;
     for (const auto& [key, value] : header)
-        head += fmt::format("// {}: {}\n", sdlCommentText(key), sdlCommentText(value));
+        head += fmt::format("// {}: {}\n", oneLineText(key), oneLineText(value));
     b["header"].text = head;
 
     const CameraView view = placeCamera(where, look, render);

@@ -28,11 +28,6 @@ using ParameterList = std::vector<std::pair<std::string, std::string>>;
 using WriteProgressFn = std::function<void(double fraction)>;
 size_t writeMesh2(const Mesh& mesh, std::FILE* out, const WriteProgressFn& progress = {});
 
-/// Text from anywhere (a path, a raster's CRS name: untrusted) as it may stand
-/// in a `//` comment of SDL: control characters, line breaks above all, become
-/// \xNN, so nothing can end the comment and become a directive.
-std::string sdlCommentText(std::string_view text);
-
 /// Where relief puts the camera: on an orbit around the terrain's centre at
 /// the scene's azimuth and elevation, at the scene's distance or the nearest
 /// that keeps the terrain's bounding box in view (scene units and axes).
@@ -54,7 +49,7 @@ double finestMetresPerPixel(const CameraView& view, const ScenePlacement& where,
 using GeometryWriter = std::function<void(std::FILE* out)>;
 
 /// The template's bindings: header (every key and value through
-/// sdlCommentText), camera and sun (from the terrain's placement), and the
+/// oneLineText in core/text_escape.h), camera and sun (from the terrain's placement), and the
 /// geometry.
 Bindings sceneBindings(const ScenePlacement& where, GeometryWriter geometry, const scene::LookSpec& look,
                        const scene::RenderSpec& render, const ParameterList& header);

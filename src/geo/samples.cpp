@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "core/atomic_file.h"
+#include "core/text_escape.h"
 
 namespace relief::geo {
 
@@ -26,19 +27,6 @@ struct Field {
     std::string_view text;
     int column;  // 1-based
 };
-
-// Text from the file as it may be shown in a message: at most 60 characters,
-// control and non-ASCII bytes as \xNN (a binary file must not fill the screen).
-std::string printable(std::string_view text) {
-    std::string out;
-    for (size_t i = 0; i < text.size() && i < 60; ++i) {
-        const unsigned char c = static_cast<unsigned char>(text[i]);
-        if (c >= 0x20 && c < 0x7f) out += static_cast<char>(c);
-        else out += fmt::format("\\x{:02x}", c);
-    }
-    if (text.size() > 60) out += "...";
-    return out;
-}
 
 std::vector<Field> splitFields(std::string_view line) {
     std::vector<Field> out;
@@ -114,7 +102,7 @@ std::vector<GeoSample> readSamples(const std::filesystem::path& path, const std:
                 diags.error({displayPath, lineNo, 1},
                             fmt::format("header must name the columns lon,lat,elev (WGS84 "
                                         "degrees, metres); found \"{}\"",
-                                        printable(trim(line))));
+                                        printableExcerpt(trim(line))));
                 return {};
             }
             continue;

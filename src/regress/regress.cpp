@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cctype>
 #include <chrono>
 #include <mutex>
 #include <set>
@@ -11,6 +12,7 @@
 #include <toml++/toml.h>
 
 #include "core/atomic_file.h"
+#include "core/text_escape.h"
 #include "core/text_distance.h"
 #include "pipeline.h"
 
@@ -75,6 +77,17 @@ void unknownKeys(const toml::table& t, const std::string& file, const std::vecto
     }
 }
 
+// A case's name becomes file names in the report folder (<name>.new.png):
+// no separators, no "..", nothing a shell or a URL would read otherwise.
+bool isCaseName(const std::string& name) {
+    if (name.empty() || name.size() > 100 || name[0] == '.') return false;
+    for (const char ch : name) {
+        const auto c = static_cast<unsigned char>(ch);
+        if (!std::isalnum(c) && c != '-' && c != '_' && c != '.') return false;
+    }
+    return true;
+}
+
 }  // namespace
 
 std::optional<Manifest> readManifest(const fs::path& path, Diagnostics& diags) {
@@ -123,7 +136,12 @@ std::optional<Manifest> readManifest(const fs::path& path, Diagnostics& diags) {
                                                   "and references (a folder of accepted PNGs)");
             continue;
         }
-        if (!names.insert(*name).second)
+        if (!isCaseName(*name))
+            diags.error(locOf(file, t->get("name")->source()),
+                        fmt::format("case name \"{}\" must be 1 to 100 letters, digits, '-', '_' or '.', not "
+                                    "starting with '.': it names the case's files in the report",
+                                    printableExcerpt(*name, 100)));
+        else if (!names.insert(*name).second)
             diags.error(locOf(file, t->get("name")->source()), fmt::format("case name \"{}\" is used twice", *name));
         c.name = *name;
         c.scene = (base / *scene).lexically_normal();

@@ -1,10 +1,12 @@
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.h"
+#include "core/text_escape.h"
 #include "regress/regress.h"
 
 namespace relief::regress {
@@ -13,22 +15,18 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string escape(const std::string& s) {
-    std::string out;
-    for (char c : s) {
-        switch (c) {
-            case '&': out += "&amp;"; break;
-            case '<': out += "&lt;"; break;
-            case '>': out += "&gt;"; break;
-            case '"': out += "&quot;"; break;
-            default: out += c;
-        }
+// A file in the report folder as a relative URL: every byte but unreserved
+// ones and '/' percent-encoded, so that a case named "a#b" or 'x" onload="'
+// is a file name, never a fragment or an attribute.
+std::string relativeUrl(const fs::path& p, const fs::path& base) {
+    if (p.empty()) return "";
+    std::string url;
+    for (const char ch : fs::relative(p, base).generic_string()) {
+        const auto c = static_cast<unsigned char>(ch);
+        if (std::isalnum(c) || c == '-' || c == '.' || c == '_' || c == '~' || c == '/') url += ch;
+        else url += fmt::format("%{:02X}", c);
     }
-    return out;
-}
-
-std::string rel(const fs::path& p, const fs::path& base) {
-    return p.empty() ? "" : fs::relative(p, base).generic_string();
+    return url;
 }
 
 bool failed(CaseStatus s) { return s == CaseStatus::Fail || s == CaseStatus::Error || s == CaseStatus::New; }
@@ -69,24 +67,25 @@ table.metrics td, table.metrics th { border: 1px solid #ddd; padding: 2px 8px; t
 code { background: #f2f2f2; padding: 2px 4px; }
 </style></head><body>
 )";
-    h += fmt::format("<h1>relief test — {}</h1>\n", escape(m.file.string()));
+    h += fmt::format("<h1>relief test — {}</h1>\n", markupText(m.file.string()));
     h += fmt::format("<p class=\"summary\" id=\"summary\">{} passed, {} failed, {} cases in {:.1f} s</p>\n",
                      results.size() - nFailed, nFailed, results.size(), wallSeconds);
     if (nFailed)
         h += fmt::format("<p>To accept the new images of the failing cases as references: "
                          "<code id=\"bless\">{}</code></p>\n",
-                         escape(bless));
+                         markupText(bless));
     for (const CaseResult* r : order) {
         const TestCase& c = *r->testCase;
         std::string cls = statusName(r->status);
         std::transform(cls.begin(), cls.end(), cls.begin(), [](unsigned char ch) { return std::tolower(ch); });
         h += fmt::format("<div class=\"case {}\" data-case=\"{}\">\n<h2><span class=\"status\">{}</span> {}</h2>\n",
-                         cls, escape(c.name), statusName(r->status), escape(c.name));
-        h += fmt::format("<p>{} — scene <code>{}</code>, {} x {}, {:.1f} s</p>\n", escape(r->message),
-                         escape(c.scene.string()), c.width, c.height, r->seconds);
+                         cls, markupText(c.name), statusName(r->status), markupText(c.name));
+        h += fmt::format("<p>{} — scene <code>{}</code>, {} x {}, {:.1f} s</p>\n", markupText(r->message),
+                         markupText(c.scene.string()), c.width, c.height, r->seconds);
         h += "<div class=\"images\">\n";
-        const std::string newImg = rel(r->newImage, o.reportDir), refImg = rel(r->referenceImage, o.reportDir),
-                          diffImg = rel(r->diffImage, o.reportDir);
+        const std::string newImg = relativeUrl(r->newImage, o.reportDir),
+                          refImg = relativeUrl(r->referenceImage, o.reportDir),
+                          diffImg = relativeUrl(r->diffImage, o.reportDir);
         if (!newImg.empty() && fs::exists(r->newImage)) {
             h += "<figure><div class=\"blink\">";
             h += fmt::format("<img class=\"new\" src=\"{}\" alt=\"new\">", newImg);
@@ -97,7 +96,7 @@ code { background: #f2f2f2; padding: 2px 4px; }
         if (!refImg.empty())
             h += fmt::format("<figure><img class=\"reference\" src=\"{}\" alt=\"reference\"><figcaption>"
                              "reference {}</figcaption></figure>\n",
-                             refImg, escape(r->referenceName));
+                             refImg, markupText(r->referenceName));
         if (!diffImg.empty())
             h += fmt::format("<figure><img class=\"difference\" src=\"{}\" alt=\"difference\"><figcaption>"
                              "difference (black: identical; scaled to the largest)</figcaption></figure>\n",
@@ -129,7 +128,7 @@ code { background: #f2f2f2; padding: 2px 4px; }
     for (const auto& r : results) {
         nlohmann::ordered_json cj{{"name", r.testCase->name}, {"status", statusName(r.status)},
                                   {"message", r.message}, {"seconds", r.seconds},
-                                  {"new", rel(r.newImage, o.reportDir)}, {"reference", r.referenceName}};
+                                  {"new", r.newImage.empty() ? "" : fs::relative(r.newImage, o.reportDir).generic_string()}, {"reference", r.referenceName}};
         if (r.difference.width > 0)
             cj["metrics"] = {{"max_error", r.difference.maxError},
                              {"failing_pixels", r.difference.failingPixels},
@@ -139,17 +138,17 @@ code { background: #f2f2f2; padding: 2px 4px; }
     }
     j["cases"] = cases;
     if (nFailed) j["bless"] = bless;
-    writeFileAtomically(o.reportDir / "summary.json", j.dump(2) + "\n");
+    writeFileAtomically(o.reportDir / "summary.json", j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
 
     std::string x = fmt::format("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuite name=\"relief\" "
                                 "tests=\"{}\" failures=\"{}\" time=\"{:.3f}\">\n",
                                 results.size(), nFailed, wallSeconds);
     for (const auto& r : results) {
         x += fmt::format("  <testcase classname=\"relief.{}\" name=\"{}\" time=\"{:.3f}\"",
-                         escape(m.file.stem().string()), escape(r.testCase->name), r.seconds);
+                         markupText(m.file.stem().string()), markupText(r.testCase->name), r.seconds);
         if (failed(r.status))
             x += fmt::format(">\n    <failure message=\"{}\">{}</failure>\n  </testcase>\n",
-                             escape(statusName(r.status)), escape(r.message));
+                             markupText(statusName(r.status)), markupText(r.message));
         else
             x += "/>\n";
     }

@@ -7,6 +7,7 @@
 #include "geo/normalize.h"
 #include "emit/svg.h"
 #include "emit/template.h"
+#include "core/text_escape.h"
 #include "emit/write_scene.h"
 
 namespace relief::emit {
@@ -80,8 +81,8 @@ TEST(Mesh, NormalsOfATiltedPlaneAndSceneUnits) {
 // A string from a scene or a data file cannot leave the header's comments:
 // a line break would let POV-Ray run what follows (#fopen, #write, ...).
 TEST(SceneHeader, UntrustedTextStaysInItsComment) {
-    EXPECT_EQ(sdlCommentText("data/dem.tif"), "data/dem.tif");
-    EXPECT_EQ(sdlCommentText("a\n#fopen F \"/tmp/x\" write\r\x7f"), "a\\x0a#fopen F \"/tmp/x\" write\\x0d\\x7f");
+    EXPECT_EQ(oneLineText("data/dem.tif"), "data/dem.tif");
+    EXPECT_EQ(oneLineText("a\n#fopen F \"/tmp/x\" write\r\x7f"), "a\\x0a#fopen F \"/tmp/x\" write\\x0d\\x7f");
     const geo::GeoGrid grid{{}, tiltedPlane(), 300000, 5900000, 100, 100, {}};
     const Mesh m = buildMesh(grid, {});
     const Bindings b = sceneBindings(m, {}, {}, {}, {{"samples.path", "x.csv\n#declare Evil = 1;"}});

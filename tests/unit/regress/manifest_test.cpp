@@ -38,6 +38,26 @@ TEST(Manifest, DefaultsOverridesAndErrorsAtTheirLines) {
     fs::remove_all(dir);
 }
 
+// A case's name names its files in the report: no path, no markup, no control characters.
+TEST(Manifest, CaseNamesAreFileNames) {
+    const fs::path dir = fs::temp_directory_path() / "relief-manifest-names";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    std::ofstream(dir / "s.toml") << "[samples]\npath = \"x.csv\"\n";
+    for (const std::string name : {"../../escape", "a/b", ".hidden", "<b>x</b>", "tab\\there", ""}) {
+        std::ofstream(dir / "m.toml") << "[[case]]\nname = \"" << name << "\"\nscene = \"s.toml\"\nreferences = \"ref\"\n";
+        Diagnostics diags;
+        EXPECT_FALSE(readManifest(dir / "m.toml", diags)) << name;
+        ASSERT_EQ(diags.errorCount(), 1) << name;
+        EXPECT_EQ(diags.all()[0].loc.line, 2);
+        EXPECT_NE(diags.all()[0].message.find("must be 1 to 100 letters, digits, '-', '_' or '.'"), std::string::npos);
+    }
+    std::ofstream(dir / "m.toml") << "[[case]]\nname = \"mt-eden_2.5m\"\nscene = \"s.toml\"\nreferences = \"ref\"\n";
+    Diagnostics diags;
+    EXPECT_TRUE(readManifest(dir / "m.toml", diags));
+    fs::remove_all(dir);
+}
+
 TEST(Manifest, StatusNames) {
     EXPECT_STREQ(statusName(CaseStatus::Pass), "PASS");
     EXPECT_STREQ(statusName(CaseStatus::Fail), "FAIL");

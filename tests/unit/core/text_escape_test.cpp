@@ -1,0 +1,159 @@
+// Hostile strings in every sink that takes untrusted text: markup (SVG, the
+// HTML report, JUnit XML), one-line SDL comments and messages. Markup outputs
+// are parsed back with GDAL's XML parser: well-formed, and the text reads as
+// it was written (with U+FFFD for what XML cannot hold).
+#include <gtest/gtest.h>
+
+#include <cpl_minixml.h>
+
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <sstream>
+#include <string>
+
+#include "core/text_escape.h"
+#include "emit/svg.h"
+#include "regress/regress.h"
+
+namespace relief {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Titles a user might write, and ones an attacker would.
+const std::string kHostile[] = {
+    "<b>bold</b> &amp; \"quoted\" 'single'",
+    "</text></svg><script>alert(1)</script>",
+    "#fopen F \"/tmp/x\" write {{terrain}} %s %n",
+    std::string("nul\0inside", 10) + "\x01\x1f\x7f",
+    "line\nbreak\r\n\ttab",
+    "\xff\xfe not UTF-8 \xc3\x28 \xed\xa0\x80",
+    "Maungawhau \xe2\x80\x94 M\xc4\x81ori \xf0\x9f\x8c\x8b",
+    std::string(100000, '<'),
+};
+
+// What XML can hold of `s`: U+FFFD for controls and bytes that are not UTF-8
+// (one per byte), the rest as it is.
+std::string expectedText(const std::string& s) {
+    std::string out;
+    const std::string r = "\xEF\xBF\xBD";
+    for (size_t i = 0; i < s.size(); ++i) {
+        const auto c = static_cast<unsigned char>(s[i]);
+        if (c == '\t' || c == '\n' || c == '\r') out += s[i];
+        else if (c < 0x20 || c == 0x7f) out += r;
+        else if (c < 0x80) out += s[i];
+        else if (s.compare(i, 3, "\xe2\x80\x94") == 0 || s.compare(i, 2, "\xc4\x81") == 0 ||
+                 s.compare(i, 4, "\xf0\x9f\x8c\x8b") == 0) {
+            const size_t n = c >= 0xf0 ? 4 : c >= 0xe0 ? 3 : 2;
+            out += s.substr(i, n), i += n - 1;
+        } else {
+            out += r;
+        }
+    }
+    return out;
+}
+
+struct XmlTree {
+    CPLXMLNode* root = nullptr;
+    explicit XmlTree(const std::string& text) : root(CPLParseXMLString(text.c_str())) {}
+    ~XmlTree() {
+        if (root) CPLDestroyXMLNode(root);
+    }
+};
+
+// The concatenated text of every <text> element (in order).
+void collectText(const CPLXMLNode* n, const char* element, std::string& out) {
+    for (; n; n = n->psNext) {
+        if (n->eType == CXT_Element && std::string(n->pszValue) == element)
+            for (const CPLXMLNode* c = n->psChild; c; c = c->psNext)
+                if (c->eType == CXT_Text) out += c->pszValue;
+        if (n->eType == CXT_Element) collectText(n->psChild, element, out);
+    }
+}
+
+TEST(TextEscape, MarkupTextIsEntitiesAndValidUtf8) {
+    EXPECT_EQ(markupText("<b>&amp;\"'"), "&lt;b&gt;&amp;amp;&quot;&#39;");
+    EXPECT_EQ(markupText(std::string("a\0b", 3)), "a\xEF\xBF\xBD" "b");
+    EXPECT_EQ(markupText("\xc3\xa9t\xc3\xa9"), "\xc3\xa9t\xc3\xa9");    // UTF-8 kept
+    EXPECT_EQ(markupText("\xc0\xaf"), "\xEF\xBF\xBD\xEF\xBF\xBD");      // overlong '/': two bad bytes
+    EXPECT_EQ(markupText("\xed\xa0\x80"), "\xEF\xBF\xBD\xEF\xBF\xBD\xEF\xBF\xBD");  // a surrogate
+    for (const std::string& s : kHostile) {
+        const std::string m = markupText(s);
+        EXPECT_EQ(m.find('<'), std::string::npos);
+        EXPECT_EQ(m.find('"'), std::string::npos);
+        EXPECT_EQ(m.find('\0'), std::string::npos);
+    }
+}
+
+TEST(TextEscape, OneLineAndExcerpts) {
+    EXPECT_EQ(oneLineText("a\n#fopen F \"/tmp/x\" write\r\x7f"), "a\\x0a#fopen F \"/tmp/x\" write\\x0d\\x7f");
+    EXPECT_EQ(oneLineText(std::string("\0", 1)), "\\x00");
+    for (const std::string& s : kHostile) EXPECT_EQ(oneLineText(s).find('\n'), std::string::npos);
+    EXPECT_EQ(printableExcerpt(std::string("II*\x00\x10", 5), 60), "II*\\x00\\x10");
+    EXPECT_EQ(printableExcerpt(std::string(100, 'x'), 60), std::string(60, 'x') + "...");
+}
+
+// Every hostile title and label comes out of the SVG as the text it was.
+TEST(TextEscape, SvgTextStaysText) {
+    for (const std::string& s : kHostile) {
+        emit::SvgLayer layer{s, {{s, {{0, 0}, {1, 1}}}}, "", false, false};
+        emit::SvgAxes axes;
+        axes.show = true;
+        axes.xLabel = s;
+        axes.yLabel = s;
+        const std::string svg = emit::plotSvg(s, {layer}, {{{0, 0}, {1, 1}, s}}, axes);
+        XmlTree xml(svg);
+        ASSERT_TRUE(xml.root) << "not well-formed XML: " << svg.substr(0, 300);
+        std::string text;
+        collectText(xml.root, "text", text);
+        const std::string e = expectedText(s);
+        // Title, the axis labels, the marker and the legend: five times.
+        size_t count = 0;
+        for (size_t at = text.find(e); at != std::string::npos; at = text.find(e, at + e.size())) ++count;
+        EXPECT_EQ(count, 5u) << s.substr(0, 60);
+        EXPECT_EQ(svg.find("<script"), std::string::npos);
+    }
+}
+
+// The HTML report and the JUnit XML of `relief test`: a failing case's message
+// (which holds a path, hence anything) stays text in both.
+TEST(TextEscape, TestReportTextStaysText) {
+    const fs::path dir = fs::temp_directory_path() / "relief-report-hostile";
+    fs::remove_all(dir);
+    fs::create_directories(dir / "report");
+    regress::Manifest m;
+    m.file = dir / "manifest.toml";
+    m.cases.resize(std::size(kHostile));
+    std::vector<regress::CaseResult> results(std::size(kHostile));
+    for (size_t i = 0; i < std::size(kHostile); ++i) {
+        m.cases[i].name = "case-" + std::to_string(i);
+        m.cases[i].scene = dir / "scene.toml";
+        results[i].testCase = &m.cases[i];
+        results[i].status = regress::CaseStatus::Error;
+        results[i].message = kHostile[i];
+    }
+    regress::RunOptions o;
+    o.reportDir = dir / "report";
+    o.manifestArgument = "manifest.toml";
+    regress::writeReport(m, results, o, 1.0);
+
+    std::stringstream junit;
+    junit << std::ifstream(o.reportDir / "junit.xml").rdbuf();
+    XmlTree xml(junit.str());
+    ASSERT_TRUE(xml.root) << "junit.xml is not well-formed";
+    std::string failures;
+    collectText(xml.root, "failure", failures);
+    std::stringstream html;
+    html << std::ifstream(o.reportDir / "index.html").rdbuf();
+    for (const std::string& s : kHostile) {
+        EXPECT_NE(failures.find(expectedText(s)), std::string::npos) << s.substr(0, 60);
+        EXPECT_NE(html.str().find(markupText(s)), std::string::npos) << s.substr(0, 60);
+    }
+    EXPECT_EQ(html.str().find("<script"), std::string::npos);
+    EXPECT_EQ(html.str().find("<b>"), std::string::npos);
+    fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace relief
