@@ -242,14 +242,29 @@ std::optional<CompileResult> compileScene(const LoadedScene& loaded,
             return std::nullopt;
         }
     }
+    // The height field's PNGs and the .pov are one output: when one of them
+    // cannot be written (a full disk), none is left, not PNGs without a .pov.
+    struct RemovedUnlessKept {
+        std::vector<std::filesystem::path> files;
+        bool keep = false;
+        ~RemovedUnlessKept() {
+            std::error_code ec;
+            if (!keep)
+                for (const auto& f : files) std::filesystem::remove(f, ec);
+        }
+    } written;
     emit::GeometryWriter geometry;
     if (heightField) {
         std::string pngError = emit::writeHeightFieldPng(*field, result.heightPng);
-        if (pngError.empty()) pngError = emit::writeDrapePng(emit::elevationDrape(refined, where), result.drapePng);
+        if (pngError.empty()) {
+            written.files.push_back(result.heightPng);
+            pngError = emit::writeDrapePng(emit::elevationDrape(refined, where), result.drapePng);
+        }
         if (!pngError.empty()) {
-            diags.error({result.heightPng.string(), 0, 0}, "cannot write the height field: " + pngError);
+            diags.error({}, pngError);
             return std::nullopt;
         }
+        written.files.push_back(result.drapePng);
         geometry = [&](std::FILE* out) {
             emit::writeHeightFieldSdl(out, *field, refined, where, result.heightPng.filename().string(),
                                       result.drapePng.filename().string());
@@ -267,6 +282,7 @@ std::optional<CompileResult> compileScene(const LoadedScene& loaded,
     }
     if (!emit::writeScene(options.povPath, *tmpl, where, geometry, spec.look, spec.render, result.parameters, diags))
         return std::nullopt;
+    written.keep = true;
     if (!options.dumpNetPath.empty())
         writeFileAtomically(options.dumpNetPath, options.dumpNetPath.extension() == ".asc"
                                                      ? geo::netToAsciiGrid(net)
@@ -496,6 +512,10 @@ JobOutcome runSceneJob(const SceneJob& job, Diagnostics& diags, const ProgressFn
     outcome.render = render::renderPov(req, [&](const render::RenderProgress& p) {
         say(Stage::Rendering, p.text, p.percent);
     });
+    if (outcome.render.cannotWriteOutput) {  // not POV-Ray's failure: a full disk, say
+        diags.error({}, outcome.render.error);
+        return outcome;
+    }
     if (!outcome.render.ok) {
         outcome.status = JobStatus::ToolFailed;
         return outcome;

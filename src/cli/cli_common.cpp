@@ -25,7 +25,8 @@ void printDiagnostics(const Diagnostics& diags, bool wrote) {
     std::stable_sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) {
         return std::tie(a.loc.file, a.loc.line) < std::tie(b.loc.file, b.loc.line);
     });
-    for (const auto& d : sorted) std::cerr << formatDiagnostic(d) << '\n';
+    // Without a place in a file (an override, a full disk), the line says who speaks.
+    for (const auto& d : sorted) std::cerr << (d.loc.file.empty() ? "relief: " : "") << formatDiagnostic(d) << '\n';
     if (diags.errorCount() > 0)
         std::cerr << fmt::format("relief: {} error{}, {} warning{}; {}\n", diags.errorCount(),
                                  diags.errorCount() == 1 ? "" : "s", diags.warningCount(),

@@ -1,7 +1,9 @@
 #include "core/png_file.h"
 
+#include <cerrno>
 #include <csetjmp>
 #include <cstdio>
+#include <cstring>
 #include <memory>
 
 #include <fmt/format.h>
@@ -17,9 +19,23 @@ namespace {
 // the message and long-jumps back to the setjmp in encode()/decode(). Those
 // functions keep every object with a destructor outside the jump's reach.
 [[noreturn]] void onPngError(png_structp png, png_const_charp message) {
-    if (auto* error = static_cast<std::string*>(png_get_error_ptr(png))) *error = message;
+    if (auto* error = static_cast<std::string*>(png_get_error_ptr(png)); error && error->empty()) *error = message;
     png_longjmp(png, 1);
 }
+
+// libpng's own writer says only "Write Error": this one keeps the system's
+// reason (a full disk) for the message.
+void writeToFile(png_structp png, png_bytep data, png_size_t size) {
+    auto* file = static_cast<std::FILE*>(png_get_io_ptr(png));
+    if (std::fwrite(data, 1, size, file) != size) {
+        const int err = errno;
+        if (auto* error = static_cast<std::string*>(png_get_error_ptr(png)))
+            *error = err ? std::strerror(err) : "write error";
+        png_error(png, "write error");
+    }
+}
+
+void flushFile(png_structp png) { std::fflush(static_cast<std::FILE*>(png_get_io_ptr(png))); }
 
 void onPngWarning(png_structp, png_const_charp) {}
 
@@ -40,7 +56,7 @@ bool encode(std::FILE* file, const PngPixels& p, png_bytep* rows, std::string& e
         png_destroy_write_struct(&png, &info);
         return false;
     }
-    png_init_io(png, file);
+    png_set_write_fn(png, file, writeToFile, flushFile);
     if (p.compression >= 0) png_set_compression_level(png, p.compression);
     if (p.compression == 0) png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_NONE);  // nothing to compress for
     png_set_IHDR(png, info, png_uint_32(p.width), png_uint_32(p.height), p.sixteenBit ? 16 : 8,

@@ -326,6 +326,7 @@ RenderResult renderPov(const RenderRequest& req, const ProgressFn& progress) {
     const std::string pngError = writeCanonicalPng(rawPng, req.png);
     if (!pngError.empty()) {
         result.error = pngError;
+        result.cannotWriteOutput = true;
         return result;
     }
     result.ok = true;

@@ -33,6 +33,7 @@ struct RenderRequest {
 struct RenderResult {
     bool ok = false;
     std::string error;          ///< POV-Ray's own error text (or why it could not run)
+    bool cannotWriteOutput = false;  ///< POV-Ray rendered, but the PNG could not be written (error says why)
     double parseSeconds = 0;    ///< from POV-Ray's statistics
     double traceSeconds = 0;
     double wallSeconds = 0;
