@@ -60,16 +60,25 @@ std::vector<FramePoint> projectSamples(const Frame& frame, const std::vector<Geo
                                        Diagnostics& diags) {
     std::vector<FramePoint> out;
     out.reserve(samples.size());
+    int reported = 0;
+    // A point the frame cannot hold (the readers let through no such sample;
+    // this guards every other caller) is refused at its row, not drawn at NaN.
+    auto keep = [&](const GeoSample& s, const FramePoint& fp) {
+        if (std::isfinite(fp.p.x) && std::isfinite(fp.p.y) && std::isfinite(fp.p.z)) return out.push_back(fp);
+        if (++reported <= 20)
+            diags.error(s.loc, fmt::format("lat {}° lon {}° elev {} m projects to a point that is not finite in {}",
+                                           formatShortest(s.latDeg), formatShortest(s.lonDeg),
+                                           formatShortest(s.elevM), frame.describe()));
+    };
     if (frame.kind == scene::FrameKind::Local) {
         const GeographicLib::LocalCartesian lc(frame.originLatDeg, frame.originLonDeg, 0.0);
         for (const auto& s : samples) {
             FramePoint fp{{}, s.loc};
             lc.Forward(s.latDeg, s.lonDeg, s.elevM, fp.p.x, fp.p.y, fp.p.z);
-            out.push_back(fp);
+            keep(s, fp);
         }
         return out;
     }
-    int reported = 0;
     for (const auto& s : samples) {
         FramePoint fp{{}, s.loc};
         try {
@@ -89,7 +98,7 @@ std::vector<FramePoint> projectSamples(const Frame& frame, const std::vector<Geo
             continue;
         }
         fp.p.z = s.elevM;
-        out.push_back(fp);
+        keep(s, fp);
     }
     return out;
 }

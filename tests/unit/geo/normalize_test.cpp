@@ -310,3 +310,35 @@ TEST(Profile, GeodesicSpacingAndBilinearPlane) {
 
 }  // namespace
 }  // namespace relief::geo
+
+namespace relief::geo {
+namespace {
+
+// A sample the frame cannot hold is an error at its row, never a NaN vertex:
+// the CSV reader refuses non-finite numbers itself, so this is every other
+// caller's guard (a local frame takes any latitude and longitude).
+TEST(Normalize, NonFiniteFramePointsAreErrorsAtTheirRows) {
+    const std::vector<GeoSample> samples{{174.76, -36.87, 100, {"p.csv", 2, 1}},
+                                         {174.77, -36.87, std::numeric_limits<double>::infinity(), {"p.csv", 3, 1}},
+                                         {std::nan(""), -36.88, 90, {"p.csv", 4, 1}}};
+    for (const auto kind : {scene::FrameKind::Local, scene::FrameKind::Utm}) {
+        scene::FrameSpec spec;
+        spec.kind = kind;
+        Diagnostics diags;
+        const auto frame = chooseFrame(spec, {samples[0]}, diags);
+        ASSERT_TRUE(frame);
+        const auto points = projectSamples(*frame, samples, diags);
+        EXPECT_EQ(points.size(), 1u);
+        ASSERT_GE(diags.errorCount(), 1);
+        EXPECT_EQ(diags.all()[0].loc.line, 3);
+        if (kind == scene::FrameKind::Local) {
+            ASSERT_EQ(diags.errorCount(), 2);
+            EXPECT_EQ(formatDiagnostic(diags.all()[0]).substr(0, 70),
+                      std::string("p.csv:3:1: error: lat -36.87° lon 174.77° elev inf m projects to a p").substr(0, 70));
+            EXPECT_EQ(diags.all()[1].loc.line, 4);
+        }
+    }
+}
+
+}  // namespace
+}  // namespace relief::geo
