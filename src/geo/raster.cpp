@@ -172,6 +172,23 @@ std::optional<ControlNet> warpedNet(const Dataset& src, const scene::SamplesSpec
                                 samples.band, name, bands, bands == 1 ? "" : "s", bands));
         return std::nullopt;
     }
+    // An image (a photo, a map tile) is not a DEM: its red channel read as
+    // heights would render as terrain, wrongly and without a word.
+    switch (GDALGetRasterColorInterpretation(GDALGetRasterBand(src.get(), samples.band))) {
+        case GCI_RedBand: case GCI_GreenBand: case GCI_BlueBand: case GCI_AlphaBand:
+        case GCI_PaletteIndex: case GCI_HueBand: case GCI_SaturationBand: case GCI_LightnessBand:
+        case GCI_CyanBand: case GCI_MagentaBand: case GCI_YellowBand: case GCI_BlackBand:
+        case GCI_YCbCr_YBand: case GCI_YCbCr_CbBand: case GCI_YCbCr_CrBand:
+            diags.error(fileLoc,
+                        fmt::format("band {} of the raster is the {} band of an image ({} band{} in all), not elevations: "
+                                    "a DEM has a band of heights; an image is a texture, not samples",
+                                    samples.band,
+                                    GDALGetColorInterpretationName(
+                                        GDALGetRasterColorInterpretation(GDALGetRasterBand(src.get(), samples.band))),
+                                    bands, bands == 1 ? "" : "s"));
+            return std::nullopt;
+        default: break;
+    }
     if (width < 2 || height < 2) {
         diags.error(fileLoc, fmt::format("the raster is {} x {} cells; a surface needs at least 2 x 2",
                                          width, height));
