@@ -136,6 +136,11 @@ emit::ParameterList describe(const scene::SceneSpec& s, const geo::ControlNet& n
                               formatShortest(camera.fovDeg)));
     add("render", fmt::format("{} x {}, antialias {}", s.render.width, s.render.height,
                               s.render.antialias ? "on" : "off"));
+    if (s.render.background == scene::Background::Transparent) add("render.background", "transparent");
+    if (s.render.background == scene::Background::Colour) {
+        const auto& c = s.render.backgroundColour;  // linear RGB, as POV-Ray gets it
+        add("render.background", fmt::format("rgb {} {} {}", formatShortest(c.r), formatShortest(c.g), formatShortest(c.b)));
+    }
     add("scene_unit_m", formatShortest(compiled.metresPerUnit));
     return p;
 }
@@ -500,6 +505,7 @@ JobOutcome runSceneJob(const SceneJob& job, Diagnostics& diags, const ProgressFn
     req.width = still.width;
     req.height = still.height;
     req.antialias = still.antialias;
+    req.alpha = still.background == scene::Background::Transparent;
     // The height field's PNG is found by its name through the library path.
     req.includeDirs = {job.templatesDir};
     if (!outcome.compiled->heightPng.empty()) {

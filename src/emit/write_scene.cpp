@@ -249,6 +249,31 @@ Bindings sceneBindings(const ScenePlacement& where, GeometryWriter geometry, con
     const Vec3 sunDir = direction(look.sunAzimuthDeg, look.sunAltitudeDeg);
     b["sun_position"].text = vec(target + (100.0 * radius) * sunDir);
     b["scene_center"].text = vec(target);
+    switch (render.background) {
+        case scene::Background::Sky:
+            // Pale at the horizon, deeper blue overhead.
+            b["background"].text = std::string(
+                "sky_sphere {\n"
+                "  pigment {\n"
+                "    gradient y\n"
+                "    color_map {\n"
+                "      [0.0 color rgb <0.78, 0.85, 0.93>]\n"
+                "      [0.4 color rgb <0.38, 0.55, 0.80>]\n"
+                "      [1.0 color rgb <0.16, 0.30, 0.62>]\n"
+                "    }\n"
+                "  }\n"
+                "}");
+            break;
+        case scene::Background::Colour: {
+            const auto& c = render.backgroundColour;
+            b["background"].text = fmt::format("background {{ color rgb <{}, {}, {}> }}", num(c.r), num(c.g), num(c.b));
+            break;
+        }
+        case scene::Background::Transparent:
+            // Rays that miss the terrain keep alpha 0 in the PNG (POV-Ray's +UA).
+            b["background"].text = std::string("background { color rgbt <1, 1, 1, 1> }");
+            break;
+    }
     b["terrain"].writer = std::move(geometry);
     return b;
 }

@@ -195,6 +195,7 @@ RenderResult renderPov(const RenderRequest& req, const ProgressFn& progress) {
     // Adaptive anti-aliasing without jitter: pixels do not depend on the thread count.
     if (req.antialias) args.insert(args.end(), {"+A0.3", "+AM2", "+R3", "-J"});
     else args.push_back("-A");
+    if (req.alpha) args.push_back("+UA");
     if (req.threads > 0) args.push_back(fmt::format("+WT{}", req.threads));
     for (const auto& dir : req.includeDirs) args.push_back("+L" + dir.string());
     result.command = args;

@@ -16,6 +16,7 @@ struct RenderRequest {
     int width = 800;
     int height = 600;
     bool antialias = true;
+    bool alpha = false;  ///< an RGBA PNG: what the rays miss is transparent (+UA)
     std::vector<std::filesystem::path> includeDirs;  ///< passed as +L
     int threads = 0;  ///< 0: POV-Ray's default (all cores)
     /// POV-Ray's scene language can open, read and write files (#fopen,

@@ -15,6 +15,7 @@
 #include "core/atomic_file.h"
 #include "core/number_format.h"
 #include "core/text_distance.h"
+#include "core/text_escape.h"
 #include "scene/color_ramp.h"
 
 namespace relief::scene {
@@ -610,6 +611,15 @@ std::optional<SceneSpec> readScene(const std::filesystem::path& path, Diagnostic
         if (auto v = s.integer("height", 16, 16384, "pixels")) scene.render.height = *v;
         if (auto v = s.boolean("antialias")) scene.render.antialias = *v;
         if (auto v = s.number("timeout_s", 0, 1e7, "seconds (0: no limit)")) scene.render.timeoutS = *v;
+        if (auto v = s.string("background")) {
+            if (*v == "sky") scene.render.background = Background::Sky;
+            else if (*v == "transparent") scene.render.background = Background::Transparent;
+            else if (parseHexColor(*v, scene.render.backgroundColour)) scene.render.background = Background::Colour;
+            else
+                s.error("background", fmt::format("render.background = \"{}\" must be \"sky\", \"transparent\" "
+                                                  "or a colour \"#rrggbb\"",
+                                                  printableExcerpt(*v)));
+        }
         if (auto v = s.string("output")) {
             if (v->size() < 5 || v->substr(v->size() - 4) != ".png")
                 s.error("output", fmt::format("render.output = \"{}\" must name a .png file", *v));

@@ -158,10 +158,16 @@ struct LookSpec {
 };
 
 /// [render]: the still.
+/// What is behind the terrain: the sky gradient, one colour, or nothing (a
+/// PNG with alpha, for a report's own background).
+enum class Background { Sky, Colour, Transparent };
+
 struct RenderSpec {
     int width = 800;
     int height = 600;
     bool antialias = true;
+    Background background = Background::Sky;
+    ColorStop backgroundColour;  ///< Background::Colour: linear RGB (elevation unused)
     std::string output;  ///< "" = out/<scene stem>.png
     double timeoutS = 0; ///< POV-Ray stopped after this long; 0 = no limit
     KeyLocations locs;

@@ -51,8 +51,7 @@ light_source {
   point_at <-0.036623,27.596281,-0.001622>
 }
 
-// Sky: pale at the horizon, deeper blue overhead; it also lights the shadows
-// a little through the ambient term below.
+// What is behind the terrain ([render] background): the sky, a colour or nothing.
 sky_sphere {
   pigment {
     gradient y
