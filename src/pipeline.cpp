@@ -9,6 +9,7 @@
 
 #include "core/atomic_file.h"
 #include "core/number_format.h"
+#include "core/png_file.h"
 #include "emit/adaptive_mesh.h"
 #include "emit/height_field.h"
 #include "emit/mesh.h"
@@ -232,6 +233,19 @@ std::optional<CompileResult> compileScene(const LoadedScene& loaded,
     result.arity = loaded.resolved.scheme.arity;
     result.holder = loaded.resolved.report.holder;
     result.metresPerUnit = where.metresPerUnit;
+    {
+        annotate::OverlayFacts& f = result.overlayFacts;
+        f.credits = spec.overlay.credits ? *spec.overlay.credits : spec.samples.attribution;
+        f.palette = where.paletteColors;
+        f.zMinM = where.zMinM;
+        f.zMaxM = where.zMaxM;
+        f.exaggeration = where.exaggeration;
+        const emit::CameraView view = emit::placeCamera(where, spec.look, spec.render);
+        f.perspective = view.perspective;
+        f.metresPerPixel = annotate::metresPerPixelAtTarget(view, where.metresPerUnit, spec.render.width);
+        f.northDeg = annotate::northOnImageDeg(view, geo::gridConvergenceDeg(net.frame, where.originM.x, where.originM.y),
+                                               spec.render.width, spec.render.height);
+    }
     result.depth = surface->depth;
     result.autoDepth = surface->autoDepth;
     result.maskedNodes = refined.maskedCount();
@@ -526,14 +540,31 @@ JobOutcome runSceneJob(const SceneJob& job, Diagnostics& diags, const ProgressFn
         outcome.status = JobStatus::ToolFailed;
         return outcome;
     }
+    if (annotate::overlaysWanted(loaded->scene.overlay, still.width)) {
+        PngImage8 image;
+        std::string error = readPng8(outcome.paths.png, image);
+        annotate::OverlayRecord record;
+        if (error.empty()) error = annotate::drawOverlays(image, loaded->scene.overlay, outcome.compiled->overlayFacts, &record);
+        if (error.empty())
+            error = writePngAtomically(outcome.paths.png, {image.width, image.height, image.channels, false,
+                                                           image.pixels.data()});
+        if (!error.empty()) {
+            std::error_code ec;
+            std::filesystem::remove(outcome.paths.png, ec);  // a still without its overlays is not the output
+            diags.error({}, "the overlays: " + error);
+            return outcome;
+        }
+        outcome.overlays = record;
+    }
     writeFileAtomically(outcome.paths.sidecar,
-                        sidecarJson(*outcome.compiled, outcome.paths, &outcome.render));
+                        sidecarJson(*outcome.compiled, outcome.paths, &outcome.render, outcome.overlays));
     outcome.status = JobStatus::Ok;
     return outcome;
 }
 
 std::string sidecarJson(const CompileResult& c, const OutputPaths& paths,
-                        const render::RenderResult* render) {
+                        const render::RenderResult* render,
+                        const std::optional<annotate::OverlayRecord>& overlays) {
     using nlohmann::ordered_json;
     ordered_json j;
     j["relief_version"] = kVersion;
@@ -603,6 +634,14 @@ std::string sidecarJson(const CompileResult& c, const OutputPaths& paths,
         j["outputs"]["drape_png"] = c.drapePng.string();
     }
     if (render) j["outputs"]["png"] = paths.png.string();
+    if (overlays) {
+        j["overlay"] = {{"drawn", overlays->drawn}};
+        if (overlays->scaleBar.pixels > 0)
+            j["overlay"]["scale_bar"] = {{"metres", overlays->scaleBar.metres},
+                                         {"pixels", overlays->scaleBar.pixels},
+                                         {"valid", c.overlayFacts.perspective ? "at the centre of the view" : "everywhere"}};
+        j["overlay"]["north_deg_clockwise_from_up"] = overlays->northDeg;
+    }
     return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 

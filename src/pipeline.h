@@ -17,6 +17,7 @@
 #include <optional>
 #include <string>
 
+#include "annotate/overlay.h"
 #include "core/diagnostics.h"
 #include "emit/geometry_kind.h"
 #include "emit/write_scene.h"
@@ -107,6 +108,7 @@ struct CompileResult {
     double adaptiveToleranceM = 0, adaptiveTolerancePx = 0;  ///< the adaptive mesh's bound
     long long meshVertices = 0, meshTriangles = 0;  ///< as emitted: masked nodes left out
     size_t maskedNodes = 0;                         ///< refined nodes without data
+    annotate::OverlayFacts overlayFacts;            ///< what the still's overlays say
 };
 
 /// Runs stages 2-4 and writes the .pov (and the net dump, if asked).
@@ -144,6 +146,7 @@ struct JobOutcome {
     OutputPaths paths;
     std::optional<CompileResult> compiled;
     render::RenderResult render;     ///< POV-Ray's timings and error text (Until::Png)
+    std::optional<annotate::OverlayRecord> overlays;  ///< what was drawn over the still
 };
 
 /// Loads, compiles and (Until::Png) renders; writes the .pov, the JSON sidecar
@@ -152,8 +155,10 @@ struct JobOutcome {
 JobOutcome runSceneJob(const SceneJob& job, Diagnostics& diags, const ProgressFn& progress);
 
 /// The JSON sidecar: inputs, parameters, net size, vertex and triangle
-/// counts, time per stage (and POV-Ray's, when `render` is given).
+/// counts, time per stage (and POV-Ray's, when `render` is given), and what
+/// the still's overlays show.
 std::string sidecarJson(const CompileResult& compiled, const OutputPaths& paths,
-                        const render::RenderResult* render);
+                        const render::RenderResult* render,
+                        const std::optional<annotate::OverlayRecord>& overlays = std::nullopt);
 
 }  // namespace relief

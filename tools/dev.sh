@@ -24,9 +24,10 @@ esac
 # clang, libfuzzer-14-dev, libclang-rt-14-dev (the sanitizers' and libFuzzer's runtimes): the fuzz
 # targets; libomp-14-dev: OpenMP for clang (g++ has its own).
 # bubblewrap: POV-Ray's sandbox. libpng-dev: PNGs outside the image commands; libssl-dev: SHA-1.
+# libcairo2-dev, libpango1.0-dev: the still's overlays (text through fontconfig: fonts-dejavu-core).
 packages=(cmake make g++ pkg-config
           libgeographiclib-dev libgdal-dev libopenimageio-dev openimageio-tools libtomlplusplus-dev
-          libcli11-dev libfmt-dev nlohmann-json3-dev libnanoflann-dev libpng-dev libssl-dev libgtest-dev libbenchmark-dev
+          libcli11-dev libfmt-dev nlohmann-json3-dev libnanoflann-dev libpng-dev libssl-dev libcairo2-dev libpango1.0-dev libgtest-dev libbenchmark-dev
           povray bubblewrap chromium fonts-dejavu-core locales clang libfuzzer-14-dev libclang-rt-14-dev libomp-14-dev)
 missing=()
 for p in "${packages[@]}"; do

@@ -203,12 +203,28 @@ CameraView placeCamera(const ScenePlacement& where, const scene::LookSpec& look,
     CameraView view;
     view.eye = target + distance * back;
     view.target = target;
+    // As POV-Ray draws the image (left-handed: its right is cross(y, direction)
+    // taken as plain numbers), r and u above point left and down.
+    view.right = -1.0 * r;
+    view.up = (-1.0 / length(u)) * u;
     view.radius = radius;
     view.aspect = aspect;
     view.tanHalfFov = tanH;
     view.perspective = camera.projection == scene::Projection::Perspective;
     view.orthoHeight = 2.1 * radius;
     return view;
+}
+
+std::array<double, 2> projectToImage(const CameraView& view, const Vec3& p, int widthPx, int heightPx) {
+    const Vec3 v = p - view.eye;
+    const double x = dot(v, view.right), y = dot(v, view.up);
+    if (!view.perspective) {
+        const double h = view.orthoHeight, w = h * view.aspect;
+        return {widthPx * (0.5 + x / w), heightPx * (0.5 - y / h)};
+    }
+    const double depth = std::max(dot(v, view.target - view.eye) / length(view.target - view.eye), 1e-12);
+    const double tanV = view.tanHalfFov / view.aspect;
+    return {widthPx * (0.5 + 0.5 * x / (depth * view.tanHalfFov)), heightPx * (0.5 - 0.5 * y / (depth * tanV))};
 }
 
 double finestMetresPerPixel(const CameraView& view, const ScenePlacement& where, int widthPx) {

@@ -3,6 +3,7 @@
 // (.pov) from templates/scene.pov.in with the mesh as a `mesh2`. The same
 // inputs give byte-identical output: every number goes through the
 // locale-free writers of core/number_format.h.
+#include <array>
 #include <cstdio>
 #include <filesystem>
 #include <functional>
@@ -33,6 +34,7 @@ size_t writeMesh2(const Mesh& mesh, std::FILE* out, const WriteProgressFn& progr
 /// that keeps the terrain's bounding box in view (scene units and axes).
 struct CameraView {
     Vec3 eye, target;
+    Vec3 right, up;         ///< unit vectors of the image's x (to the right) and y (up), scene axes
     double radius = 0;      ///< of the bounding box
     double aspect = 1;      ///< width / height
     double tanHalfFov = 0;  ///< horizontal
@@ -40,6 +42,10 @@ struct CameraView {
     double orthoHeight = 0; ///< orthographic: the view's height
 };
 CameraView placeCamera(const ScenePlacement& where, const scene::LookSpec& look, const scene::RenderSpec& render);
+
+/// Where a scene point lands in a still `widthPx` x `heightPx` as POV-Ray
+/// draws it: pixels, x to the right, y down, (0, 0) the top-left corner.
+std::array<double, 2> projectToImage(const CameraView& view, const Vec3& p, int widthPx, int heightPx);
 
 /// Metres of terrain one pixel of a still `widthPx` wide covers at the
 /// terrain's nearest point to the eye (the finest detail the still can show).

@@ -119,6 +119,17 @@ bool frameToGeodetic(const Frame& frame, Vec3 p, double& latDeg, double& lonDeg,
     }
 }
 
+double gridConvergenceDeg(const Frame& frame, double x, double y) {
+    if (frame.kind == scene::FrameKind::Local) return 0;
+    try {
+        double lat, lon, gamma, k;
+        UTMUPS::Reverse(frame.utmZone, frame.northp, x, y, lat, lon, gamma, k);
+        return gamma;
+    } catch (const GeographicErr&) {
+        return 0;
+    }
+}
+
 bool geodeticToFrame(const Frame& frame, double latDeg, double lonDeg, double heightM, Vec3& p) {
     Diagnostics ignored;
     const auto projected = projectSamples(frame, {GeoSample{lonDeg, latDeg, heightM, {}}}, ignored);

@@ -36,6 +36,11 @@ struct ControlNet : GeoGrid {
 /// height) or LocalCartesian (z is the height above the tangent plane), as
 /// projectSamples. False when the point cannot be converted.
 bool frameToGeodetic(const Frame& frame, Vec3 p, double& latDeg, double& lonDeg, double& heightM);
+
+/// The meridian convergence at frame point (x, y): the bearing of the frame's
+/// y axis (grid north) clockwise from true north, degrees (GeographicLib's
+/// gamma). 0 in a local frame, whose y axis is true north at its origin.
+double gridConvergenceDeg(const Frame& frame, double x, double y);
 bool geodeticToFrame(const Frame& frame, double latDeg, double lonDeg, double heightM, Vec3& p);
 
 /// Chooses the frame for these samples (UTM zone of their centre, unless the

@@ -220,7 +220,7 @@ private:
 
 const std::vector<std::string> kSections{"samples", "frame",    "net",      "vertical",
                                          "subdivision", "limits", "texture", "lighting",
-                                         "camera",   "geometry", "render"};
+                                         "camera",   "geometry", "render", "overlay"};
 
 }  // namespace
 
@@ -626,6 +626,20 @@ std::optional<SceneSpec> readScene(const std::filesystem::path& path, Diagnostic
             else
                 scene.render.output = *v;
         }
+        s.finish();
+    }
+
+    // [overlay]
+    {
+        Section s = sectionInto("overlay", scene.overlay.locs);
+        if (auto v = s.boolean("enabled"))
+            scene.overlay.enabled = *v ? OverlaySpec::Enabled::On : OverlaySpec::Enabled::Off;
+        if (auto v = s.string("title")) scene.overlay.title = *v;
+        if (auto v = s.string("subtitle")) scene.overlay.subtitle = *v;
+        if (auto v = s.string("credits")) scene.overlay.credits = *v;
+        if (auto v = s.boolean("legend")) scene.overlay.legend = *v;
+        if (auto v = s.boolean("scale_bar")) scene.overlay.scaleBar = *v;
+        if (auto v = s.boolean("north_arrow")) scene.overlay.northArrow = *v;
         s.finish();
     }
 

@@ -157,11 +157,11 @@ struct LookSpec {
     KeyLocations locs;
 };
 
-/// [render]: the still.
 /// What is behind the terrain: the sky gradient, one colour, or nothing (a
 /// PNG with alpha, for a report's own background).
 enum class Background { Sky, Colour, Transparent };
 
+/// [render]: the still.
 struct RenderSpec {
     int width = 800;
     int height = 600;
@@ -170,6 +170,17 @@ struct RenderSpec {
     ColorStop backgroundColour;  ///< Background::Colour: linear RGB (elevation unused)
     std::string output;  ///< "" = out/<scene stem>.png
     double timeoutS = 0; ///< POV-Ray stopped after this long; 0 = no limit
+    KeyLocations locs;
+};
+
+/// [overlay]: what is drawn over the still for a report (annotate/).
+struct OverlaySpec {
+    enum class Enabled { Auto, On, Off };
+    Enabled enabled = Enabled::Auto;  ///< Auto: on for stills at least kMinAutoWidthPx wide
+    static constexpr int kMinAutoWidthPx = 480;
+    std::string title, subtitle;
+    std::optional<std::string> credits;  ///< unset: the samples' attribution
+    bool legend = true, scaleBar = true, northArrow = true;
     KeyLocations locs;
 };
 
@@ -201,6 +212,7 @@ struct SceneSpec {
     LookSpec look;
     GeometrySpec geometry;
     RenderSpec render;
+    OverlaySpec overlay;
     LimitsSpec limits;
 };
 

@@ -1,0 +1,273 @@
+#include "annotate/overlay.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <memory>
+
+#include <fmt/format.h>
+#include <pango/pangocairo.h>
+
+#include "core/number_format.h"
+
+namespace relief::annotate {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// 1, 2 or 5 x 10^k: the largest not above `v`.
+double roundDown125(double v) {
+    const double p = std::pow(10.0, std::floor(std::log10(v)));
+    const double m = v / p;
+    return (m >= 5 ? 5 : m >= 2 ? 2 : 1) * p;
+}
+
+std::string metresLabel(double m) {
+    if (m >= 1000) return formatShortest(m / 1000) + " km";
+    return formatShortest(m) + " m";
+}
+
+// The sRGB transfer function (IEC 61966-2-1): the still's PNG is sRGB, the
+// ramp's colours are linear.
+double linearToSrgb(double c) {
+    c = std::clamp(c, 0.0, 1.0);
+    return c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1 / 2.4) - 0.055;
+}
+
+struct CairoDeleter {
+    void operator()(cairo_surface_t* s) const { cairo_surface_destroy(s); }
+    void operator()(cairo_t* c) const { cairo_destroy(c); }
+    void operator()(PangoLayout* l) const { g_object_unref(l); }
+    void operator()(PangoFontDescription* f) const { pango_font_description_free(f); }
+};
+template <class T>
+using Owned = std::unique_ptr<T, CairoDeleter>;
+
+// Text in one place: dark, with a pale halo so it reads over any terrain.
+// anchorX: 0 left, 0.5 centre, 1 right of (x, y); y is the top.
+class Painter {
+public:
+    Painter(cairo_t* cr, double unit) : cr_(cr), unit_(unit) {}
+
+    // Returns the text's width and height, in pixels. With maxWidth, the text
+    // wraps at words onto at most maxLines lines, the last cut with an
+    // ellipsis: an overlong string cannot cover the still. anchorY: 0 puts
+    // the top at y, 1 the bottom.
+    std::pair<double, double> text(const std::string& s, double x, double y, double sizeUnits, bool bold,
+                                   double anchorX = 0, double maxWidth = 0, int maxLines = 1, double anchorY = 0) {
+        Owned<PangoLayout> layout(pango_cairo_create_layout(cr_));
+        Owned<PangoFontDescription> font(pango_font_description_from_string(bold ? "DejaVu Sans Bold" : "DejaVu Sans"));
+        pango_font_description_set_absolute_size(font.get(), sizeUnits * unit_ * PANGO_SCALE);
+        pango_layout_set_font_description(layout.get(), font.get());
+        if (maxWidth > 0) {
+            pango_layout_set_width(layout.get(), static_cast<int>(maxWidth * PANGO_SCALE));
+            pango_layout_set_wrap(layout.get(), PANGO_WRAP_WORD_CHAR);
+            pango_layout_set_height(layout.get(), -maxLines);
+            pango_layout_set_ellipsize(layout.get(), PANGO_ELLIPSIZE_END);
+            pango_layout_set_alignment(layout.get(), anchorX >= 1 ? PANGO_ALIGN_RIGHT : PANGO_ALIGN_LEFT);
+        }
+        pango_layout_set_single_paragraph_mode(layout.get(), TRUE);  // line breaks in a string are spaces
+        pango_layout_set_text(layout.get(), s.c_str(), static_cast<int>(s.size()));  // text, never markup
+        PangoRectangle box;  // the lines as laid out (a right-aligned line starts right of 0)
+        pango_layout_get_pixel_extents(layout.get(), nullptr, &box);
+        const double w = box.width, h = box.height;
+        cairo_move_to(cr_, x - anchorX * w - box.x, y - anchorY * h - box.y);
+        pango_cairo_layout_path(cr_, layout.get());
+        cairo_set_line_join(cr_, CAIRO_LINE_JOIN_ROUND);
+        cairo_set_line_width(cr_, std::max(1.0, 0.35 * sizeUnits * unit_ / 3));
+        cairo_set_source_rgba(cr_, 1, 1, 1, 0.85);
+        cairo_stroke_preserve(cr_);
+        cairo_set_source_rgb(cr_, 0.08, 0.08, 0.08);
+        cairo_fill(cr_);
+        return {w, h};
+    }
+
+private:
+    cairo_t* cr_;
+    double unit_;
+};
+
+}  // namespace
+
+ScaleBar chooseScaleBar(double metresPerPixel, int widthPx) {
+    ScaleBar bar;
+    if (!(metresPerPixel > 0) || widthPx <= 0) return bar;
+    bar.metres = roundDown125(0.2 * widthPx * metresPerPixel);
+    bar.pixels = bar.metres / metresPerPixel;
+    bar.label = metresLabel(bar.metres);
+    return bar;
+}
+
+std::vector<double> legendTicks(double zMinM, double zMaxM) {
+    std::vector<double> ticks;
+    if (!(zMaxM > zMinM)) return {zMinM};
+    const double step = roundDown125((zMaxM - zMinM) / 4);
+    for (double v = std::ceil(zMinM / step) * step; v <= zMaxM + 1e-9 * step; v += step)
+        ticks.push_back(std::abs(v) < 1e-9 * step ? 0.0 : v);
+    return ticks;
+}
+
+double northOnImageDeg(const emit::CameraView& view, double convergenceDeg, int widthPx, int heightPx) {
+    // True north is convergenceDeg anticlockwise of grid north: in scene axes
+    // (x east, z north) the direction (-sin g, 0, cos g).
+    const double g = convergenceDeg * kPi / 180;
+    const double step = 1e-3 * view.radius;
+    const Vec3 north{-std::sin(g) * step, 0, std::cos(g) * step};
+    const auto a = emit::projectToImage(view, view.target, widthPx, heightPx);
+    const auto b = emit::projectToImage(view, view.target + north, widthPx, heightPx);
+    return std::atan2(b[0] - a[0], a[1] - b[1]) * 180 / kPi;
+}
+
+double metresPerPixelAtTarget(const emit::CameraView& view, double metresPerUnit, int widthPx) {
+    const double span = view.perspective ? 2 * length(view.target - view.eye) * view.tanHalfFov
+                                         : view.orthoHeight * view.aspect;
+    return span * metresPerUnit / widthPx;
+}
+
+bool overlaysWanted(const scene::OverlaySpec& spec, int widthPx) {
+    using E = scene::OverlaySpec::Enabled;
+    return spec.enabled == E::On || (spec.enabled == E::Auto && widthPx >= scene::OverlaySpec::kMinAutoWidthPx);
+}
+
+std::string drawOverlays(PngImage8& image, const scene::OverlaySpec& spec, const OverlayFacts& facts,
+                         OverlayRecord* record) {
+    const int W = image.width, H = image.height, n = image.channels;
+    if (n != 3 && n != 4) return "overlays need an RGB or RGBA image";
+    // Cairo's ARGB32: premultiplied, one native 32-bit word per pixel.
+    Owned<cairo_surface_t> surface(cairo_image_surface_create(CAIRO_FORMAT_ARGB32, W, H));
+    if (cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS) return "cannot make a drawing surface";
+    {
+        cairo_surface_flush(surface.get());
+        unsigned char* data = cairo_image_surface_get_data(surface.get());
+        const int stride = cairo_image_surface_get_stride(surface.get());
+        for (int y = 0; y < H; ++y)
+            for (int x = 0; x < W; ++x) {
+                const std::uint8_t* p = &image.pixels[(static_cast<size_t>(y) * W + x) * n];
+                const unsigned a = n == 4 ? p[3] : 255;
+                const auto pre = [&](unsigned c) { return (c * a + 127) / 255; };
+                reinterpret_cast<std::uint32_t*>(data + static_cast<size_t>(y) * stride)[x] =
+                    (a << 24) | (pre(p[0]) << 16) | (pre(p[1]) << 8) | pre(p[2]);
+            }
+        cairo_surface_mark_dirty(surface.get());
+    }
+    Owned<cairo_t> cr(cairo_create(surface.get()));
+    cairo_t* c = cr.get();
+    const double u = std::min(W, H * 4 / 3) / 100.0;  // sizes scale with the still
+    Painter paint(c, u);
+    OverlayRecord rec;
+
+    // Title and subtitle, top left.
+    double y = 2.2 * u;
+    if (!spec.title.empty()) {
+        y += paint.text(spec.title, 2.5 * u, y, 3.6, true, 0, 0.62 * W).second;
+        rec.drawn.push_back("title");
+    }
+    if (!spec.subtitle.empty()) {
+        paint.text(spec.subtitle, 2.5 * u, y + 0.3 * u, 2.2, false, 0, 0.62 * W);
+        rec.drawn.push_back("subtitle");
+    }
+
+    // North arrow, top right: an arrow pointing where true north lies.
+    if (spec.northArrow) {
+        const double cx = W - 6 * u, cy = 7.5 * u, len = 3.6 * u;
+        cairo_save(c);
+        cairo_translate(c, cx, cy);
+        cairo_rotate(c, facts.northDeg * kPi / 180);
+        cairo_move_to(c, 0, -len);
+        cairo_line_to(c, 0.55 * len, 0.75 * len);
+        cairo_line_to(c, 0, 0.35 * len);
+        cairo_line_to(c, -0.55 * len, 0.75 * len);
+        cairo_close_path(c);
+        cairo_set_line_width(c, 0.35 * u);
+        cairo_set_source_rgba(c, 1, 1, 1, 0.85);
+        cairo_stroke_preserve(c);
+        cairo_set_source_rgb(c, 0.08, 0.08, 0.08);
+        cairo_fill(c);
+        cairo_restore(c);
+        const double a = facts.northDeg * kPi / 180;
+        paint.text("N", cx + std::sin(a) * 1.75 * len, cy - std::cos(a) * 1.75 * len - 1.3 * u, 2.4, true, 0.5);
+        rec.drawn.push_back("north_arrow");
+        rec.northDeg = facts.northDeg;
+    }
+
+    // Elevation legend, right: the ramp as a bar, ticks in true metres.
+    if (spec.legend && facts.palette.size() >= 2) {
+        const double barW = 2.0 * u, barH = 0.38 * H, x0 = W - 13 * u, y0 = 17 * u;
+        paint.text("Elevation (m)", x0 + barW, y0 - 3.4 * u, 1.9, true, 0.5);
+        const int steps = static_cast<int>(std::ceil(barH));
+        for (int i = 0; i < steps; ++i) {  // top: the highest
+            const double t = 1.0 - (i + 0.5) / steps;
+            const auto& col = facts.palette[std::min(facts.palette.size() - 1,
+                                                     static_cast<size_t>(std::lround(t * (facts.palette.size() - 1))))];
+            cairo_rectangle(c, x0, y0 + i * barH / steps, barW, barH / steps + 0.6);
+            cairo_set_source_rgb(c, linearToSrgb(col.r), linearToSrgb(col.g), linearToSrgb(col.b));
+            cairo_fill(c);
+        }
+        cairo_rectangle(c, x0, y0, barW, barH);
+        cairo_set_line_width(c, 0.15 * u);
+        cairo_set_source_rgb(c, 0.08, 0.08, 0.08);
+        cairo_stroke(c);
+        const double span = facts.zMaxM > facts.zMinM ? facts.zMaxM - facts.zMinM : 1;
+        for (double v : legendTicks(facts.zMinM, facts.zMaxM)) {
+            const double ty = y0 + barH * (1 - (v - facts.zMinM) / span);
+            cairo_move_to(c, x0 + barW, ty);
+            cairo_line_to(c, x0 + barW + 0.8 * u, ty);
+            cairo_set_source_rgb(c, 0.08, 0.08, 0.08);
+            cairo_stroke(c);
+            paint.text(formatShortest(v), x0 + barW + 1.2 * u, ty - 1.0 * u, 1.7, false);
+        }
+        if (std::abs(facts.exaggeration - 1) > 1e-9)
+            paint.text(fmt::format("vertical \u00d7{}", formatShortest(facts.exaggeration)), x0 + barW, y0 + barH + 1.2 * u,
+                       1.6, false, 0.5);
+        rec.drawn.push_back("legend");
+    }
+
+    // Scale bar, bottom left: four alternating segments.
+    if (spec.scaleBar) {
+        const ScaleBar bar = chooseScaleBar(facts.metresPerPixel, W);
+        if (bar.pixels > 0) {
+            const double x0 = 3 * u, y0 = H - 7 * u, h = 0.9 * u;
+            cairo_set_line_width(c, 0.15 * u);
+            for (int i = 0; i < 4; ++i) {
+                cairo_rectangle(c, x0 + i * bar.pixels / 4, y0, bar.pixels / 4, h);
+                if (i % 2 == 0) cairo_set_source_rgb(c, 0.08, 0.08, 0.08);
+                else cairo_set_source_rgb(c, 1, 1, 1);
+                cairo_fill_preserve(c);
+                cairo_set_source_rgb(c, 0.08, 0.08, 0.08);
+                cairo_stroke(c);
+            }
+            paint.text("0", x0, y0 - 2.6 * u, 1.7, false, 0.5);
+            paint.text(bar.label, x0 + bar.pixels, y0 - 2.6 * u, 1.7, false, 0.5);
+            if (facts.perspective)
+                paint.text("at the centre of the view", x0, y0 + h + 0.6 * u, 1.4, false, 0);
+            rec.drawn.push_back("scale_bar");
+            rec.scaleBar = bar;
+        }
+    }
+
+    // Credits, bottom right: whose data (CC BY and the OGL ask for it).
+    if (!facts.credits.empty()) {
+        paint.text(facts.credits, W - 2 * u, H - 1.2 * u, 1.4, false, 1, 0.55 * W, 4, 1);
+        rec.drawn.push_back("credits");
+    }
+
+    cairo_surface_flush(surface.get());
+    const unsigned char* data = cairo_image_surface_get_data(surface.get());
+    const int stride = cairo_image_surface_get_stride(surface.get());
+    for (int yy = 0; yy < H; ++yy)
+        for (int x = 0; x < W; ++x) {
+            const std::uint32_t v = reinterpret_cast<const std::uint32_t*>(data + static_cast<size_t>(yy) * stride)[x];
+            const unsigned a = v >> 24;
+            const auto un = [&](unsigned pc) { return a ? std::min(255u, (pc * 255 + a / 2) / a) : 0u; };
+            std::uint8_t* p = &image.pixels[(static_cast<size_t>(yy) * W + x) * n];
+            p[0] = static_cast<std::uint8_t>(un((v >> 16) & 255));
+            p[1] = static_cast<std::uint8_t>(un((v >> 8) & 255));
+            p[2] = static_cast<std::uint8_t>(un(v & 255));
+            if (n == 4) p[3] = static_cast<std::uint8_t>(a);
+        }
+    if (record) *record = rec;
+    return {};
+}
+
+}  // namespace relief::annotate

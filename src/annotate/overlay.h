@@ -1,0 +1,73 @@
+#pragma once
+// Stage 6 of 6: the report's furniture, drawn over the rendered still with
+// Cairo and Pango (crisp text at any size, fonts from fontconfig: DejaVu
+// Sans). Input: the still's pixels, the OverlaySpec and the facts the earlier
+// stages know (OverlayFacts). Output: the same pixels with a title, credits,
+// an elevation legend, a scale bar and a north arrow.
+//
+// Every string is set as text (pango_layout_set_text), never as markup: a
+// title "<b>x</b> &amp;" prints as written.
+#include <string>
+#include <vector>
+
+#include "core/png_file.h"
+#include "emit/write_scene.h"
+#include "scene/scene_spec.h"
+
+namespace relief::annotate {
+
+/// What the overlays say, computed from the scene, its placement and its
+/// camera (pipeline.cpp): the numbers, not how to draw them.
+struct OverlayFacts {
+    std::string credits;  ///< the scene's, or the samples' attribution
+    // The legend: the ramp as drawn (linear RGB), over true elevations.
+    std::vector<scene::ColorStop> palette;
+    double zMinM = 0, zMaxM = 0;
+    double exaggeration = 1;
+    // The scale bar: ground metres one pixel spans, along the image's x, at
+    // the centre of the view (exact everywhere for an orthographic view).
+    double metresPerPixel = 0;
+    bool perspective = true;
+    // The north arrow: true north's direction in the image, degrees clockwise
+    // from straight up, at the terrain's centre.
+    double northDeg = 0;
+};
+
+/// A scale bar: a round length (1, 2 or 5 x 10^k m) near a fifth of the
+/// still's width, its length in pixels and its label ("500 m", "2 km").
+struct ScaleBar {
+    double metres = 0;
+    double pixels = 0;
+    std::string label;
+};
+ScaleBar chooseScaleBar(double metresPerPixel, int widthPx);
+
+/// Round tick values for a legend over [zMin, zMax]: about five, at 1, 2 or
+/// 5 x 10^k metres.
+std::vector<double> legendTicks(double zMinM, double zMaxM);
+
+/// True north's direction in a still of the view, degrees clockwise from
+/// straight up, at the view's target. `convergenceDeg`: the bearing of grid
+/// north (the frame's y axis) clockwise from true north there (GeographicLib's
+/// meridian convergence; 0 in a local frame).
+double northOnImageDeg(const emit::CameraView& view, double convergenceDeg, int widthPx, int heightPx);
+
+/// Ground metres one pixel spans along the image's x at the view's target.
+double metresPerPixelAtTarget(const emit::CameraView& view, double metresPerUnit, int widthPx);
+
+/// Whether the overlays are drawn on a still `widthPx` wide.
+bool overlaysWanted(const scene::OverlaySpec& spec, int widthPx);
+
+/// What was drawn, for the sidecar.
+struct OverlayRecord {
+    std::vector<std::string> drawn;  ///< "title", "legend", ...
+    ScaleBar scaleBar;
+    double northDeg = 0;
+};
+
+/// Draws the overlays the spec asks for onto `image` (8-bit RGB or RGBA,
+/// changed in place). Returns "" or the error.
+std::string drawOverlays(PngImage8& image, const scene::OverlaySpec& spec, const OverlayFacts& facts,
+                         OverlayRecord* record = nullptr);
+
+}  // namespace relief::annotate

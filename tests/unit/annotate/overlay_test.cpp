@@ -1,0 +1,126 @@
+// The report's furniture: the numbers it shows (scale bar, ticks, north) and
+// that it is drawn, as text, where it belongs.
+#include "annotate/overlay.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "emit/mesh.h"
+
+namespace relief::annotate {
+namespace {
+
+// A 1 km square around the origin, 100 m high, 10 m per scene unit.
+emit::ScenePlacement square() {
+    emit::ScenePlacement p;
+    p.metresPerUnit = 10;
+    p.boundsMin = {-50, 0, -50};
+    p.boundsMax = {50, 10, 50};
+    return p;
+}
+
+emit::CameraView view(double azimuthDeg, double elevationDeg, bool perspective = true) {
+    scene::LookSpec look;
+    look.camera.azimuthDeg = azimuthDeg;
+    look.camera.elevationDeg = elevationDeg;
+    look.camera.projection = perspective ? scene::Projection::Perspective : scene::Projection::Orthographic;
+    scene::RenderSpec render;
+    render.width = 800;
+    render.height = 600;
+    return emit::placeCamera(square(), look, render);
+}
+
+// Where north points on the image: POV-Ray's axes are left-handed (x east,
+// z north), so a camera south of the terrain sees east on its right.
+TEST(Overlay, NorthArrowFollowsTheCamera) {
+    EXPECT_NEAR(northOnImageDeg(view(180, 35), 0, 800, 600), 0, 1e-6);    // looking north: up
+    EXPECT_NEAR(std::abs(northOnImageDeg(view(0, 35), 0, 800, 600)), 180, 1e-6);  // looking south: down
+    EXPECT_NEAR(northOnImageDeg(view(90, 89), 0, 800, 600), 90, 0.1);     // from the east, overhead: right
+    EXPECT_NEAR(northOnImageDeg(view(270, 89), 0, 800, 600), -90, 0.1);   // from the west: left
+    // Looking north-north-east (the default camera), north is to the left of up.
+    const double n = northOnImageDeg(view(200, 35), 0, 800, 600);
+    EXPECT_LT(n, -15);
+    EXPECT_GT(n, -45);
+    // Overhead, the arrow turns by the meridian convergence: grid north 2° east
+    // of true north puts true north 2° to the left.
+    EXPECT_NEAR(northOnImageDeg(view(180, 89.9), 2, 800, 600), -2, 0.05);
+    // East of the target lands right of it, in the image.
+    const emit::CameraView v = view(180, 35);
+    EXPECT_GT(emit::projectToImage(v, v.target + Vec3{1, 0, 0}, 800, 600)[0], 400);
+    EXPECT_LT(emit::projectToImage(v, v.target + Vec3{0, 1, 0}, 800, 600)[1], 300);  // up is up
+}
+
+// The bar is a round length near a fifth of the width, drawn at its true
+// pixel length for the view's scale.
+TEST(Overlay, ScaleBarIsRoundAndTrue) {
+    const ScaleBar a = chooseScaleBar(2.5, 800);  // 160 px = 400 m -> 200 m
+    EXPECT_EQ(a.metres, 200);
+    EXPECT_DOUBLE_EQ(a.pixels, 80);
+    EXPECT_EQ(a.label, "200 m");
+    const ScaleBar b = chooseScaleBar(31.3, 960);  // 6 km -> 5 km
+    EXPECT_EQ(b.metres, 5000);
+    EXPECT_EQ(b.label, "5 km");
+    EXPECT_NEAR(b.pixels * 31.3, 5000, 1e-9);
+    // Orthographic: the view's width in metres over its pixels, everywhere.
+    const emit::CameraView o = view(180, 35, false);
+    EXPECT_NEAR(metresPerPixelAtTarget(o, 10, 800), o.orthoHeight * o.aspect * 10 / 800, 1e-12);
+    // Perspective, at the target: two tangents of the half angle at its distance.
+    const emit::CameraView p = view(180, 35);
+    EXPECT_NEAR(metresPerPixelAtTarget(p, 10, 800), 2 * length(p.target - p.eye) * p.tanHalfFov * 10 / 800, 1e-12);
+}
+
+TEST(Overlay, LegendTicksAreRoundAndInside) {
+    EXPECT_EQ(legendTicks(36.2, 250.9), (std::vector<double>{50, 100, 150, 200, 250}));
+    EXPECT_EQ(legendTicks(-5, 5), (std::vector<double>{-4, -2, 0, 2, 4}));
+    EXPECT_EQ(legendTicks(100, 100), (std::vector<double>{100}));  // flat terrain: no 0/0
+}
+
+TEST(Overlay, AutoOnlyOnStillsWideEnough) {
+    scene::OverlaySpec spec;
+    EXPECT_FALSE(overlaysWanted(spec, 160));
+    EXPECT_TRUE(overlaysWanted(spec, 480));
+    spec.enabled = scene::OverlaySpec::Enabled::On;
+    EXPECT_TRUE(overlaysWanted(spec, 160));
+    spec.enabled = scene::OverlaySpec::Enabled::Off;
+    EXPECT_FALSE(overlaysWanted(spec, 4000));
+}
+
+// Drawn on a grey still: the title's corner, the legend's column and the
+// scale bar's corner change; the middle, where the terrain is, does not. A
+// hostile title is set as text (Pango never sees markup) and cut to one line.
+TEST(Overlay, DrawsInTheCornersAndKeepsTheMiddle) {
+    PngImage8 image;
+    image.width = 640;
+    image.height = 480;
+    image.channels = 3;
+    image.pixels.assign(640 * 480 * 3, 128);
+    scene::OverlaySpec spec;
+    spec.title = "<b>x</b> &amp; #fopen {{terrain}} " + std::string(5000, 'W');
+    OverlayFacts facts;
+    facts.credits = "Data: someone, CC BY 4.0";
+    facts.palette = {{0, 0, 0.5, 0}, {0, 1, 1, 1}};
+    facts.zMinM = 10;
+    facts.zMaxM = 300;
+    facts.metresPerPixel = 2;
+    OverlayRecord record;
+    ASSERT_EQ(drawOverlays(image, spec, facts, &record), "");
+    EXPECT_EQ(record.drawn, (std::vector<std::string>{"title", "north_arrow", "legend", "scale_bar", "credits"}));
+    EXPECT_EQ(record.scaleBar.metres, 200);
+    auto changed = [&](int x0, int y0, int x1, int y1) {
+        int n = 0;
+        for (int y = y0; y < y1; ++y)
+            for (int x = x0; x < x1; ++x)
+                for (int c = 0; c < 3; ++c) n += image.pixels[(size_t(y) * 640 + x) * 3 + c] != 128;
+        return n;
+    };
+    EXPECT_GT(changed(0, 0, 400, 40), 500);     // the title
+    EXPECT_EQ(changed(440, 0, 560, 40), 0);      // ...cut at 62 % of the width, before the north arrow
+    EXPECT_GT(changed(540, 100, 600, 300), 500); // the legend
+    EXPECT_GT(changed(0, 400, 200, 480), 200);   // the scale bar
+    EXPECT_GT(changed(300, 440, 640, 480), 100); // the credits
+    EXPECT_EQ(changed(200, 150, 480, 380), 0);   // the middle
+}
+
+}  // namespace
+}  // namespace relief::annotate
