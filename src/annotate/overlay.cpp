@@ -58,7 +58,8 @@ public:
                                    double anchorX = 0, double maxWidth = 0, int maxLines = 1, double anchorY = 0) {
         Owned<PangoLayout> layout(pango_cairo_create_layout(cr_));
         Owned<PangoFontDescription> font(pango_font_description_from_string(bold ? "DejaVu Sans Bold" : "DejaVu Sans"));
-        pango_font_description_set_absolute_size(font.get(), sizeUnits * unit_ * PANGO_SCALE);
+        // Never below 10 px: a label a reader cannot read is no label.
+        pango_font_description_set_absolute_size(font.get(), std::max(sizeUnits * unit_, 10.0) * PANGO_SCALE);
         pango_layout_set_font_description(layout.get(), font.get());
         if (maxWidth > 0) {
             pango_layout_set_width(layout.get(), static_cast<int>(maxWidth * PANGO_SCALE));
@@ -160,11 +161,11 @@ std::string drawOverlays(PngImage8& image, const scene::OverlaySpec& spec, const
     // Title and subtitle, top left.
     double y = 2.2 * u;
     if (!spec.title.empty()) {
-        y += paint.text(spec.title, 2.5 * u, y, 3.6, true, 0, 0.62 * W).second;
+        y += paint.text(spec.title, 2.5 * u, y, 3.6, true, 0, 0.62 * W, 2).second;
         rec.drawn.push_back("title");
     }
     if (!spec.subtitle.empty()) {
-        paint.text(spec.subtitle, 2.5 * u, y + 0.3 * u, 2.2, false, 0, 0.62 * W);
+        paint.text(spec.subtitle, 2.5 * u, y + 0.3 * u, 2.2, false, 0, 0.62 * W, 2);
         rec.drawn.push_back("subtitle");
     }
 
