@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <mutex>
+#include <numbers>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -127,14 +128,19 @@ emit::ParameterList describe(const scene::SceneSpec& s, const geo::ControlNet& n
     add("lighting.sun", fmt::format("azimuth {} deg, altitude {} deg",
                                     formatShortest(look.sunAzimuthDeg),
                                     formatShortest(look.sunAltitudeDeg)));
-    add("camera", fmt::format("{}, azimuth {} deg, elevation {} deg, distance {}, fov {} deg",
-                              camera.projection == scene::Projection::Perspective ? "perspective"
-                                                                                  : "orthographic",
-                              formatShortest(camera.azimuthDeg),
-                              formatShortest(camera.elevationDeg),
-                              camera.distanceM > 0 ? formatShortest(camera.distanceM) + " m"
-                                                   : std::string("fit"),
-                              formatShortest(camera.fovDeg)));
+    const char* projection = camera.projection == scene::Projection::Perspective ? "perspective" : "orthographic";
+    const auto lonLatH = [](const std::array<double, 3>& p) {
+        return fmt::format("lon {} lat {} height {} m", formatShortest(p[0]), formatShortest(p[1]), formatShortest(p[2]));
+    };
+    if (camera.position)
+        add("camera", fmt::format("{}, at {}, looking at {}, fov {} deg", projection, lonLatH(*camera.position),
+                                  camera.lookAt ? lonLatH(*camera.lookAt) : std::string("the terrain's centre"),
+                                  formatShortest(camera.fovDeg)));
+    else
+        add("camera", fmt::format("{}, azimuth {} deg, elevation {} deg, distance {}, fov {} deg", projection,
+                                  formatShortest(camera.azimuthDeg), formatShortest(camera.elevationDeg),
+                                  camera.distanceM > 0 ? formatShortest(camera.distanceM) + " m" : std::string("fit"),
+                                  formatShortest(camera.fovDeg)));
     add("render", fmt::format("{} x {}, antialias {}", s.render.width, s.render.height,
                               s.render.antialias ? "on" : "off"));
     if (s.render.background == scene::Background::Transparent) add("render.background", "transparent");
@@ -186,6 +192,24 @@ std::optional<CompileResult> compileScene(const LoadedScene& loaded,
     result.times.subdivide = surface->subdivideSeconds;
     const geo::ControlNet& net = surface->net;
 
+    // A camera placed by geography: its eye and target in the frame's metres.
+    scene::LookSpec look = spec.look;
+    {
+        scene::CameraSpec& camera = look.camera;
+        const auto toFrame = [&](const std::array<double, 3>& lonLatH, const char* key) -> std::optional<Vec3> {
+            Vec3 p;
+            if (geo::geodeticToFrame(net.frame, lonLatH[1], lonLatH[0], lonLatH[2], p)) return p;
+            diags.error(look.locs.at(key), fmt::format("{} = [{}, {}, {}] cannot be placed in the scene's frame ({}): "
+                                                       "put it nearer the terrain, or use frame.kind = \"local\"",
+                                                       key, formatShortest(lonLatH[0]), formatShortest(lonLatH[1]),
+                                                       formatShortest(lonLatH[2]), net.frame.describe()));
+            return std::nullopt;
+        };
+        if (camera.position && !(camera.positionFrameM = toFrame(*camera.position, "camera.position")))
+            return std::nullopt;
+        if (camera.lookAt && !(camera.lookAtFrameM = toFrame(*camera.lookAt, "camera.look_at"))) return std::nullopt;
+    }
+
     const auto t0 = Clock::now();
     const geo::GeoGrid& refined = surface->refined;
     const bool heightField = surface->geometry.kind == scene::GeometryKind::HeightField;
@@ -195,7 +219,7 @@ std::optional<CompileResult> compileScene(const LoadedScene& loaded,
     std::optional<emit::HeightField> field;
     emit::ScenePlacement where;
     if (heightField) {
-        where = emit::placeTerrain(refined, spec.look);
+        where = emit::placeTerrain(refined, look);
         field = emit::quantizeHeights(refined, where);
         result.heightPng = options.povPath.parent_path() / emit::siblingPngName(options.povPath, "height");
         result.drapePng = options.povPath.parent_path() / emit::siblingPngName(options.povPath, "drape");
@@ -207,12 +231,12 @@ std::optional<CompileResult> compileScene(const LoadedScene& loaded,
             // The tolerance in metres: given, or half a pixel (by default) where the terrain is
             // nearest the camera, in true (not exaggerated) metres.
             const scene::GeometrySpec& g = spec.geometry;
-            const emit::ScenePlacement placed = emit::placeTerrain(refined, spec.look);
-            const double pixelM = emit::finestMetresPerPixel(emit::placeCamera(placed, spec.look, spec.render), placed,
+            const emit::ScenePlacement placed = emit::placeTerrain(refined, look);
+            const double pixelM = emit::finestMetresPerPixel(emit::placeCamera(placed, look, spec.render), placed,
                                                              spec.render.width);
-            result.adaptiveToleranceM = g.toleranceM > 0 ? g.toleranceM : g.tolerancePx * pixelM / spec.look.exaggeration;
-            result.adaptiveTolerancePx = result.adaptiveToleranceM * spec.look.exaggeration / pixelM;
-            mesh = emit::buildAdaptiveMesh(refined, spec.look, result.adaptiveToleranceM);
+            result.adaptiveToleranceM = g.toleranceM > 0 ? g.toleranceM : g.tolerancePx * pixelM / look.exaggeration;
+            result.adaptiveTolerancePx = result.adaptiveToleranceM * look.exaggeration / pixelM;
+            mesh = emit::buildAdaptiveMesh(refined, look, result.adaptiveToleranceM);
             const scene::SubdivisionSpec& sub = spec.subdivision;
             if (!subdiv::checkBudget(subdiv::withBuiltMesh(surface->estimate, double(mesh->vertices),
                                                            double(mesh->triangles)),
@@ -221,7 +245,7 @@ std::optional<CompileResult> compileScene(const LoadedScene& loaded,
                                      surface->depth, diags, true))
                 return std::nullopt;
         } else {
-            mesh = emit::buildMesh(refined, spec.look);
+            mesh = emit::buildMesh(refined, look);
         }
         where = *mesh;
         result.meshVertices = static_cast<long long>(mesh->vertices);
@@ -240,7 +264,22 @@ std::optional<CompileResult> compileScene(const LoadedScene& loaded,
         f.zMinM = where.zMinM;
         f.zMaxM = where.zMaxM;
         f.exaggeration = where.exaggeration;
-        const emit::CameraView view = emit::placeCamera(where, spec.look, spec.render);
+        const emit::CameraView view = emit::placeCamera(where, look, spec.render);
+        // The eye and the target back in metres (heights unexaggerated), then degrees.
+        const auto toFrame = [&](const Vec3& p) {
+            return Vec3{p.x * where.metresPerUnit + where.originM.x, p.z * where.metresPerUnit + where.originM.y,
+                        p.y * where.metresPerUnit / where.exaggeration};
+        };
+        const Vec3 eye = toFrame(view.eye), target = toFrame(view.target);
+        for (auto [p, out] : {std::pair{eye, &result.cameraEyeLonLatH}, std::pair{target, &result.cameraTargetLonLatH}}) {
+            double lat = 0, lon = 0, h = 0;
+            if (geo::frameToGeodetic(net.frame, p, lat, lon, h)) *out = {lon, lat, h};
+        }
+        const Vec3 d = eye - target;
+        result.cameraDistanceM = length(d);
+        result.cameraAzimuthDeg = std::fmod(std::atan2(d.x, d.y) * 180 / std::numbers::pi + 360, 360);
+        result.cameraElevationDeg = std::asin(std::clamp(d.z / std::max(result.cameraDistanceM, 1e-300), -1.0, 1.0)) *
+                                    180 / std::numbers::pi;
         f.perspective = view.perspective;
         f.metresPerPixel = annotate::metresPerPixelAtTarget(view, where.metresPerUnit, spec.render.width);
         f.northDeg = annotate::northOnImageDeg(view, geo::gridConvergenceDeg(net.frame, where.originM.x, where.originM.y),
@@ -299,7 +338,7 @@ std::optional<CompileResult> compileScene(const LoadedScene& loaded,
             };
         geometry = [&, writing](std::FILE* out) { emit::writeMesh2(*mesh, out, writing); };
     }
-    if (!emit::writeScene(options.povPath, *tmpl, where, geometry, spec.look, spec.render, result.parameters, diags))
+    if (!emit::writeScene(options.povPath, *tmpl, where, geometry, look, spec.render, result.parameters, diags))
         return std::nullopt;
     written.keep = true;
     if (!options.dumpNetPath.empty())
@@ -310,6 +349,7 @@ std::optional<CompileResult> compileScene(const LoadedScene& loaded,
     std::error_code ec;
     result.povBytes = std::filesystem::file_size(options.povPath, ec);
     result.scene = spec;
+    result.scene.look = look;
     result.net = std::move(surface->net);
     return result;
 }
@@ -620,6 +660,12 @@ std::string sidecarJson(const CompileResult& c, const OutputPaths& paths,
                            {"holder_estimate", c.holder},
                            {"levels", levels}};
     }
+    j["camera"] = {{"eye_lonlat_h", c.cameraEyeLonLatH},
+                   {"look_at_lonlat_h", c.cameraTargetLonLatH},
+                   {"azimuth_deg", c.cameraAzimuthDeg},
+                   {"elevation_deg", c.cameraElevationDeg},
+                   {"distance_m", c.cameraDistanceM},
+                   {"placed_by", c.scene.look.camera.position ? "position" : "orbit"}};
     j["seconds"] = times;
     j["geometry"] = {{"kind", emit::geometryKindName(c.geometry.kind)}, {"reason", c.geometry.reason}};
     if (!c.heightPng.empty()) j["geometry"]["height_step_m"] = c.heightStepM;

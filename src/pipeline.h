@@ -11,6 +11,7 @@
 // Each stage is a free function in its own folder that takes its spec and
 // returns a plain value; this file only wires them together, times them,
 // names the outputs and writes the sidecar.
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -109,6 +110,10 @@ struct CompileResult {
     long long meshVertices = 0, meshTriangles = 0;  ///< as emitted: masked nodes left out
     size_t maskedNodes = 0;                         ///< refined nodes without data
     annotate::OverlayFacts overlayFacts;            ///< what the still's overlays say
+    /// The camera both ways: the eye and the point looked at as [lon, lat,
+    /// height_m], and as an orbit around the point (azimuth, elevation, distance).
+    std::array<double, 3> cameraEyeLonLatH{}, cameraTargetLonLatH{};
+    double cameraAzimuthDeg = 0, cameraElevationDeg = 0, cameraDistanceM = 0;
 };
 
 /// Runs stages 2-4 and writes the .pov (and the net dump, if asked).

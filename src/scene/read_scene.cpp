@@ -184,6 +184,29 @@ public:
         return out;
     }
 
+    /// [lon, lat, height_m]: degrees within the globe, a height within
+    /// -11,100 m and 1e7 m (a camera may be far out, not inside the Earth).
+    std::optional<std::array<double, 3>> lonLatHeight(const std::string& key) {
+        known_.insert(key);
+        const toml::node* n = find(key);
+        if (!n) return std::nullopt;
+        const toml::array* a = n->as_array();
+        std::array<double, 3> out{};
+        bool ok = a && a->size() == 3;
+        for (size_t i = 0; ok && i < 3; ++i) {
+            if (auto d = (*a)[i].value<double>()) out[i] = *d;
+            else ok = false;
+        }
+        ok = ok && std::fabs(out[0]) <= 180 && std::fabs(out[1]) <= 90 && out[2] >= -11100 && out[2] <= 1e7;
+        if (!ok) {
+            error(key, fmt::format("{} must be [lon, lat, height_m]: degrees in [-180, 180] and [-90, 90], "
+                                   "metres above sea level in [-11100, 1e7]",
+                                   qualified(key)));
+            return std::nullopt;
+        }
+        return out;
+    }
+
     void markKnown(const std::string& key) { known_.insert(key); }
 
     void require(const std::string& key, std::string_view what) {
@@ -193,6 +216,10 @@ public:
 
     void error(const std::string& key, std::string message) {
         diags_.error(keyLoc(key), std::move(message));
+    }
+
+    void warning(const std::string& key, std::string message) {
+        diags_.warning(keyLoc(key), std::move(message));
     }
 
     // Reports the keys no getter asked for, with the closest known key.
@@ -266,6 +293,17 @@ bool applyOverrides(toml::table& root, const SceneOverrides& overrides, Diagnost
         if (!text.empty() && *end == '\0') {
             t->insert_or_assign(key, static_cast<int64_t>(i));
             continue;
+        }
+        if (!text.empty() && text.front() == '[') {  // an array, e.g. camera.position=[-3.18, 55.95, 400]
+            try {
+                toml::table parsed = toml::parse("v = " + text);
+                if (toml::array* a = parsed.get_as<toml::array>("v")) {
+                    t->insert_or_assign(key, std::move(*a));
+                    continue;
+                }
+            } catch (const toml::parse_error&) {
+                // kept as a string: the key's own check says what it must be
+            }
         }
         const double d = std::strtod(text.c_str(), &end);
         if (!text.empty() && *end == '\0') t->insert_or_assign(key, d);
@@ -588,6 +626,13 @@ std::optional<SceneSpec> readScene(const std::filesystem::path& path, Diagnostic
         if (auto p = s.choice("projection", {"perspective", "orthographic"}))
             camera.projection =
                 *p == "perspective" ? Projection::Perspective : Projection::Orthographic;
+        camera.position = s.lonLatHeight("position");
+        camera.lookAt = s.lonLatHeight("look_at");
+        if (camera.lookAt && !camera.position)
+            s.error("look_at", "camera.look_at needs camera.position (the eye, [lon, lat, height_m])");
+        for (const char* orbit : {"azimuth_deg", "elevation_deg", "distance_m"})
+            if (camera.position && scene.look.locs.has(std::string("camera.") + orbit))
+                s.warning(orbit, fmt::format("camera.{} is not used: camera.position places the eye", orbit));
         s.finish();
     }
 

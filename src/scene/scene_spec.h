@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "core/source_loc.h"
+#include "core/types.h"
 
 namespace relief::scene {
 
@@ -145,6 +146,12 @@ struct CameraSpec {
     double distanceM = 0;       ///< 0: fit the terrain in view
     double fovDeg = 40;
     Projection projection = Projection::Perspective;
+    /// Placed by geography instead: [lon, lat, height above sea level in m]
+    /// for the eye and (optional; else the terrain's centre) the point looked at.
+    std::optional<std::array<double, 3>> position, lookAt;
+    /// The same two in the frame's metres (x, y, z as the frame holds heights),
+    /// set by the pipeline once the frame is known (geo::geodeticToFrame).
+    std::optional<Vec3> positionFrameM, lookAtFrameM;
 };
 
 /// How the terrain looks: [vertical], [texture], [lighting], [camera].
