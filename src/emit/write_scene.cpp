@@ -309,6 +309,29 @@ Bindings sceneBindings(const ScenePlacement& where, GeometryWriter geometry, con
             b["background"].text = std::string("background { color rgbt <1, 1, 1, 1> }");
             break;
     }
+    // [water]: a surface at the level, over the terrain's extent, seen through.
+    b["water"].text = "";
+    if (look.water.levelM) {
+        const double y = where.scenePoint({where.originM.x, where.originM.y, *look.water.levelM}).y;
+        const auto& c = look.water.colour;
+        b["water"].text = fmt::format(
+            "// Water at {} m above sea level ([water] level_m).\n"
+            "box {{\n"
+            "  <{}, {}, {}>, <{}, {}, {}>\n"
+            "  pigment {{ color rgbt <{}, {}, {}, {}> }}\n"
+            "  finish {{ ambient 0.1 diffuse 0.6 specular 0.5 roughness 0.01 reflection 0.08 }}\n"
+            "}}",
+            formatShortest(*look.water.levelM), num(where.boundsMin.x), num(y - 1e-4 * radius), num(where.boundsMin.z),
+            num(where.boundsMax.x), num(y), num(where.boundsMax.z), num(c.r), num(c.g), num(c.b),
+            num(look.water.transparency));
+    }
+    // [atmosphere] haze: distance fog the colour of the horizon. At haze 1 the
+    // centre of the view keeps e^-0.3 = 74 % of its light and a ridge a
+    // terrain's radius beyond it about 65 %: far reads as far, near stays clear.
+    b["atmosphere"].text = "";
+    if (look.haze > 0)
+        b["atmosphere"].text = fmt::format("fog {{ fog_type 1 distance {} color rgb <0.78, 0.85, 0.93> }}",
+                                           num(length(view.eye - view.target) / (0.3 * look.haze)));
     b["terrain"].writer = std::move(geometry);
     return b;
 }

@@ -247,7 +247,8 @@ private:
 
 const std::vector<std::string> kSections{"samples", "frame",    "net",      "vertical",
                                          "subdivision", "limits", "texture", "lighting",
-                                         "camera",   "geometry", "render", "overlay"};
+                                         "camera",   "geometry", "render", "overlay",
+                                         "water",    "atmosphere"};
 
 }  // namespace
 
@@ -671,6 +672,26 @@ std::optional<SceneSpec> readScene(const std::filesystem::path& path, Diagnostic
             else
                 scene.render.output = *v;
         }
+        s.finish();
+    }
+
+    // [water]
+    {
+        Section s = sectionInto("water", scene.look.locs);
+        if (auto v = s.number("level_m", kLowestElevationM, kHighestElevationM, "metres above sea level"))
+            scene.look.water.levelM = *v;
+        if (auto v = s.string("color")) {
+            if (!parseHexColor(*v, scene.look.water.colour))
+                s.error("color", fmt::format("water.color = \"{}\" must be a colour \"#rrggbb\"", printableExcerpt(*v)));
+        }
+        if (auto v = s.number("transparency", 0, 1, "0 (opaque) to 1 (clear)")) scene.look.water.transparency = *v;
+        s.finish();
+    }
+
+    // [atmosphere]
+    {
+        Section s = sectionInto("atmosphere", scene.look.locs);
+        if (auto v = s.number("haze", 0, 1, "0 (none) to 1 (thick)")) scene.look.haze = *v;
         s.finish();
     }
 

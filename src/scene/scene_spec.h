@@ -154,13 +154,23 @@ struct CameraSpec {
     std::optional<Vec3> positionFrameM, lookAtFrameM;
 };
 
-/// How the terrain looks: [vertical], [texture], [lighting], [camera].
+/// [water]: a water surface over the terrain's extent.
+struct WaterSpec {
+    std::optional<double> levelM;  ///< unset: no water
+    ColorStop colour{0, 0.05, 0.18, 0.32};  ///< linear RGB (#3f7699 in sRGB)
+    double transparency = 0.35;             ///< 0 opaque .. 1 clear
+};
+
+/// How the terrain looks: [vertical], [texture], [lighting], [camera],
+/// [water], [atmosphere].
 struct LookSpec {
     double exaggeration = 1.0;
     ColorRamp ramp{"terrain", {}};
     double sunAzimuthDeg = 315;   ///< compass bearing the light comes from
     double sunAltitudeDeg = 45;
     CameraSpec camera;
+    WaterSpec water;
+    double haze = 0;  ///< [atmosphere] haze in [0, 1]: distance fog, 0 none
     KeyLocations locs;
 };
 

@@ -63,6 +63,7 @@ sky_sphere {
   }
 }
 
+
 #declare TerrainFinish = finish { ambient 0.14 diffuse 0.86 specular 0.02 roughness 0.2 };
 
 object {
@@ -6124,3 +6125,4 @@ mesh2 {
   inside_vector <0, 1, 0>
 }
 }
+

@@ -42,7 +42,7 @@ TEST(Pipeline, CompileJobWritesThePovAndItsSidecar) {
     Diagnostics diags;
     std::vector<ProgressEvent> events;
     const JobOutcome outcome = runSceneJob(job, diags, [&](const ProgressEvent& e) { events.push_back(e); });
-    ASSERT_EQ(outcome.status, JobStatus::Ok);
+    ASSERT_EQ(outcome.status, JobStatus::Ok) << (diags.all().empty() ? "" : formatDiagnostic(diags.all()[0]));
     // Reading, compiling, then each task's percentages in order (how many of the
     // gridding's depends on GDAL's threads), each ending at 100 %; no render.
     ASSERT_GE(events.size(), 6u);
