@@ -36,6 +36,14 @@ ScenePlacement placeTerrain(const geo::GeoGrid& refined, const scene::LookSpec& 
     where.boundsMin = {(xmin - where.originM.x) * s, drawnMin * zs, (ymin - where.originM.y) * s};
     where.boundsMax = {(xmax - where.originM.x) * s, drawnMax * zs, (ymax - where.originM.y) * s};
 
+    // The terrain as the camera frames it: every stride-th node with data,
+    // and the last row and column.
+    const int stride = std::max(1, std::max(g.rows, g.cols) / 100);
+    const auto next = [stride](int i, int n) { return i == n - 1 ? n : std::min(i + stride, n - 1); };
+    for (int r = 0; r < g.rows; r = next(r, g.rows))
+        for (int c = 0; c < g.cols; c = next(c, g.cols))
+            if (!refined.isMasked(r, c)) where.outline.push_back(where.scenePoint(g.at(r, c)));
+
     // Palette over the true (not exaggerated) elevation range.
     const auto stops = scene::resolveRamp(look.ramp, zmin, zmax);
     const double span = zmax > zmin ? zmax - zmin : 1.0;

@@ -29,6 +29,9 @@ struct ScenePlacement {
     double exaggeration = 1;
     double zMinM = 0, zMaxM = 0;  ///< elevation range of the nodes with data, metres
     Vec3 boundsMin, boundsMax;    ///< scene units, scene axes
+    /// Nodes with data on a coarse lattice (at most about 100 x 100), scene
+    /// units: what the camera frames (emit::placeCamera), not the bounding box.
+    std::vector<Vec3> outline;
     std::vector<scene::ColorStop> paletteColors;  ///< kPaletteSize entries (linear RGB) over zMinM..zMaxM
     /// The Earth's fall below a local frame's tangent plane; null in UTM.
     std::shared_ptr<const geo::CurvatureDrop> curvature;

@@ -203,6 +203,53 @@ CameraView placeCamera(const ScenePlacement& where, const scene::LookSpec& look,
     CameraView view;
     view.eye = target + distance * back;
     view.target = target;
+    view.orthoHeight = 2.1 * radius;
+    if (camera.distanceM <= 0 && !camera.positionFrameM && !where.outline.empty()) {
+        // A tight fit: the terrain's own outline, not its bounding box, fills
+        // the frame with a small margin, centred (the target moves across the
+        // view, the eye back or forth); a few rounds settle a perspective view.
+        const Vec3 screenRight = (-1.0 / rightLen) * right, screenUp = (-1.0 / length(u)) * u;
+        const Vec3 forward = -1.0 * back;
+        constexpr double kMargin = 0.04;  // of the half-frame, on the widest side
+        Vec3 t = target;
+        double d = distance;
+        for (int round = 0; round < 40; ++round) {
+            const Vec3 eye = t + d * back;
+            double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300;
+            bool behind = false;
+            for (const Vec3& p : where.outline) {
+                const Vec3 v = p - eye;
+                double x = dot(v, screenRight), y = dot(v, screenUp);
+                if (camera.projection == scene::Projection::Perspective) {
+                    const double z = dot(v, forward);
+                    if (z <= 1e-9 * d) {
+                        behind = true;
+                        break;
+                    }
+                    x /= z * tanH, y /= z * tanV;
+                } else {
+                    x /= view.orthoHeight * aspect / 2, y /= view.orthoHeight / 2;
+                }
+                xmin = std::min(xmin, x), xmax = std::max(xmax, x), ymin = std::min(ymin, y), ymax = std::max(ymax, y);
+            }
+            if (behind) {
+                d *= 2;
+                continue;
+            }
+            const double cx = 0.5 * (xmin + xmax), cy = 0.5 * (ymin + ymax);
+            const double half = std::max(0.5 * (xmax - xmin), 0.5 * (ymax - ymin));
+            if (camera.projection == scene::Projection::Perspective) {
+                t = t + (cx * d * tanH) * screenRight + (cy * d * tanV) * screenUp;
+                d *= half / (1 - kMargin);
+            } else {
+                t = t + (cx * view.orthoHeight * aspect / 2) * screenRight + (cy * view.orthoHeight / 2) * screenUp;
+                view.orthoHeight *= half / (1 - kMargin);
+            }
+            if (std::abs(cx) < 1e-6 && std::abs(cy) < 1e-6 && std::abs(half - (1 - kMargin)) < 1e-6) break;
+        }
+        view.eye = t + d * back;
+        view.target = t;
+    }
     if (camera.positionFrameM) {  // placed by geography: the eye and the target as given
         view.eye = where.scenePoint(*camera.positionFrameM);
         if (camera.lookAtFrameM) view.target = where.scenePoint(*camera.lookAtFrameM);
@@ -230,7 +277,6 @@ CameraView placeCamera(const ScenePlacement& where, const scene::LookSpec& look,
     view.aspect = aspect;
     view.tanHalfFov = tanH;
     view.perspective = camera.projection == scene::Projection::Perspective;
-    view.orthoHeight = 2.1 * radius;
     return view;
 }
 

@@ -15,7 +15,9 @@ status=0
 for kind in mesh2 height_field; do
   "$relief" render -q flat.toml --set geometry.kind=$kind -o "$kind.png" || { echo "FAIL: $kind did not render"; status=1; }
 done
-"$relief" diff mesh2.png height_field.png --fail 0.004 --failpercent 0 > diff.txt
+# A few pixels on the plane's outline may differ (the two kinds' edges anti-alias apart);
+# speckles would be hundreds.
+"$relief" diff mesh2.png height_field.png --fail 0.004 --failpercent 0.05 > diff.txt
 [ $? -le 1 ] || { echo "FAIL: the flat mesh2 and height field differ:"; cat diff.txt; status=1; }
 # The terrain's pixels (the centre of the still) are one colour but for the light's falloff
 # (0.016 here; the speckles spanned 0.22).

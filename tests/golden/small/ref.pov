@@ -36,8 +36,8 @@ global_settings {
 
 camera {
   perspective
-  location <-51.186213,132.313296,-140.533966>
-  look_at <-0.036623,27.596281,-0.001622>
+  location <-28.978981,84.662885,-105.368310>
+  look_at <5.186446,14.717037,-11.499572>
   right x*1.333333
   up y
   angle 40.000000
@@ -45,10 +45,10 @@ camera {
 
 // The sun: parallel rays from the scene's azimuth and altitude.
 light_source {
-  <-2943.164080,3520.105800,2943.125835>
+  <-2937.941012,3507.226555,2931.627885>
   color rgb <1.0, 0.97, 0.92> * 1.25
   parallel
-  point_at <-0.036623,27.596281,-0.001622>
+  point_at <5.186446,14.717037,-11.499572>
 }
 
 // What is behind the terrain ([render] background): the sky, a colour or nothing.
