@@ -250,6 +250,8 @@ CameraView placeCamera(const ScenePlacement& where, const scene::LookSpec& look,
         view.eye = t + d * back;
         view.target = t;
     }
+    // The image's axes as plain numbers (r and u above for the orbit).
+    Vec3 leftPlain = r, downPlain = u;
     if (camera.positionFrameM) {  // placed by geography: the eye and the target as given
         view.eye = where.scenePoint(*camera.positionFrameM);
         if (camera.lookAtFrameM) view.target = where.scenePoint(*camera.lookAtFrameM);
@@ -258,21 +260,13 @@ CameraView placeCamera(const ScenePlacement& where, const scene::LookSpec& look,
         const Vec3 b = d > 0 ? (1.0 / d) * toEye : Vec3{0, 1, 0};
         Vec3 side{b.z, 0, -b.x};  // looking straight down: east stays right
         if (length(side) < 1e-9) side = {-1, 0, 0};
-        const Vec3 rr = (1.0 / length(side)) * side;
-        const Vec3 uu = cross(rr, b);
-        view.right = -1.0 * rr;
-        view.up = (-1.0 / length(uu)) * uu;
-        view.radius = radius;
-        view.aspect = aspect;
-        view.tanHalfFov = tanH;
-        view.perspective = camera.projection == scene::Projection::Perspective;
-        view.orthoHeight = 2.1 * radius;
-        return view;
+        leftPlain = (1.0 / length(side)) * side;
+        downPlain = cross(leftPlain, b);
     }
     // As POV-Ray draws the image (left-handed: its right is cross(y, direction)
-    // taken as plain numbers), r and u above point left and down.
-    view.right = -1.0 * r;
-    view.up = (-1.0 / length(u)) * u;
+    // taken as plain numbers), those point left and down.
+    view.right = (-1.0 / length(leftPlain)) * leftPlain;
+    view.up = (-1.0 / length(downPlain)) * downPlain;
     view.radius = radius;
     view.aspect = aspect;
     view.tanHalfFov = tanH;

@@ -157,15 +157,16 @@ public:
         return std::nullopt;
     }
 
-    // Four numbers, e.g. an extent; `what` says which in the error.
-    std::optional<std::array<double, 4>> box(const std::string& key, std::string_view what) {
+    // N numbers in an array, or nullopt (and an error saying `what` they must be).
+    template <size_t N>
+    std::optional<std::array<double, N>> numbers(const std::string& key, std::string_view what) {
         known_.insert(key);
         const toml::node* n = find(key);
         if (!n) return std::nullopt;
         const toml::array* a = n->as_array();
-        std::array<double, 4> out{};
-        bool ok = a && a->size() == 4;
-        for (size_t i = 0; ok && i < 4; ++i) {
+        std::array<double, N> out{};
+        bool ok = a && a->size() == N;
+        for (size_t i = 0; ok && i < N; ++i) {
             if (auto d = (*a)[i].value<double>()) out[i] = *d;
             else ok = false;
         }
@@ -173,12 +174,19 @@ public:
             error(key, fmt::format("{} must be {}", qualified(key), what));
             return std::nullopt;
         }
+        return out;
+    }
+
+    // Four numbers, e.g. an extent; `what` says which in the error.
+    std::optional<std::array<double, 4>> box(const std::string& key, std::string_view what) {
+        const auto out = numbers<4>(key, what);
+        if (!out) return std::nullopt;
         // TOML has inf and nan; no extent is either, and none reaches past the Earth (1e8 m).
-        for (const double v : out)
+        for (const double v : *out)
             if (!std::isfinite(v) || std::fabs(v) > 1e8) {
                 error(key, fmt::format("{} = [{}, {}, {}, {}] must be finite numbers within ±1e8 (a frame's metres "
                                        "or degrees)",
-                                       qualified(key), out[0], out[1], out[2], out[3]));
+                                       qualified(key), (*out)[0], (*out)[1], (*out)[2], (*out)[3]));
                 return std::nullopt;
             }
         return out;
@@ -187,21 +195,13 @@ public:
     /// [lon, lat, height_m]: degrees within the globe, a height within
     /// -11,100 m and 1e7 m (a camera may be far out, not inside the Earth).
     std::optional<std::array<double, 3>> lonLatHeight(const std::string& key) {
-        known_.insert(key);
-        const toml::node* n = find(key);
-        if (!n) return std::nullopt;
-        const toml::array* a = n->as_array();
-        std::array<double, 3> out{};
-        bool ok = a && a->size() == 3;
-        for (size_t i = 0; ok && i < 3; ++i) {
-            if (auto d = (*a)[i].value<double>()) out[i] = *d;
-            else ok = false;
-        }
-        ok = ok && std::fabs(out[0]) <= 180 && std::fabs(out[1]) <= 90 && out[2] >= -11100 && out[2] <= 1e7;
-        if (!ok) {
-            error(key, fmt::format("{} must be [lon, lat, height_m]: degrees in [-180, 180] and [-90, 90], "
-                                   "metres above sea level in [-11100, 1e7]",
-                                   qualified(key)));
+        static constexpr std::string_view kWhat =
+            "[lon, lat, height_m]: degrees in [-180, 180] and [-90, 90], metres above sea level in [-11100, 1e7]";
+        const auto out = numbers<3>(key, kWhat);
+        if (!out) return std::nullopt;
+        const auto [lon, lat, h] = *out;
+        if (!(std::fabs(lon) <= 180 && std::fabs(lat) <= 90 && h >= -11100 && h <= 1e7)) {
+            error(key, fmt::format("{} must be {}", qualified(key), kWhat));
             return std::nullopt;
         }
         return out;
