@@ -124,7 +124,7 @@ emit::ParameterList describe(const scene::SceneSpec& s, const geo::ControlNet& n
     else if (compiled.maskedNodes > 0)
         add("mesh.with_data", fmt::format("{} vertices, {} triangles (masked nodata left out)",
                                           compiled.meshVertices, compiled.meshTriangles));
-    add("texture.ramp", look.ramp.preset);
+    add("texture.ramp", look.ramp.cptPath.empty() ? look.ramp.preset : "cpt " + look.ramp.cptPath);
     add("lighting.sun", fmt::format("azimuth {} deg, altitude {} deg",
                                     formatShortest(look.sunAzimuthDeg),
                                     formatShortest(look.sunAltitudeDeg)));

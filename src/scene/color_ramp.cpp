@@ -6,11 +6,11 @@
 
 namespace relief::scene {
 
-namespace {
-
 double srgbToLinear(double c) {
     return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
 }
+
+namespace {
 
 struct RelStop {
     double t;  ///< 0..1 over the span the preset is laid out on

@@ -17,6 +17,9 @@ std::vector<ColorStop> resolveRamp(const ColorRamp& ramp, double zMinM, double z
 /// Colour at elevation `zM`, interpolated linearly between stops, clamped at the ends.
 ColorStop sampleRamp(const std::vector<ColorStop>& stops, double zM);
 
+/// An sRGB component (0..1) made linear (IEC 61966-2-1).
+double srgbToLinear(double c);
+
 /// Parses "#rrggbb"; returns false on malformed text.
 bool parseHexColor(const std::string& text, ColorStop& out);
 

@@ -17,6 +17,7 @@
 #include "core/text_distance.h"
 #include "core/text_escape.h"
 #include "scene/color_ramp.h"
+#include "scene/cpt_palette.h"
 
 namespace relief::scene {
 
@@ -564,9 +565,30 @@ std::optional<SceneSpec> readScene(const std::filesystem::path& path, Diagnostic
         std::vector<std::string> ramps = rampPresetNames();
         ramps.push_back("custom");
         if (auto r = s.choice("ramp", ramps)) ramp.preset = *r;
+        if (auto c = s.string("cpt")) {  // a GMT palette file, beside the scene
+            const std::filesystem::path cptPath = path.parent_path() / *c;
+            std::error_code ec;
+            if (s.find("ramp"))
+                s.error("cpt", "give either texture.ramp or texture.cpt, not both");
+            else if (!std::filesystem::is_regular_file(cptPath, ec))
+                s.error("cpt", fmt::format("texture.cpt: file \"{}\" not found (looked for {})", printableExcerpt(*c),
+                                           printableExcerpt(cptPath.string(), 200)));
+            else if (std::filesystem::file_size(cptPath, ec) > (1u << 20))
+                s.error("cpt", fmt::format("texture.cpt: {} is over 1 MB; a colour palette is a few lines",
+                                           printableExcerpt(*c)));
+            else if (auto stops = parseCpt(readFile(cptPath), cptPath.string(), diags)) {
+                ramp.preset = "custom";
+                ramp.stops = std::move(*stops);
+                ramp.cptPath = *c;
+            }
+        }
         s.markKnown("stops");
         const toml::node* stopsNode = s.find("stops");
-        if (stopsNode && ramp.preset != "custom") {
+        if (stopsNode && !ramp.cptPath.empty()) {
+            s.error("stops", "texture.stops and texture.cpt both give the colours: keep one");
+        } else if (!ramp.cptPath.empty()) {
+            // the palette file's stops
+        } else if (stopsNode && ramp.preset != "custom") {
             s.error("stops", "texture.stops is only used with ramp = \"custom\"; add "
                              "ramp = \"custom\" or remove the stops");
         } else if (ramp.preset == "custom") {

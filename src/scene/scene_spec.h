@@ -50,6 +50,7 @@ struct ColorStop {
 struct ColorRamp {
     std::string preset;            ///< name, or "custom"
     std::vector<ColorStop> stops;  ///< custom stops (sorted by elevM), empty for presets
+    std::string cptPath;           ///< the GMT palette the stops came from (as written), if any
 };
 
 /// `section.key` = value pairs applied on top of a scene file (relief sweep's
@@ -165,7 +166,7 @@ struct WaterSpec {
 /// [water], [atmosphere].
 struct LookSpec {
     double exaggeration = 1.0;
-    ColorRamp ramp{"terrain", {}};
+    ColorRamp ramp{"terrain", {}, {}};
     double sunAzimuthDeg = 315;   ///< compass bearing the light comes from
     double sunAltitudeDeg = 45;
     CameraSpec camera;

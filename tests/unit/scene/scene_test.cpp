@@ -85,7 +85,7 @@ TEST(ColorRamp, HexAndInterpolation) {
 
 // The topobathy preset puts the shore (first land colour) at exactly 0 m.
 TEST(ColorRamp, TopobathyShoreAtSeaLevel) {
-    const auto stops = resolveRamp({"topobathy", {}}, -1000, 2000);
+    const auto stops = resolveRamp({"topobathy", {}, {}}, -1000, 2000);
     const auto land = sampleRamp(stops, 0.0), sea = sampleRamp(stops, -1.0);
     EXPECT_GT(sea.b, sea.g);
     EXPECT_GT(land.g, land.b);
