@@ -34,6 +34,18 @@ TEST(Template, SubstitutesAndStreams) {
     EXPECT_EQ(render(t, b), "a 1 b\nstreamed!");
 }
 
+// One pass: a value holding a placeholder (an attribution "{{big}}", from a
+// scene file) is written as it is, never expanded.
+TEST(Template, ValuesAreNotExpandedAgain) {
+    Template t{"t.in", "// {{x}}\n{{big}}"};
+    Bindings b;
+    b["x"].text = std::string("{{big}} {{x}} #declare X = 1;");
+    b["big"].text = std::string("mesh");
+    Diagnostics d;
+    EXPECT_TRUE(checkTemplate(t, b, d));
+    EXPECT_EQ(render(t, b), "// {{big}} {{x}} #declare X = 1;\nmesh");
+}
+
 TEST(Template, UnboundAndUnusedAreErrorsWithLocation) {
     Template t{"scene.pov.in", "line one\n  camera {{camera_locaton}}\n"};
     Bindings b;
