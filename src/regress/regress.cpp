@@ -146,9 +146,13 @@ std::optional<Manifest> readManifest(const fs::path& path, Diagnostics& diags) {
         c.name = *name;
         c.scene = (base / *scene).lexically_normal();
         c.referenceDir = (base / *refs).lexically_normal();
-        if (!fs::is_regular_file(c.scene))
+        // The non-throwing test: a path the system refuses (too long, say) is a
+        // missing scene, not an exception out of the reader.
+        std::error_code ec;
+        if (!fs::is_regular_file(c.scene, ec))
             diags.error(locOf(file, t->get("scene")->source()),
-                        fmt::format("scene \"{}\" not found (relative to the manifest)", *scene));
+                        fmt::format("scene \"{}\" not found (relative to the manifest){}",
+                                    printableExcerpt(*scene, 200), ec ? ": " + ec.message() : ""));
         readSettings(*t, file, c, diags);
         m.cases.push_back(std::move(c));
     }
@@ -162,8 +166,9 @@ std::vector<fs::path> referencesOf(const TestCase& c) {
     std::vector<fs::path> refs;
     std::error_code ec;
     if (fs::is_directory(c.referenceDir, ec))
-        for (const auto& e : fs::directory_iterator(c.referenceDir))
-            if (e.path().extension() == ".png") refs.push_back(e.path());
+        for (auto it = fs::directory_iterator(c.referenceDir, ec); !ec && it != fs::directory_iterator();
+             it.increment(ec))
+            if (it->path().extension() == ".png") refs.push_back(it->path());
     std::sort(refs.begin(), refs.end());
     return refs;
 }
