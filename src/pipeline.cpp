@@ -9,13 +9,16 @@
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.h"
+#include "core/date_time.h"
 #include "core/number_format.h"
 #include "core/png_file.h"
+#include "core/text_escape.h"
 #include "emit/adaptive_mesh.h"
 #include "emit/height_field.h"
 #include "emit/mesh.h"
 #include "geo/raster.h"
 #include "geo/samples.h"
+#include "geo/sun_position.h"
 #include "measure/auto_depth.h"
 #include "relief/version.h"
 #include "scene/read_scene.h"
@@ -125,9 +128,13 @@ emit::ParameterList describe(const scene::SceneSpec& s, const geo::ControlNet& n
         add("mesh.with_data", fmt::format("{} vertices, {} triangles (masked nodata left out)",
                                           compiled.meshVertices, compiled.meshTriangles));
     add("texture.ramp", look.ramp.cptPath.empty() ? look.ramp.preset : "cpt " + look.ramp.cptPath);
-    add("lighting.sun", fmt::format("azimuth {} deg, altitude {} deg",
-                                    formatShortest(look.sunAzimuthDeg),
-                                    formatShortest(look.sunAltitudeDeg)));
+    if (compiled.sun.fromDatetime)
+        add("lighting.sun", fmt::format("azimuth {:.2f} deg (true), altitude {:.2f} deg, at {} over lon {:.4f} lat {:.4f}",
+                                        compiled.sun.azimuthDeg, compiled.sun.altitudeDeg,
+                                        oneLineText(compiled.sun.datetime), compiled.sun.lonDeg, compiled.sun.latDeg));
+    else
+        add("lighting.sun", fmt::format("azimuth {} deg, altitude {} deg", formatShortest(look.sunAzimuthDeg),
+                                        formatShortest(look.sunAltitudeDeg)));
     const char* projection = camera.projection == scene::Projection::Perspective ? "perspective" : "orthographic";
     const auto lonLatH = [](const std::array<double, 3>& p) {
         return fmt::format("lon {} lat {} height {} m", formatShortest(p[0]), formatShortest(p[1]), formatShortest(p[2]));
@@ -208,6 +215,38 @@ std::optional<CompileResult> compileScene(const LoadedScene& loaded,
         if (camera.position && !(camera.positionFrameM = toFrame(*camera.position, "camera.position")))
             return std::nullopt;
         if (camera.lookAt && !(camera.lookAtFrameM = toFrame(*camera.lookAt, "camera.look_at"))) return std::nullopt;
+    }
+
+    // The sun: the scene's angles, or where it stood at [lighting] datetime
+    // over the terrain's centre. The scene's axes are the frame's grid, whose
+    // north is the meridian convergence away from true north.
+    const double convergenceDeg =
+        geo::gridConvergenceDeg(net.frame, (net.x0 + net.xMax()) / 2, (net.y0 + net.yMax()) / 2);
+    result.sun = {look.sunAzimuthDeg, look.sunAltitudeDeg, false, {}, 0, 0};
+    if (look.sunTime) {
+        double lat = 0, lon = 0, h = 0;
+        if (!geo::frameToGeodetic(net.frame, Vec3{(net.x0 + net.xMax()) / 2, (net.y0 + net.yMax()) / 2, 0}, lat, lon,
+                                  h)) {
+            diags.error(look.locs.at("lighting.datetime"), "lighting.datetime: the terrain's centre has no longitude "
+                                                           "and latitude in its frame; give sun_azimuth_deg and "
+                                                           "sun_altitude_deg instead");
+            return std::nullopt;
+        }
+        const geo::SunPosition sun = geo::sunPosition(lon, lat, look.sunTime->utcSeconds);
+        if (!(sun.altitudeDeg > 0)) {
+            diags.error(look.locs.at("lighting.datetime"),
+                        fmt::format("lighting.datetime = \"{}\"{}: the sun is {:.1f} degrees below the horizon at "
+                                    "the terrain's centre (lon {:.4f}, lat {:.4f}); choose a time in daylight, or give "
+                                    "sun_azimuth_deg and sun_altitude_deg",
+                                    printableExcerpt(look.sunTimeText),
+                                    look.sunTime->offsetMinutes != 0 ? " (" + formatUtc(look.sunTime->utcSeconds) + ")"
+                                                                     : std::string(),
+                                    -sun.altitudeDeg, lon, lat));
+            return std::nullopt;
+        }
+        result.sun = {sun.azimuthDeg, sun.altitudeDeg, true, look.sunTimeText, lon, lat};
+        look.sunAzimuthDeg = std::fmod(sun.azimuthDeg - convergenceDeg + 360, 360);
+        look.sunAltitudeDeg = sun.altitudeDeg;
     }
 
     const auto t0 = Clock::now();
@@ -659,6 +698,14 @@ std::string sidecarJson(const CompileResult& c, const OutputPaths& paths,
                            {"depth", c.depth},
                            {"holder_estimate", c.holder},
                            {"levels", levels}};
+    }
+    j["sun"] = {{"azimuth_deg", c.sun.azimuthDeg},
+                {"altitude_deg", c.sun.altitudeDeg},
+                {"from", c.sun.fromDatetime ? "datetime" : "scene"}};
+    if (c.sun.fromDatetime) {
+        j["sun"]["datetime"] = c.sun.datetime;
+        j["sun"]["at_lonlat"] = {c.sun.lonDeg, c.sun.latDeg};
+        j["sun"]["azimuth_is"] = "true bearing";
     }
     j["camera"] = {{"eye_lonlat_h", c.cameraEyeLonLatH},
                    {"look_at_lonlat_h", c.cameraTargetLonLatH},

@@ -109,6 +109,15 @@ struct CompileResult {
     double adaptiveToleranceM = 0, adaptiveTolerancePx = 0;  ///< the adaptive mesh's bound
     long long meshVertices = 0, meshTriangles = 0;  ///< as emitted: masked nodes left out
     size_t maskedNodes = 0;                         ///< refined nodes without data
+    /// Where the light comes from, as the sidecar's "sun" says it: a true
+    /// bearing and the apparent altitude, computed from [lighting] datetime
+    /// over the terrain's centre or taken from the scene's angles.
+    struct Sun {
+        double azimuthDeg = 0, altitudeDeg = 0;
+        bool fromDatetime = false;
+        std::string datetime;          ///< as written in the scene
+        double lonDeg = 0, latDeg = 0; ///< where it was computed (fromDatetime)
+    } sun;
     annotate::OverlayFacts overlayFacts;            ///< what the still's overlays say
     /// The camera both ways: the eye and the point looked at as [lon, lat,
     /// height_m], and as an orbit around the point (azimuth, elevation, distance).

@@ -633,6 +633,31 @@ std::optional<SceneSpec> readScene(const std::filesystem::path& path, Diagnostic
             scene.look.sunAzimuthDeg = *v;
         if (auto v = s.number("sun_altitude_deg", 0, 90, "degrees", true))
             scene.look.sunAltitudeDeg = *v;
+        s.markKnown("datetime");
+        if (const toml::node* n = s.find("datetime")) {
+            // A string, or TOML's own offset date-time (written without quotes).
+            std::optional<std::string> text = n->value_exact<std::string>();
+            if (const auto* native = n->as_date_time()) {
+                const toml::date_time& t = native->get();
+                text = fmt::format("{:04}-{:02}-{:02}T{:02}:{:02}:{:02}", t.date.year, t.date.month, t.date.day,
+                                   t.time.hour, t.time.minute, t.time.second);
+                if (t.offset)
+                    *text += t.offset->minutes == 0 ? std::string("Z")
+                                                    : fmt::format("{}{:02}:{:02}", t.offset->minutes < 0 ? '-' : '+',
+                                                                  std::abs(t.offset->minutes) / 60,
+                                                                  std::abs(t.offset->minutes) % 60);
+            }
+            std::string why = "it must be a date and time with its UTC offset";
+            if (text) scene.look.sunTime = parseOffsetDateTime(*text, why);
+            if (!scene.look.sunTime)
+                s.error("datetime", fmt::format("lighting.datetime{}: {}", text ? " = \"" + printableExcerpt(*text) + "\"" : "",
+                                                why));
+            else
+                scene.look.sunTimeText = *text;
+            for (const char* angle : {"sun_azimuth_deg", "sun_altitude_deg"})
+                if (scene.look.locs.has(std::string("lighting.") + angle))
+                    s.warning(angle, fmt::format("lighting.{} is not used: lighting.datetime places the sun", angle));
+        }
         s.finish();
     }
 

@@ -19,6 +19,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/date_time.h"
 #include "core/source_loc.h"
 #include "core/types.h"
 
@@ -169,6 +170,10 @@ struct LookSpec {
     ColorRamp ramp{"terrain", {}, {}};
     double sunAzimuthDeg = 315;   ///< compass bearing the light comes from
     double sunAltitudeDeg = 45;
+    /// [lighting] datetime: the sun is placed where it was then, over the
+    /// terrain's centre (compileScene), in place of the two angles.
+    std::optional<OffsetDateTime> sunTime;
+    std::string sunTimeText;  ///< as written in the scene
     CameraSpec camera;
     WaterSpec water;
     double haze = 0;  ///< [atmosphere] haze in [0, 1]: distance fog, 0 none
