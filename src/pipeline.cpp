@@ -14,6 +14,7 @@
 #include "core/png_file.h"
 #include "core/text_escape.h"
 #include "emit/adaptive_mesh.h"
+#include "emit/block_base.h"
 #include "emit/height_field.h"
 #include "emit/mesh.h"
 #include "geo/raster.h"
@@ -127,7 +128,15 @@ emit::ParameterList describe(const scene::SceneSpec& s, const geo::ControlNet& n
     else if (compiled.maskedNodes > 0)
         add("mesh.with_data", fmt::format("{} vertices, {} triangles (masked nodata left out)",
                                           compiled.meshVertices, compiled.meshTriangles));
+    if (compiled.baseFloorM)
+        add("base", fmt::format("a block: walls down to a floor at {:.2f} m, {:.2f} m below the lowest point",
+                                *compiled.baseFloorM, compiled.zRangeM[0] - *compiled.baseFloorM));
     add("texture.ramp", look.ramp.cptPath.empty() ? look.ramp.preset : "cpt " + look.ramp.cptPath);
+    using Colouring = scene::LookSpec::Colouring;
+    if (look.colouring == Colouring::Slope || look.colouring == Colouring::Blend)
+        add("texture.mode", fmt::format("{}: rock from {} to {} degrees of slope",
+                                        look.colouring == Colouring::Slope ? "slope" : "blend",
+                                        formatShortest(look.rockFromDeg), formatShortest(look.rockToDeg)));
     if (compiled.sun.fromDatetime)
         add("lighting.sun", fmt::format("azimuth {:.2f} deg (true), altitude {:.2f} deg, at {} over lon {:.4f} lat {:.4f}",
                                         compiled.sun.azimuthDeg, compiled.sun.altitudeDeg,
@@ -296,12 +305,25 @@ std::optional<CompileResult> compileScene(const LoadedScene& loaded,
     result.arity = loaded.resolved.scheme.arity;
     result.holder = loaded.resolved.report.holder;
     result.metresPerUnit = where.metresPerUnit;
+    result.baseFloorM = where.baseElevationM;
+    result.zRangeM = {where.zMinM, where.zMaxM};
     {
         annotate::OverlayFacts& f = result.overlayFacts;
         f.credits = spec.overlay.credits ? *spec.overlay.credits : spec.samples.attribution;
-        f.palette = where.paletteColors;
+        // The legend: the ramp over elevation (a blend's first layer, without rock),
+        // or the slope palette over degrees.
+        f.palette.assign(where.paletteColors.begin(),
+                         where.paletteColors.begin() + std::min<size_t>(emit::kPaletteSize, where.paletteColors.size()));
         f.zMinM = where.zMinM;
         f.zMaxM = where.zMaxM;
+        using Colouring = scene::LookSpec::Colouring;
+        if (look.colouring == Colouring::Slope) {
+            f.legendTitle = "Slope (\u00b0)";
+            f.zMinM = 0;
+            f.zMaxM = emit::kSlopePaletteMaxDeg;
+        } else if (look.colouring == Colouring::Blend) {
+            f.legendNote = fmt::format("rock on slopes over {}\u00b0", formatShortest(look.rockFromDeg));
+        }
         f.exaggeration = where.exaggeration;
         const emit::CameraView view = emit::placeCamera(where, look, spec.render);
         // The eye and the target back in metres (heights unexaggerated), then degrees.
@@ -377,7 +399,9 @@ std::optional<CompileResult> compileScene(const LoadedScene& loaded,
             };
         geometry = [&, writing](std::FILE* out) { emit::writeMesh2(*mesh, out, writing); };
     }
-    if (!emit::writeScene(options.povPath, *tmpl, where, geometry, look, spec.render, result.parameters, diags))
+    emit::GeometryWriter base;
+    if (where.baseElevationM) base = [&](std::FILE* out) { emit::writeBlockBase(out, refined, where); };
+    if (!emit::writeScene(options.povPath, *tmpl, where, geometry, base, look, spec.render, result.parameters, diags))
         return std::nullopt;
     written.keep = true;
     if (!options.dumpNetPath.empty())
@@ -699,6 +723,8 @@ std::string sidecarJson(const CompileResult& c, const OutputPaths& paths,
                            {"holder_estimate", c.holder},
                            {"levels", levels}};
     }
+    if (c.baseFloorM)
+        j["base"] = {{"floor_elevation_m", *c.baseFloorM}, {"thickness_m", c.zRangeM[0] - *c.baseFloorM}};
     j["sun"] = {{"azimuth_deg", c.sun.azimuthDeg},
                 {"altitude_deg", c.sun.altitudeDeg},
                 {"from", c.sun.fromDatetime ? "datetime" : "scene"}};

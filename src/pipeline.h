@@ -118,6 +118,8 @@ struct CompileResult {
         std::string datetime;          ///< as written in the scene
         double lonDeg = 0, latDeg = 0; ///< where it was computed (fromDatetime)
     } sun;
+    std::optional<double> baseFloorM;   ///< the block model's floor elevation; unset: no block
+    std::array<double, 2> zRangeM{};    ///< the surface's lowest and highest elevation (nodes with data)
     annotate::OverlayFacts overlayFacts;            ///< what the still's overlays say
     /// The camera both ways: the eye and the point looked at as [lon, lat,
     /// height_m], and as an orbit around the point (azimuth, elevation, distance).

@@ -195,7 +195,7 @@ std::string drawOverlays(PngImage8& image, const scene::OverlaySpec& spec, const
     // Elevation legend, right: the ramp as a bar, ticks in true metres.
     if (spec.legend && facts.palette.size() >= 2) {
         const double barW = 2.0 * u, barH = 0.38 * H, x0 = W - 13 * u, y0 = 17 * u;
-        paint.text("Elevation (m)", x0 + barW, y0 - 3.4 * u, 1.9, true, 0.5);
+        paint.text(facts.legendTitle, x0 + barW, y0 - 3.4 * u, 1.9, true, 0.5);
         const int steps = static_cast<int>(std::ceil(barH));
         for (int i = 0; i < steps; ++i) {  // top: the highest
             const double t = 1.0 - (i + 0.5) / steps;
@@ -218,9 +218,13 @@ std::string drawOverlays(PngImage8& image, const scene::OverlaySpec& spec, const
             cairo_stroke(c);
             paint.text(formatShortest(v), x0 + barW + 1.2 * u, ty - 1.0 * u, 1.7, false);
         }
-        if (std::abs(facts.exaggeration - 1) > 1e-9)
-            paint.text(fmt::format("vertical \u00d7{}", formatShortest(facts.exaggeration)), x0 + barW, y0 + barH + 1.2 * u,
-                       1.6, false, 0.5);
+        double noteY = y0 + barH + 1.2 * u;
+        if (std::abs(facts.exaggeration - 1) > 1e-9) {
+            paint.text(fmt::format("vertical \u00d7{}", formatShortest(facts.exaggeration)), x0 + barW, noteY, 1.6,
+                       false, 0.5);
+            noteY += 2.4 * u;
+        }
+        if (!facts.legendNote.empty()) paint.text(facts.legendNote, W - 2 * u, noteY, 1.6, false, 1);
         rec.drawn.push_back("legend");
     }
 

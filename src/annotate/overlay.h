@@ -23,6 +23,8 @@ struct OverlayFacts {
     // The legend: the ramp as drawn (linear RGB), over true elevations.
     std::vector<scene::ColorStop> palette;
     double zMinM = 0, zMaxM = 0;
+    std::string legendTitle = "Elevation (m)";  ///< slope colouring: "Slope (°)", its range 0-60
+    std::string legendNote;                     ///< a line under the bar, e.g. where rock begins
     double exaggeration = 1;
     // The scale bar: ground metres one pixel spans, along the image's x, at
     // the centre of the view (exact everywhere for an orthographic view).

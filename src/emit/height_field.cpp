@@ -100,7 +100,11 @@ Drape elevationDrape(const geo::GeoGrid& refined, const ScenePlacement& where) {
         std::uint16_t* row = drape.pixels.data() + static_cast<size_t>(g.rows - 1 - r) * g.cols * n;
         for (int c = 0; c < g.cols; ++c) {
             // The mesh2's palette entry for this node, and its colour.
-            const auto& colour = where.paletteColors[paletteIndex(where, where.elevation(g.at(r, c)))];
+            using C = scene::LookSpec::Colouring;
+            const double e = where.elevation(g.at(r, c));
+            const bool slope = where.colouring == C::Slope || where.colouring == C::Blend;
+            const auto& colour =
+                where.paletteColors[slope ? paletteEntry(where, e, slopeDeg(refined, where, r, c)) : paletteIndex(where, e)];
             std::uint16_t* px = row + n * static_cast<size_t>(c);
             px[0] = level(colour.r), px[1] = level(colour.g), px[2] = level(colour.b);
             if (n == 4) px[3] = refined.isMasked(r, c) ? 0 : 65535;

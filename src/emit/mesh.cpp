@@ -36,13 +36,29 @@ ScenePlacement placeTerrain(const geo::GeoGrid& refined, const scene::LookSpec& 
     where.boundsMin = {(xmin - where.originM.x) * s, drawnMin * zs, (ymin - where.originM.y) * s};
     where.boundsMax = {(xmax - where.originM.x) * s, drawnMax * zs, (ymax - where.originM.y) * s};
 
+    // The block model's floor: a tenth of the relief below the lowest point
+    // by default (a flat terrain: a hundredth of its width).
+    if (look.base.enabled) {
+        const double thickness = look.base.thicknessM ? *look.base.thicknessM
+                                 : zmax > zmin       ? 0.1 * (zmax - zmin)
+                                                     : 0.01 * extent;
+        where.baseElevationM = zmin - thickness;
+    }
+
     // The terrain as the camera frames it: every stride-th node with data,
-    // and the last row and column.
+    // and the last row and column; with a block, the floor under each too.
     const int stride = std::max(1, std::max(g.rows, g.cols) / 100);
     const auto next = [stride](int i, int n) { return i == n - 1 ? n : std::min(i + stride, n - 1); };
     for (int r = 0; r < g.rows; r = next(r, g.rows))
         for (int c = 0; c < g.cols; c = next(c, g.cols))
-            if (!refined.isMasked(r, c)) where.outline.push_back(where.scenePoint(g.at(r, c)));
+            if (!refined.isMasked(r, c)) {
+                where.outline.push_back(where.scenePoint(g.at(r, c)));
+                if (where.baseElevationM) {
+                    const Vec3 floor = where.scenePointAtElevation(g.at(r, c), *where.baseElevationM);
+                    where.outline.push_back(floor);
+                    where.boundsMin.y = std::min(where.boundsMin.y, floor.y);
+                }
+            }
 
     // Palette over the true (not exaggerated) elevation range.
     const auto stops = scene::resolveRamp(look.ramp, zmin, zmax);
@@ -50,6 +66,33 @@ ScenePlacement placeTerrain(const geo::GeoGrid& refined, const scene::LookSpec& 
     where.paletteColors.resize(kPaletteSize);
     for (int k = 0; k < kPaletteSize; ++k)
         where.paletteColors[k] = scene::sampleRamp(stops, zmin + span * k / (kPaletteSize - 1));
+    where.colouring = look.colouring;
+    where.rockFromDeg = look.rockFromDeg;
+    where.rockToDeg = look.rockToDeg;
+    const scene::ColorStop& rock = look.rockColour;
+    const auto mix = [](const scene::ColorStop& a, const scene::ColorStop& b, double t) {
+        return scene::ColorStop{0, a.r + t * (b.r - a.r), a.g + t * (b.g - a.g), a.b + t * (b.b - a.b)};
+    };
+    using C = scene::LookSpec::Colouring;
+    if (look.colouring == C::Blend) {
+        const std::vector<scene::ColorStop> ground = where.paletteColors;
+        for (int k = 1; k < kBlendClasses; ++k)
+            for (const auto& colour : ground)
+                where.paletteColors.push_back(mix(colour, rock, double(k) / (kBlendClasses - 1)));
+    } else if (look.colouring == C::Slope) {
+        // Pale on the flat, tan where rock begins, the rock colour where it has
+        // taken over, darker on cliffs.
+        const scene::ColorStop pale{0, 0.90, 0.87, 0.79}, tan{0, 0.58, 0.52, 0.40};
+        const scene::ColorStop cliff = mix(rock, {0, 0, 0, 0}, 0.35);
+        for (int k = 0; k < kPaletteSize; ++k) {
+            const double slope = kSlopePaletteMaxDeg * k / (kPaletteSize - 1);
+            where.paletteColors[k] =
+                slope < look.rockFromDeg ? mix(pale, tan, slope / look.rockFromDeg)
+                : slope < look.rockToDeg ? mix(tan, rock, (slope - look.rockFromDeg) / (look.rockToDeg - look.rockFromDeg))
+                                         : mix(rock, cliff, std::min(1.0, (slope - look.rockToDeg) /
+                                                                               std::max(kSlopePaletteMaxDeg - look.rockToDeg, 1.0)));
+        }
+    }
     return where;
 }
 
@@ -63,6 +106,18 @@ Vec3 surfaceNormal(const geo::GeoGrid& refined, const ScenePlacement& where, int
     const Vec3 n = cross(at(r1, c) - at(r0, c), at(r, c1) - at(r, c0));
     const double len = length(n);
     return len > 0 ? (1.0 / len) * n : Vec3{0, 1, 0};
+}
+
+double slopeDeg(const geo::GeoGrid& refined, const ScenePlacement& where, int r, int c) {
+    const Grid& g = refined.grid;
+    const int c0 = c > 0 && !refined.isMasked(r, c - 1) ? c - 1 : c;
+    const int c1 = c + 1 < g.cols && !refined.isMasked(r, c + 1) ? c + 1 : c;
+    const int r0 = r > 0 && !refined.isMasked(r - 1, c) ? r - 1 : r;
+    const int r1 = r + 1 < g.rows && !refined.isMasked(r + 1, c) ? r + 1 : r;
+    const auto e = [&](int row, int col) { return where.elevation(g.at(row, col)); };
+    const double dzdx = c1 > c0 ? (e(r, c1) - e(r, c0)) / ((c1 - c0) * refined.dx) : 0.0;
+    const double dzdy = r1 > r0 ? (e(r1, c) - e(r0, c)) / ((r1 - r0) * refined.dy) : 0.0;
+    return std::atan(std::hypot(dzdx, dzdy)) * 180 / 3.14159265358979323846;
 }
 
 Vec3 Mesh::normal(size_t node) const {

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "core/types.h"
@@ -33,6 +34,17 @@ struct ScenePlacement {
     /// units: what the camera frames (emit::placeCamera), not the bounding box.
     std::vector<Vec3> outline;
     std::vector<scene::ColorStop> paletteColors;  ///< kPaletteSize entries (linear RGB) over zMinM..zMaxM
+    /// What colours the surface ([texture] mode), and how paletteColors is
+    /// laid out: Elevation, kPaletteSize entries over zMinM..zMaxM; Slope,
+    /// kPaletteSize entries over 0..kSlopePaletteMaxDeg; Blend, kBlendClasses
+    /// copies of the elevation entries, each mixed further towards the rock
+    /// colour; Image, the elevation entries (the walls' colours), the surface
+    /// coloured by its drape.
+    scene::LookSpec::Colouring colouring = scene::LookSpec::Colouring::Elevation;
+    double rockFromDeg = 30, rockToDeg = 45;
+    /// The block model's floor ([base]), as a true elevation in metres; unset:
+    /// a floating surface. Bounds and outline include the floor.
+    std::optional<double> baseElevationM;
     /// The Earth's fall below a local frame's tangent plane; null in UTM.
     std::shared_ptr<const geo::CurvatureDrop> curvature;
 
@@ -45,6 +57,11 @@ struct ScenePlacement {
     double drawnHeight(const Vec3& p) const {
         const double fall = fallAt(p);
         return p.z - fall + fall / exaggeration;
+    }
+    /// Frame point p moved down (or up) to true elevation `elevationM`, in
+    /// scene units: the block model's floor under a node.
+    Vec3 scenePointAtElevation(const Vec3& p, double elevationM) const {
+        return scenePoint({p.x, p.y, elevationM + fallAt(p)});
     }
     /// A frame point (metres) in scene units and axes, exaggerated.
     Vec3 scenePoint(const Vec3& p) const {
@@ -68,6 +85,36 @@ inline unsigned char paletteIndex(const ScenePlacement& where, double elevationM
     const double t = (elevationM - where.zMinM) / span;
     return static_cast<unsigned char>(std::clamp(std::lround(t * (kPaletteSize - 1)), 0L, long{kPaletteSize - 1}));
 }
+
+inline constexpr double kSlopePaletteMaxDeg = 60;
+inline constexpr int kBlendClasses = 8;
+
+/// How far a slope is from ground to rock: 0 below rockFromDeg, 1 above
+/// rockToDeg, smoothly between.
+inline double rockWeight(const ScenePlacement& where, double slopeDeg) {
+    const double t = std::clamp((slopeDeg - where.rockFromDeg) / (where.rockToDeg - where.rockFromDeg), 0.0, 1.0);
+    return t * t * (3 - 2 * t);
+}
+
+/// The palette entry of a point of the surface, by its true elevation and
+/// slope (degrees), as where.colouring lays the palette out.
+inline unsigned paletteEntry(const ScenePlacement& where, double elevationM, double slopeDeg) {
+    using C = scene::LookSpec::Colouring;
+    switch (where.colouring) {
+        case C::Slope:
+            return static_cast<unsigned>(
+                std::clamp(std::lround(slopeDeg / kSlopePaletteMaxDeg * (kPaletteSize - 1)), 0L, long{kPaletteSize - 1}));
+        case C::Blend:
+            return paletteIndex(where, elevationM) +
+                   kPaletteSize * static_cast<unsigned>(std::lround(rockWeight(where, slopeDeg) * (kBlendClasses - 1)));
+        default:
+            return paletteIndex(where, elevationM);
+    }
+}
+
+/// The ground's slope at node (r, c) in degrees, from true (unexaggerated)
+/// elevations: central differences, one-sided at edges and masked nodes.
+double slopeDeg(const geo::GeoGrid& refined, const ScenePlacement& where, int r, int c);
 
 /// The placement of the refined grid's nodes with data: scene unit, origin
 /// (centred), bounds, elevation range (collapsed to one height when flat) and
@@ -107,8 +154,15 @@ struct Mesh : ScenePlacement {
     Vec3 position(size_t node) const { return scenePoint(grid->grid.points[node]); }
     /// The full surface's unit normal at node `node`, scene axes (surfaceNormal).
     Vec3 normal(size_t node) const;
-    /// Node `node`'s entry of paletteColors: its true elevation on the ramp.
-    unsigned char palette(size_t node) const { return paletteIndex(*this, elevation(grid->grid.points[node])); }
+    /// Node `node`'s entry of paletteColors: its true elevation on the ramp
+    /// (and its slope, when the colouring uses it).
+    unsigned palette(size_t node) const {
+        const double e = elevation(grid->grid.points[node]);
+        using C = scene::LookSpec::Colouring;
+        if (colouring != C::Slope && colouring != C::Blend) return paletteIndex(*this, e);
+        return paletteEntry(*this, e, slopeDeg(*grid, *this, static_cast<int>(node / static_cast<size_t>(cols)),
+                                                static_cast<int>(node % static_cast<size_t>(cols))));
+    }
 };
 
 /// The full mesh2 of `refined` (which it refers to): centred on the origin,

@@ -297,7 +297,7 @@ double finestMetresPerPixel(const CameraView& view, const ScenePlacement& where,
 }
 
 Bindings sceneBindings(const ScenePlacement& where, GeometryWriter geometry, const scene::LookSpec& look,
-                       const scene::RenderSpec& render, const ParameterList& header) {
+                       const scene::RenderSpec& render, const ParameterList& header, GeometryWriter base) {
     const scene::CameraSpec& camera = look.camera;
     Bindings b;
     std::string head;
@@ -373,6 +373,8 @@ Bindings sceneBindings(const ScenePlacement& where, GeometryWriter geometry, con
         b["atmosphere"].text = fmt::format("fog {{ fog_type 1 distance {} color rgb <0.78, 0.85, 0.93> }}",
                                            num(length(view.eye - view.target) / (0.3 * look.haze)));
     b["terrain"].writer = std::move(geometry);
+    if (base) b["base"].writer = std::move(base);
+    else b["base"].text = "";
     return b;
 }
 
@@ -390,9 +392,9 @@ std::optional<Template> loadSceneTemplate(const std::filesystem::path& templates
 }
 
 bool writeScene(const std::filesystem::path& out, const Template& tmpl, const ScenePlacement& where,
-                GeometryWriter geometry, const scene::LookSpec& look, const scene::RenderSpec& render,
-                const ParameterList& header, Diagnostics& diags) {
-    const Bindings bindings = sceneBindings(where, std::move(geometry), look, render, header);
+                GeometryWriter geometry, GeometryWriter base, const scene::LookSpec& look,
+                const scene::RenderSpec& render, const ParameterList& header, Diagnostics& diags) {
+    const Bindings bindings = sceneBindings(where, std::move(geometry), look, render, header, std::move(base));
     if (!checkTemplate(tmpl, bindings, diags)) return false;
     AtomicFile file(out);
     renderTemplate(tmpl, bindings, file.stream());

@@ -55,10 +55,10 @@ double finestMetresPerPixel(const CameraView& view, const ScenePlacement& where,
 using GeometryWriter = std::function<void(std::FILE* out)>;
 
 /// The template's bindings: header (every key and value through
-/// oneLineText in core/text_escape.h), camera and sun (from the terrain's placement), and the
-/// geometry.
+/// oneLineText in core/text_escape.h), camera and sun (from the terrain's placement), the
+/// geometry, and the block model under it (`base`: empty for a floating surface).
 Bindings sceneBindings(const ScenePlacement& where, GeometryWriter geometry, const scene::LookSpec& look,
-                       const scene::RenderSpec& render, const ParameterList& header);
+                       const scene::RenderSpec& render, const ParameterList& header, GeometryWriter base = {});
 
 /// Loads `<templatesDir>/scene.pov.in`.
 std::optional<Template> loadSceneTemplate(const std::filesystem::path& templatesDir,
@@ -66,7 +66,7 @@ std::optional<Template> loadSceneTemplate(const std::filesystem::path& templates
 
 /// Checks bindings, then writes the .pov atomically (temp file + rename).
 bool writeScene(const std::filesystem::path& out, const Template& tmpl, const ScenePlacement& where,
-                GeometryWriter geometry, const scene::LookSpec& look, const scene::RenderSpec& render,
-                const ParameterList& header, Diagnostics& diags);
+                GeometryWriter geometry, GeometryWriter base, const scene::LookSpec& look,
+                const scene::RenderSpec& render, const ParameterList& header, Diagnostics& diags);
 
 }  // namespace relief::emit

@@ -249,7 +249,7 @@ private:
 const std::vector<std::string> kSections{"samples", "frame",    "net",      "vertical",
                                          "subdivision", "limits", "texture", "lighting",
                                          "camera",   "geometry", "render", "overlay",
-                                         "water",    "atmosphere"};
+                                         "water",    "atmosphere", "base"};
 
 }  // namespace
 
@@ -582,6 +582,33 @@ std::optional<SceneSpec> readScene(const std::filesystem::path& path, Diagnostic
                 ramp.cptPath = *c;
             }
         }
+        if (auto m = s.choice("mode", {"elevation", "slope", "blend"}))
+            scene.look.colouring = *m == "slope"   ? LookSpec::Colouring::Slope
+                                   : *m == "blend" ? LookSpec::Colouring::Blend
+                                                   : LookSpec::Colouring::Elevation;
+        if (auto v = s.string("rock_color"); v && !parseHexColor(*v, scene.look.rockColour))
+            s.error("rock_color", fmt::format("texture.rock_color = \"{}\" must be a colour \"#rrggbb\"",
+                                              printableExcerpt(*v)));
+        if (auto v = s.number("rock_from_deg", 0, 90, "degrees of slope", false, true)) scene.look.rockFromDeg = *v;
+        if (auto v = s.number("rock_to_deg", 0, 90, "degrees of slope", true)) scene.look.rockToDeg = *v;
+        if (!(scene.look.rockToDeg > scene.look.rockFromDeg))
+            s.error(s.find("rock_to_deg") ? "rock_to_deg" : "rock_from_deg",
+                    fmt::format("texture.rock_to_deg ({}) must be above texture.rock_from_deg ({})",
+                                formatShortest(scene.look.rockToDeg), formatShortest(scene.look.rockFromDeg)));
+        if (auto v = s.string("image")) {
+            const std::filesystem::path image = path.parent_path() / *v;
+            std::error_code ec;
+            if (s.find("mode") && scene.look.colouring != LookSpec::Colouring::Elevation)
+                s.error("image", "texture.image colours the surface by itself: leave out texture.mode");
+            else if (!std::filesystem::is_regular_file(image, ec))
+                s.error("image", fmt::format("texture.image: file \"{}\" not found (looked for {})",
+                                             printableExcerpt(*v), printableExcerpt(image.string(), 200)));
+            else {
+                scene.look.colouring = LookSpec::Colouring::Image;
+                scene.look.drapeImage = image;
+                scene.look.drapeImageText = *v;
+            }
+        }
         s.markKnown("stops");
         const toml::node* stopsNode = s.find("stops");
         if (stopsNode && !ramp.cptPath.empty()) {
@@ -718,6 +745,20 @@ std::optional<SceneSpec> readScene(const std::filesystem::path& path, Diagnostic
                 s.error("output", fmt::format("render.output = \"{}\" must name a .png file", *v));
             else
                 scene.render.output = *v;
+        }
+        s.finish();
+    }
+
+    // [base]
+    {
+        Section s = sectionInto("base", scene.look.locs);
+        s.markKnown("thickness_m");
+        if (const toml::node* n = s.find("thickness_m")) {
+            if (auto b = n->value_exact<bool>()) {
+                scene.look.base.enabled = *b;
+            } else if (auto v = s.number("thickness_m", 0, 1e5, "metres (or false: no block)", true)) {
+                scene.look.base.thicknessM = *v;
+            }
         }
         s.finish();
     }

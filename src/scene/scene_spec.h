@@ -156,6 +156,13 @@ struct CameraSpec {
     std::optional<Vec3> positionFrameM, lookAtFrameM;
 };
 
+/// [base]: the terrain as a solid block, side walls down to a flat floor
+/// (a block model), or a floating surface.
+struct BaseSpec {
+    bool enabled = true;
+    std::optional<double> thicknessM;  ///< below the lowest elevation, true metres; unset: a tenth of the relief
+};
+
 /// [water]: a water surface over the terrain's extent.
 struct WaterSpec {
     std::optional<double> levelM;  ///< unset: no water
@@ -164,10 +171,22 @@ struct WaterSpec {
 };
 
 /// How the terrain looks: [vertical], [texture], [lighting], [camera],
-/// [water], [atmosphere].
+/// [base], [water], [atmosphere].
 struct LookSpec {
     double exaggeration = 1.0;
     ColorRamp ramp{"terrain", {}, {}};
+    /// [texture] mode and image: what colours the surface.
+    enum class Colouring {
+        Elevation,  ///< the ramp over elevation
+        Slope,      ///< pale on flat ground to rock on steep
+        Blend,      ///< the ramp, turning to rock where the ground is steep
+        Image,      ///< a georeferenced image draped on the surface
+    };
+    Colouring colouring = Colouring::Elevation;
+    ColorStop rockColour{0, 0.159, 0.130, 0.100};  ///< linear RGB (#6f6559 in sRGB)
+    double rockFromDeg = 30, rockToDeg = 45;        ///< slopes where rock starts and takes over
+    std::filesystem::path drapeImage;               ///< Colouring::Image: the raster, resolved against the scene
+    std::string drapeImageText;                     ///< as written
     double sunAzimuthDeg = 315;   ///< compass bearing the light comes from
     double sunAltitudeDeg = 45;
     /// [lighting] datetime: the sun is placed where it was then, over the
@@ -175,6 +194,7 @@ struct LookSpec {
     std::optional<OffsetDateTime> sunTime;
     std::string sunTimeText;  ///< as written in the scene
     CameraSpec camera;
+    BaseSpec base;
     WaterSpec water;
     double haze = 0;  ///< [atmosphere] haze in [0, 1]: distance fog, 0 none
     KeyLocations locs;

@@ -1,0 +1,130 @@
+#include "emit/block_base.h"
+
+#include <array>
+#include <unordered_map>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "core/number_format.h"
+
+namespace relief::emit {
+
+namespace {
+
+std::string point(const Vec3& v) {
+    char buf[120];
+    char* p = buf;
+    *p++ = '<';
+    p = writeFixed(p, v.x, 5);
+    *p++ = ',';
+    p = writeFixed(p, v.y, 5);
+    *p++ = ',';
+    p = writeFixed(p, v.z, 5);
+    *p++ = '>';
+    return std::string(buf, p);
+}
+
+}  // namespace
+
+BlockGeometry buildBlockBase(const geo::GeoGrid& refined) {
+    const Grid& g = refined.grid;
+    const size_t cols = static_cast<size_t>(g.cols), rows = static_cast<size_t>(g.rows);
+    BlockGeometry block;
+    if (rows < 2 || cols < 2) return block;
+    auto kept = [&](size_t i) { return refined.masked.empty() || refined.masked[i] == 0; };
+    // The lattice's triangles, as the surface's writers cut a cell (sw, se, ne, nw):
+    // the lower one (sw, se, nw) and the upper one (se, ne, nw).
+    auto lower = [&](size_t r, size_t c) {
+        const size_t sw = r * cols + c;
+        return kept(sw) && kept(sw + 1) && kept(sw + cols);
+    };
+    auto upper = [&](size_t r, size_t c) {
+        const size_t sw = r * cols + c;
+        return kept(sw + 1) && kept(sw + cols + 1) && kept(sw + cols);
+    };
+    std::unordered_map<size_t, std::uint32_t> topOf, bottomOf;
+    auto vertex = [&](std::unordered_map<size_t, std::uint32_t>& of, size_t node, bool floor) {
+        auto [it, added] = of.try_emplace(node, static_cast<std::uint32_t>(block.vertices.size()));
+        if (added) block.vertices.push_back({node, floor});
+        return it->second;
+    };
+    auto top = [&](size_t node) { return vertex(topOf, node, false); };
+    auto bottom = [&](size_t node) { return vertex(bottomOf, node, true); };
+    // A wall under edge (a, b): two triangles down to the floor.
+    auto wall = [&](size_t a, size_t b) {
+        const std::uint32_t ta = top(a), tb = top(b), ba = bottom(a), bb = bottom(b);
+        block.faces.push_back({ta, tb, bb});
+        block.faces.push_back({ta, bb, ba});
+        block.wallTriangles += 2;
+    };
+    for (size_t r = 0; r < rows; ++r)
+        for (size_t c = 0; c < cols; ++c) {
+            const size_t n = r * cols + c;
+            // Edge east of n, (r, c)-(r, c+1): the lower triangle of the cell
+            // north of it, the upper triangle of the cell south of it.
+            if (c + 1 < cols) {
+                const bool north = r + 1 < rows && lower(r, c), south = r > 0 && upper(r - 1, c);
+                if (north != south) wall(n, n + 1);
+            }
+            // Edge north of n, (r, c)-(r+1, c): the lower triangle of the cell to
+            // its east, the upper triangle of the cell to its west.
+            if (r + 1 < rows) {
+                const bool east = c + 1 < cols && lower(r, c), west = c > 0 && upper(r, c - 1);
+                if (east != west) wall(n, n + cols);
+            }
+            // The diagonal of the cell north-east of n, (r, c+1)-(r+1, c).
+            if (r + 1 < rows && c + 1 < cols && lower(r, c) != upper(r, c)) wall(n + 1, n + cols);
+        }
+    // The floor: runs of whole cells along each row, and the half cells.
+    for (size_t r = 0; r + 1 < rows; ++r) {
+        size_t c = 0;
+        while (c + 1 < cols) {
+            const size_t sw = r * cols + c;
+            if (lower(r, c) && upper(r, c)) {
+                size_t end = c + 1;
+                while (end + 1 < cols && lower(r, end) && upper(r, end)) ++end;
+                const size_t se = r * cols + end, nw = sw + cols, ne = se + cols;
+                block.faces.push_back({bottom(sw), bottom(se), bottom(ne)});
+                block.faces.push_back({bottom(sw), bottom(ne), bottom(nw)});
+                block.floorTriangles += 2;
+                c = end;
+                continue;
+            }
+            if (lower(r, c)) block.faces.push_back({bottom(sw), bottom(sw + 1), bottom(sw + cols)});
+            if (upper(r, c)) block.faces.push_back({bottom(sw + 1), bottom(sw + cols + 1), bottom(sw + cols)});
+            block.floorTriangles += lower(r, c) + upper(r, c);
+            ++c;
+        }
+    }
+    return block;
+}
+
+void writeBlockBase(std::FILE* out, const geo::GeoGrid& refined, const ScenePlacement& where) {
+    const BlockGeometry block = buildBlockBase(refined);
+    if (block.faces.empty()) return;
+    const double floorM = *where.baseElevationM;
+    const auto& points = refined.grid.points;
+    fmt::print(out, "// The block model ([base]): walls from the surface's edge down to a floor at {:.2f} m.\n", floorM);
+    fmt::print(out, "mesh2 {{\n  vertex_vectors {{\n    {}", block.vertices.size());
+    for (const auto& v : block.vertices)
+        fmt::print(out, ",\n{}", point(v.floor ? where.scenePointAtElevation(points[v.node], floorM)
+                                              : where.scenePoint(points[v.node])));
+    fmt::print(out, "\n  }}\n  texture_list {{\n    {}", where.paletteColors.size());
+    for (const auto& c : where.paletteColors)
+        fmt::print(out, ",\n    texture {{ pigment {{ rgb {} }} finish {{ TerrainFinish }} }}",
+                   point({kBlockWallShade * c.r, kBlockWallShade * c.g, kBlockWallShade * c.b}));
+    // The walls' colours: the surface's at the top, the lowest at the floor.
+    const auto shade = [&](std::uint32_t v) {
+        const auto& vertex = block.vertices[v];
+        // Slope colouring: a wall is the steepest ground there is.
+        if (where.colouring == scene::LookSpec::Colouring::Slope) return kPaletteSize - 1;
+        return vertex.floor ? 0 : int(paletteIndex(where, where.elevation(points[vertex.node])));
+    };
+    fmt::print(out, "\n  }}\n  face_indices {{\n    {}", block.faces.size());
+    for (const auto& f : block.faces)
+        fmt::print(out, ",\n<{},{},{}>,{},{},{}", f[0], f[1], f[2], shade(f[0]), shade(f[1]), shade(f[2]));
+    fmt::print(out, "\n  }}\n}}\n");
+}
+
+}  // namespace relief::emit
