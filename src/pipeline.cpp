@@ -133,6 +133,7 @@ emit::ParameterList describe(const scene::SceneSpec& s, const geo::ControlNet& n
                                 *compiled.baseFloorM, compiled.zRangeM[0] - *compiled.baseFloorM));
     add("texture.ramp", look.ramp.cptPath.empty() ? look.ramp.preset : "cpt " + look.ramp.cptPath);
     using Colouring = scene::LookSpec::Colouring;
+    if (look.colouring == Colouring::Image) add("texture.image", look.drapeImageText);
     if (look.colouring == Colouring::Slope || look.colouring == Colouring::Blend)
         add("texture.mode", fmt::format("{}: rock from {} to {} degrees of slope",
                                         look.colouring == Colouring::Slope ? "slope" : "blend",
@@ -317,7 +318,9 @@ std::optional<CompileResult> compileScene(const LoadedScene& loaded,
         f.zMinM = where.zMinM;
         f.zMaxM = where.zMaxM;
         using Colouring = scene::LookSpec::Colouring;
-        if (look.colouring == Colouring::Slope) {
+        if (look.colouring == Colouring::Image) {
+            f.palette.clear();  // an image's colours are its own: no elevation legend
+        } else if (look.colouring == Colouring::Slope) {
             f.legendTitle = "Slope (\u00b0)";
             f.zMinM = 0;
             f.zMaxM = emit::kSlopePaletteMaxDeg;
@@ -372,12 +375,30 @@ std::optional<CompileResult> compileScene(const LoadedScene& loaded,
                 for (const auto& f : files) std::filesystem::remove(f, ec);
         }
     } written;
+    // [texture] image: the image resampled onto the refined grid, drawn as a drape PNG.
+    std::optional<geo::ImageOnGrid> image;
+    if (look.colouring == scene::LookSpec::Colouring::Image) {
+        image = geo::imageOnGrid(look.drapeImage, look.drapeImageText, refined, diags);
+        if (!image) return std::nullopt;
+        result.drapeImageCoverage = double(image->coveredCount) / double(image->covered.size());
+        if (!heightField) {
+            result.drapePng = options.povPath.parent_path() / emit::siblingPngName(options.povPath, "drape");
+            if (const std::string pngError = emit::writeDrapePng(emit::imageDrape(refined, where, *image), result.drapePng);
+                !pngError.empty()) {
+                diags.error({}, pngError);
+                return std::nullopt;
+            }
+            written.files.push_back(result.drapePng);
+        }
+    }
     emit::GeometryWriter geometry;
     if (heightField) {
         std::string pngError = emit::writeHeightFieldPng(*field, result.heightPng);
         if (pngError.empty()) {
             written.files.push_back(result.heightPng);
-            pngError = emit::writeDrapePng(emit::elevationDrape(refined, where), result.drapePng);
+            pngError = emit::writeDrapePng(image ? emit::imageDrape(refined, where, *image)
+                                                 : emit::elevationDrape(refined, where),
+                                           result.drapePng);
         }
         if (!pngError.empty()) {
             diags.error({}, pngError);
@@ -397,7 +418,13 @@ std::optional<CompileResult> compileScene(const LoadedScene& loaded,
                                               mesh->triangles),
                                   static_cast<int>(100 * fraction)});
             };
-        geometry = [&, writing](std::FILE* out) { emit::writeMesh2(*mesh, out, writing); };
+        geometry = [&, writing](std::FILE* out) {
+            emit::writeMesh2(*mesh, out, writing);
+            if (image) {
+                const std::string texture = emit::drapeTextureSdl(refined, where, result.drapePng.filename().string());
+                std::fwrite(texture.data(), 1, texture.size(), out);
+            }
+        };
     }
     emit::GeometryWriter base;
     if (where.baseElevationM) base = [&](std::FILE* out) { emit::writeBlockBase(out, refined, where); };
@@ -625,9 +652,10 @@ JobOutcome runSceneJob(const SceneJob& job, Diagnostics& diags, const ProgressFn
     req.alpha = still.background == scene::Background::Transparent;
     // The height field's PNG is found by its name through the library path.
     req.includeDirs = {job.templatesDir};
-    if (!outcome.compiled->heightPng.empty()) {
+    if (!outcome.compiled->drapePng.empty()) {
         req.includeDirs.push_back(std::filesystem::absolute(outcome.paths.pov).parent_path());
-        req.inputFiles = {outcome.compiled->heightPng, outcome.compiled->drapePng};
+        req.inputFiles = {outcome.compiled->drapePng};
+        if (!outcome.compiled->heightPng.empty()) req.inputFiles.push_back(outcome.compiled->heightPng);
     }
     req.threads = job.threads;
     req.sandbox = job.sandbox;
@@ -748,10 +776,10 @@ std::string sidecarJson(const CompileResult& c, const OutputPaths& paths,
     }
     j["geometry"]["triangles"] = c.meshTriangles;
     j["outputs"] = {{"pov", paths.pov.string()}};
-    if (!c.heightPng.empty()) {
-        j["outputs"]["height_png"] = c.heightPng.string();
-        j["outputs"]["drape_png"] = c.drapePng.string();
-    }
+    if (!c.heightPng.empty()) j["outputs"]["height_png"] = c.heightPng.string();
+    if (!c.drapePng.empty()) j["outputs"]["drape_png"] = c.drapePng.string();
+    if (c.drapeImageCoverage)
+        j["texture"] = {{"image", c.scene.look.drapeImageText}, {"image_covers", *c.drapeImageCoverage}};
     if (render) j["outputs"]["png"] = paths.png.string();
     if (overlays) {
         j["overlay"] = {{"drawn", overlays->drawn}};

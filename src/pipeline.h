@@ -118,6 +118,7 @@ struct CompileResult {
         std::string datetime;          ///< as written in the scene
         double lonDeg = 0, latDeg = 0; ///< where it was computed (fromDatetime)
     } sun;
+    std::optional<double> drapeImageCoverage;  ///< [texture] image: the share of the surface's nodes it covers
     std::optional<double> baseFloorM;   ///< the block model's floor elevation; unset: no block
     std::array<double, 2> zRangeM{};    ///< the surface's lowest and highest elevation (nodes with data)
     annotate::OverlayFacts overlayFacts;            ///< what the still's overlays say

@@ -1,6 +1,7 @@
 #include "emit/height_field.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -111,6 +112,50 @@ Drape elevationDrape(const geo::GeoGrid& refined, const ScenePlacement& where) {
         }
     }
     return drape;
+}
+
+Drape imageDrape(const geo::GeoGrid& refined, const ScenePlacement& where, const geo::ImageOnGrid& image) {
+    Drape drape = elevationDrape(refined, where);  // the ramp where the image has no data; the mask
+    const Grid& g = refined.grid;
+    const size_t n = static_cast<size_t>(drape.channels);
+    // sRGB to linear (IEC 61966-2-1), one entry a byte value.
+    std::array<std::uint16_t, 256> linear{};
+    for (int v = 0; v < 256; ++v) {
+        const double s = v / 255.0;
+        const double l = s <= 0.04045 ? s / 12.92 : std::pow((s + 0.055) / 1.055, 2.4);
+        linear[v] = static_cast<std::uint16_t>(std::lround(l * 65535));
+    }
+    for (int r = 0; r < g.rows; ++r) {
+        std::uint16_t* row = drape.pixels.data() + static_cast<size_t>(g.rows - 1 - r) * g.cols * n;
+        for (int c = 0; c < g.cols; ++c) {
+            const size_t node = static_cast<size_t>(r) * g.cols + c;
+            if (!image.covered[node]) continue;
+            std::uint16_t* px = row + n * static_cast<size_t>(c);
+            for (int k = 0; k < 3; ++k) px[k] = linear[image.rgb[3 * node + k]];
+        }
+    }
+    return drape;
+}
+
+std::string drapeTextureSdl(const geo::GeoGrid& refined, const ScenePlacement& where, const std::string& drapePng) {
+    const double s = 1.0 / where.metresPerUnit;
+    const double west = (refined.x0 - where.originM.x) * s, south = (refined.y0 - where.originM.y) * s;
+    const double width = (refined.xMax() - refined.x0) * s, depth = (refined.yMax() - refined.y0) * s;
+    const double cols = refined.cols(), rows = refined.rows();
+    // Pixel i's centre, (i + 0.5) / n of the map, on node i: the map spans
+    // n / (n - 1) node spacings, starting half a spacing west (south) of node 0.
+    return fmt::format(
+        "\ntexture {{\n"
+        "  pigment {{\n"
+        "    image_map {{ png \"{}\" gamma 1.0 map_type 0 interpolate 2 }}\n"
+        "    rotate x*90\n"
+        "    scale <{}, 1, {}>\n"
+        "    translate <{}, 0, {}>\n"
+        "  }}\n"
+        "  finish {{ TerrainFinish }}\n"
+        "}}",
+        drapePng, num(width * cols / (cols - 1)), num(depth * rows / (rows - 1)), num(west - 0.5 * width / (cols - 1)),
+        num(south - 0.5 * depth / (rows - 1)));
 }
 
 std::string writeDrapePng(const Drape& drape, const std::filesystem::path& png) {

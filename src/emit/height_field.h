@@ -12,6 +12,7 @@
 
 #include "emit/mesh.h"
 #include "geo/geo_grid.h"
+#include "geo/raster.h"
 
 namespace relief::emit {
 
@@ -51,6 +52,16 @@ struct Drape {
     std::vector<std::uint16_t> pixels;
 };
 Drape elevationDrape(const geo::GeoGrid& refined, const ScenePlacement& where);
+
+/// The drape of an image ([texture] image) resampled onto the refined grid:
+/// its sRGB colours made linear; nodes the image does not cover keep the
+/// ramp's colour; masked nodes are transparent, as in elevationDrape.
+Drape imageDrape(const geo::GeoGrid& refined, const ScenePlacement& where, const geo::ImageOnGrid& image);
+
+/// A texture for a mesh (the mesh2 or adaptive kinds) taking its colours from
+/// a drape PNG laid flat over the refined grid, its pixel centres on the nodes,
+/// as the height field lays its own: the image drape on a mesh.
+std::string drapeTextureSdl(const geo::GeoGrid& refined, const ScenePlacement& where, const std::string& drapePng);
 
 /// Write the levels as a 16-bit greyscale PNG and the drape as a 16-bit RGB
 /// PNG, atomically and byte for byte the same for the same values. Return ""

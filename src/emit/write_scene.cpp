@@ -109,12 +109,14 @@ size_t writeMesh2(const Mesh& mesh, std::FILE* out, const WriteProgressFn& progr
     };
     vectorSection("mesh2 {\n  vertex_vectors {\n    ", [&](size_t i) { return mesh.position(i); }, kPositionDecimals, 0);
     vectorSection("\n  }\n  normal_vectors {\n    ", [&](size_t i) { return mesh.normal(i); }, kNormalDecimals, 0.25);
-    w->put("\n  }\n  texture_list {\n    ");
-    {
+    // An image drape colours the mesh as a whole (drapeTextureSdl): no texture per vertex.
+    const bool perVertex = mesh.colouring != scene::LookSpec::Colouring::Image;
+    if (perVertex) {
+        w->put("\n  }\n  texture_list {\n    ");
         char* p = w->reserve(24);
         w->commit(writeUnsigned(p, mesh.paletteColors.size()));
     }
-    for (const auto& c : mesh.paletteColors) {
+    for (const auto& c : perVertex ? mesh.paletteColors : std::vector<scene::ColorStop>{}) {
         char* p = w->reserve(160);
         const char open[] = ",\n    texture { pigment { rgb ";
         std::memcpy(p, open, sizeof open - 1);
@@ -143,6 +145,10 @@ size_t writeMesh2(const Mesh& mesh, std::FILE* out, const WriteProgressFn& progr
         *p++ = ',';
         p = writeUnsigned(p, mesh.vertexOf(c));
         *p++ = '>';
+        if (!perVertex) {
+            w->commit(p);
+            return;
+        }
         *p++ = ',';
         p = writeUnsigned(p, mesh.palette(a));
         *p++ = ',';

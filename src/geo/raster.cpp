@@ -667,3 +667,129 @@ std::optional<ControlNet> latticeNet(const SampleLattice& lattice, const scene::
 }
 
 }  // namespace relief::geo
+
+namespace relief::geo {
+
+std::optional<ImageOnGrid> imageOnGrid(const std::filesystem::path& path, const std::string& pathAsWritten,
+                                       const GeoGrid& grid, Diagnostics& diags) {
+    const SourceLoc fileLoc{pathAsWritten, 0, 0};
+    Dataset src = openRaster(path);
+    if (!src) {
+        diags.error(fileLoc, "texture.image: GDAL cannot read it as a raster image (a GeoTIFF, PNG with a world "
+                             "file, JPEG 2000, ...)");
+        return std::nullopt;
+    }
+    const int bands = GDALGetRasterCount(src.get());
+    const bool grey = bands == 1 || bands == 2;  // grey, or grey and alpha
+    if (bands < 1 || (!grey && bands < 3) ||
+        GDALGetRasterColorInterpretation(GDALGetRasterBand(src.get(), 1)) == GCI_PaletteIndex) {
+        diags.error(fileLoc, fmt::format("texture.image: {} band{}{}: a drape needs red, green and blue bands or one "
+                                         "grey band (expand a palette image with gdal_translate -expand rgb)",
+                                         bands, bands == 1 ? "" : "s",
+                                         bands >= 1 && GDALGetRasterColorInterpretation(GDALGetRasterBand(
+                                                           src.get(), 1)) == GCI_PaletteIndex
+                                             ? " with a colour table"
+                                             : ""));
+        return std::nullopt;
+    }
+    double geoTransform[6], inverse[6];
+    if (GDALGetGeoTransform(src.get(), geoTransform) != CE_None || !GDALInvGeoTransform(geoTransform, inverse)) {
+        diags.error(fileLoc, "texture.image has no georeferencing (geotransform): give it one, e.g. with "
+                             "gdal_translate -a_ullr and -a_srs");
+        return std::nullopt;
+    }
+    Srs imageSrs(OSRNewSpatialReference(nullptr));
+    OSRSetAxisMappingStrategy(imageSrs.get(), OAMS_TRADITIONAL_GIS_ORDER);
+    const char* wkt = GDALGetProjectionRef(src.get());
+    if (!wkt || !*wkt || OSRImportFromWkt(imageSrs.get(), const_cast<char**>(&wkt)) != OGRERR_NONE) {
+        diags.error(fileLoc, "texture.image has no CRS: give it one with gdal_translate -a_srs EPSG:...");
+        return std::nullopt;
+    }
+    Srs wgs84(OSRNewSpatialReference(nullptr));
+    OSRSetWellKnownGeogCS(wgs84.get(), "WGS84");
+    OSRSetAxisMappingStrategy(wgs84.get(), OAMS_TRADITIONAL_GIS_ORDER);
+    Transform toImage(OCTNewCoordinateTransformation(wgs84.get(), imageSrs.get()));
+    Transform toWgs84(OCTNewCoordinateTransformation(imageSrs.get(), wgs84.get()));
+    if (!toImage || !toWgs84) {
+        diags.error(fileLoc, "texture.image: its CRS cannot be carried to WGS84");
+        return std::nullopt;
+    }
+
+    // The grid as an image of its own (pixel centres = nodes, row 0 north):
+    // three bands of colour and an alpha band the warper sets where it has data.
+    const int rows = grid.rows(), cols = grid.cols();
+    Dataset dst(GDALCreate(GDALGetDriverByName("MEM"), "", cols, rows, 4, GDT_Byte, nullptr));
+    NetToRaster chain{grid.frame, grid.x0, grid.y0, grid.dx, grid.dy, rows, toImage.get(), toWgs84.get(), {}, {}};
+    std::copy(geoTransform, geoTransform + 6, chain.geo);
+    std::copy(inverse, inverse + 6, chain.inverse);
+    GDALWarpOptions* wo = GDALCreateWarpOptions();
+    wo->hSrcDS = src.get();
+    wo->hDstDS = dst.get();
+    wo->nBandCount = 3;
+    wo->panSrcBands = static_cast<int*>(CPLMalloc(3 * sizeof(int)));
+    wo->panDstBands = static_cast<int*>(CPLMalloc(3 * sizeof(int)));
+    for (int b = 0; b < 3; ++b) wo->panSrcBands[b] = grey ? 1 : b + 1, wo->panDstBands[b] = b + 1;
+    // The image's own alpha band, or its nodata value, says where it has data.
+    const int alphaBand = bands == 2 ? 2 : bands >= 4 ? 4 : 0;
+    if (alphaBand && GDALGetRasterColorInterpretation(GDALGetRasterBand(src.get(), alphaBand)) == GCI_AlphaBand)
+        wo->nSrcAlphaBand = alphaBand;
+    int hasNoData = 0;
+    const double noData = GDALGetRasterNoDataValue(GDALGetRasterBand(src.get(), 1), &hasNoData);
+    if (hasNoData && !wo->nSrcAlphaBand) {
+        wo->padfSrcNoDataReal = static_cast<double*>(CPLMalloc(3 * sizeof(double)));
+        for (int b = 0; b < 3; ++b) wo->padfSrcNoDataReal[b] = noData;
+        wo->papszWarpOptions = CSLSetNameValue(wo->papszWarpOptions, "UNIFIED_SRC_NODATA", "YES");
+    }
+    wo->nDstAlphaBand = 4;
+    wo->eResampleAlg = GRA_Bilinear;
+    wo->papszWarpOptions = CSLSetNameValue(wo->papszWarpOptions, "INIT_DEST", "0");
+    constexpr double kMaxErrorPixels = 0.01;
+    struct ApproxDeleter {
+        void operator()(void* t) const { GDALDestroyApproxTransformer(t); }
+    };
+    std::unique_ptr<void, ApproxDeleter> approx(GDALCreateApproxTransformer(transformNetToRaster, &chain, kMaxErrorPixels));
+    wo->pfnTransformer = GDALApproxTransform;
+    wo->pTransformerArg = approx.get();
+    CPLPushErrorHandler(CPLQuietErrorHandler);
+    GDALWarpOperation warp;
+    CPLErr err = warp.Initialize(wo);
+    if (err == CE_None) err = warp.ChunkAndWarpImage(0, 0, cols, rows);
+    CPLPopErrorHandler();
+    GDALDestroyWarpOptions(wo);
+    if (err != CE_None) {
+        diags.error(fileLoc, fmt::format("GDAL could not resample texture.image onto the surface: {}",
+                                         CPLGetLastErrorMsg()));
+        return std::nullopt;
+    }
+    ImageOnGrid out;
+    out.rows = rows;
+    out.cols = cols;
+    const size_t n = static_cast<size_t>(rows) * cols;
+    std::vector<std::uint8_t> band(n);
+    out.rgb.resize(3 * n);
+    out.covered.resize(n);
+    for (int b = 0; b < 4; ++b) {
+        if (GDALRasterIO(GDALGetRasterBand(dst.get(), b + 1), GF_Read, 0, 0, cols, rows, band.data(), cols, rows,
+                         GDT_Byte, 0, 0) != CE_None) {
+            diags.error(fileLoc, "reading the resampled image back failed");
+            return std::nullopt;
+        }
+        // The MEM image's row 0 is north; the grid's row 0 is south.
+        for (int r = 0; r < rows; ++r)
+            for (int c = 0; c < cols; ++c) {
+                const std::uint8_t v = band[static_cast<size_t>(rows - 1 - r) * cols + c];
+                const size_t node = static_cast<size_t>(r) * cols + c;
+                if (b < 3) out.rgb[3 * node + b] = v;
+                else out.covered[node] = v > 127;
+            }
+    }
+    for (const auto c : out.covered) out.coveredCount += c;
+    if (out.coveredCount == 0) {
+        diags.error(fileLoc, "texture.image does not cover the terrain: check that it shows the same place (and its "
+                             "CRS)");
+        return std::nullopt;
+    }
+    return out;
+}
+
+}  // namespace relief::geo

@@ -5,6 +5,7 @@
 // scene's frame) goes to WGS84 latitude and longitude with GeographicLib, then
 // to the raster's CRS with GDAL/PROJ, and is resampled there by GDAL's warper,
 // which reads only the blocks the net covers.
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -32,6 +33,18 @@ bool isRasterDem(const std::filesystem::path& path);
 std::optional<ControlNet> rasterNet(const scene::SamplesSpec& samples, const scene::FrameSpec& frame,
                                     const scene::NetSpec& net, Diagnostics& diags,
                                     const GridProgressFn& progress = {});
+
+/// An image draped on the surface ([texture] image): a georeferenced raster
+/// in any CRS GDAL reads (RGB in bands 1-3, or one grey band) resampled
+/// bilinearly onto `grid`'s nodes through the same chain as a DEM.
+struct ImageOnGrid {
+    int rows = 0, cols = 0;
+    std::vector<std::uint8_t> rgb;      ///< 3 a node, in the grid's order (row 0 south), sRGB
+    std::vector<std::uint8_t> covered;  ///< 1 where the image has data
+    size_t coveredCount = 0;
+};
+std::optional<ImageOnGrid> imageOnGrid(const std::filesystem::path& path, const std::string& pathAsWritten,
+                                       const GeoGrid& grid, Diagnostics& diags);
 
 /// Scattered samples that are a raster in disguise: one sample on every node
 /// of a regular lattice in some CRS (degrees, Web Mercator, a national grid),

@@ -13,7 +13,9 @@
 #include <GeographicLib/TransverseMercator.hpp>
 #include <GeographicLib/UTMUPS.hpp>
 #include <fmt/format.h>
+#include <cpl_conv.h>
 #include <gdal.h>
+#include <ogr_srs_api.h>
 
 #include "geo/gdal_drivers.h"
 #include "geo/samples.h"
@@ -403,6 +405,87 @@ TEST(Raster, UnusableRastersAreErrors) {
     EXPECT_TRUE(isRasterDem(dir / "cut.tif"));
     EXPECT_EQ(message(rasterSpec(dir / "cut.tif", "")),
               "cut.tif: error: GDAL cannot read this raster (a truncated or damaged file?)");
+}
+
+}  // namespace
+}  // namespace relief::geo
+
+namespace relief::geo {
+namespace {
+
+// An image in Web Mercator whose red and green grow by 8 a column and a row
+// (bilinear resampling keeps them exact), draped on a UTM grid: each node's
+// colour says which pixel it landed on, computed here with the spherical
+// Mercator's own formulas; nodes off the image are not covered.
+TEST(DrapeImage, AWebMercatorImageLandsOnTheUtmNodes) {
+    using namespace relief;
+    const fs::path dir = freshDir("drape-image");
+    const fs::path path = dir / "gradient.tif";
+    constexpr int kCols = 30, kRows = 25;
+    constexpr double kR = 6378137, kPi = 3.14159265358979323846;
+    const double x0 = kR * (-3.8 * kPi / 180), y0 = kR * std::log(std::tan(kPi / 4 + 40.5 * kPi / 360));
+    constexpr double kCell = 2000;  // metres of the projection
+    {
+        geo::registerGdalDrivers();
+        GDALDatasetH ds = GDALCreate(GDALGetDriverByName("GTiff"), path.c_str(), kCols, kRows, 3, GDT_Byte, nullptr);
+        double gt[6] = {x0, kCell, 0, y0, 0, -kCell};
+        GDALSetGeoTransform(ds, gt);
+        OGRSpatialReferenceH srs = OSRNewSpatialReference(nullptr);
+        OSRImportFromEPSG(srs, 3857);
+        char* wkt = nullptr;
+        OSRExportToWkt(srs, &wkt);
+        GDALSetProjection(ds, wkt);
+        CPLFree(wkt);
+        OSRDestroySpatialReference(srs);
+        std::vector<std::uint8_t> band(kCols * kRows);
+        for (int b = 0; b < 3; ++b) {
+            for (int r = 0; r < kRows; ++r)
+                for (int c = 0; c < kCols; ++c) band[r * kCols + c] = b == 0 ? 8 * c : b == 1 ? 8 * r : 77;
+            ASSERT_EQ(GDALRasterIO(GDALGetRasterBand(ds, b + 1), GF_Write, 0, 0, kCols, kRows, band.data(), kCols,
+                                   kRows, GDT_Byte, 0, 0),
+                      CE_None);
+        }
+        GDALClose(ds);
+    }
+    // A UTM 30N grid around (-3.6, 40.2), partly off the image south edge (40.16).
+    geo::GeoGrid grid;
+    grid.frame.kind = scene::FrameKind::Utm;
+    grid.frame.utmZone = 30;
+    grid.frame.northp = true;
+    Vec3 centre;
+    ASSERT_TRUE(geo::geodeticToFrame(grid.frame, 40.2, -3.6, 0, centre));
+    grid.grid.rows = 12;
+    grid.grid.cols = 15;
+    grid.dx = grid.dy = 1500;
+    grid.x0 = centre.x - 7 * 1500;
+    grid.y0 = centre.y - 8 * 1500;
+    for (int r = 0; r < grid.grid.rows; ++r)
+        for (int c = 0; c < grid.grid.cols; ++c) grid.grid.points.push_back({grid.x0 + c * 1500.0, grid.y0 + r * 1500.0, 0});
+    Diagnostics diags;
+    const auto image = geo::imageOnGrid(path, "gradient.tif", grid, diags);
+    ASSERT_TRUE(image) << (diags.all().empty() ? "" : formatDiagnostic(diags.all()[0]));
+    int inside = 0, outside = 0;
+    for (int r = 0; r < grid.grid.rows; ++r)
+        for (int c = 0; c < grid.grid.cols; ++c) {
+            const size_t node = size_t(r) * grid.grid.cols + c;
+            double lat = 0, lon = 0, h = 0;
+            ASSERT_TRUE(geo::frameToGeodetic(grid.frame, grid.grid.points[node], lat, lon, h));
+            const double px = (kR * lon * kPi / 180 - x0) / kCell;
+            const double py = (y0 - kR * std::log(std::tan(kPi / 4 + lat * kPi / 360))) / kCell;
+            // Bilinear between pixel centres: value 8 * (p - 0.5), within the image's centres.
+            if (px > 0.5 && px < kCols - 0.5 && py > 0.5 && py < kRows - 0.5) {
+                ++inside;
+                ASSERT_TRUE(image->covered[node]) << r << "," << c;
+                EXPECT_NEAR(image->rgb[3 * node], 8 * (px - 0.5), 1.0) << r << "," << c;
+                EXPECT_NEAR(image->rgb[3 * node + 1], 8 * (py - 0.5), 1.0) << r << "," << c;
+                EXPECT_EQ(image->rgb[3 * node + 2], 77);
+            } else if (py > kRows + 1) {
+                ++outside;
+                EXPECT_FALSE(image->covered[node]) << r << "," << c;
+            }
+        }
+    EXPECT_GT(inside, 60);
+    EXPECT_GT(outside, 10);
 }
 
 }  // namespace
