@@ -15,6 +15,7 @@
 #include "core/text_escape.h"
 #include "emit/adaptive_mesh.h"
 #include "emit/block_base.h"
+#include "emit/surface_contours.h"
 #include "emit/height_field.h"
 #include "emit/mesh.h"
 #include "geo/raster.h"
@@ -128,6 +129,11 @@ emit::ParameterList describe(const scene::SceneSpec& s, const geo::ControlNet& n
     else if (compiled.maskedNodes > 0)
         add("mesh.with_data", fmt::format("{} vertices, {} triangles (masked nodata left out)",
                                           compiled.meshVertices, compiled.meshTriangles));
+    if (s.overlay.contours && s.overlay.enabled != scene::OverlaySpec::Enabled::Off)
+        add("overlay.contours", fmt::format("every {} m on the surface{}", formatShortest(s.overlay.contours->intervalM),
+                                            s.overlay.contours->indexEvery > 0
+                                                ? fmt::format(", every {}th heavier", s.overlay.contours->indexEvery)
+                                                : std::string()));
     if (compiled.baseFloorM)
         add("base", fmt::format("a block: walls down to a floor at {:.2f} m, {:.2f} m below the lowest point",
                                 *compiled.baseFloorM, compiled.zRangeM[0] - *compiled.baseFloorM));
@@ -375,6 +381,17 @@ std::optional<CompileResult> compileScene(const LoadedScene& loaded,
                 for (const auto& f : files) std::filesystem::remove(f, ec);
         }
     } written;
+    if (spec.overlay.contours) {
+        constexpr int kMaxContourLevels = 1000;
+        if (const int n = emit::contourLevelCount(where, *spec.overlay.contours); n > kMaxContourLevels) {
+            diags.error(spec.overlay.locs.at("overlay.contours"),
+                        fmt::format("overlay.contours: interval_m = {} m gives {} lines over the surface's {:.0f} m "
+                                    "of relief, more than {} a still can show: choose a wider interval",
+                                    formatShortest(spec.overlay.contours->intervalM), n, where.zMaxM - where.zMinM,
+                                    kMaxContourLevels));
+            return std::nullopt;
+        }
+    }
     // [texture] image: the image resampled onto the refined grid, drawn as a drape PNG.
     std::optional<geo::ImageOnGrid> image;
     if (look.colouring == scene::LookSpec::Colouring::Image) {
@@ -428,8 +445,24 @@ std::optional<CompileResult> compileScene(const LoadedScene& loaded,
     }
     emit::GeometryWriter base;
     if (where.baseElevationM) base = [&](std::FILE* out) { emit::writeBlockBase(out, refined, where); };
-    if (!emit::writeScene(options.povPath, *tmpl, where, geometry, base, look, spec.render, result.parameters, diags))
+    emit::GeometryWriter contours;
+    std::string contourError;
+    if (spec.overlay.contours && spec.overlay.enabled != scene::OverlaySpec::Enabled::Off) {
+        // A line a pixel and a fifth wide at the centre of the view (index lines twice that).
+        const double widthM = 1.2 * result.overlayFacts.metresPerPixel;
+        contours = [&, widthM](std::FILE* out) {
+            result.contours = emit::writeSurfaceContours(out, refined, where, *spec.overlay.contours, widthM, contourError);
+        };
+    }
+    if (!emit::writeScene(options.povPath, *tmpl, where, geometry, base, contours, look, spec.render,
+                          result.parameters, diags))
         return std::nullopt;
+    if (!contourError.empty()) {
+        std::error_code ec;
+        std::filesystem::remove(options.povPath, ec);
+        diags.error(spec.overlay.locs.at("overlay.contours"), "overlay.contours: GDAL: " + contourError);
+        return std::nullopt;
+    }
     written.keep = true;
     if (!options.dumpNetPath.empty())
         writeFileAtomically(options.dumpNetPath, options.dumpNetPath.extension() == ".asc"
@@ -751,6 +784,10 @@ std::string sidecarJson(const CompileResult& c, const OutputPaths& paths,
                            {"holder_estimate", c.holder},
                            {"levels", levels}};
     }
+    if (c.contours.levels > 0)
+        j["contours"] = {{"interval_m", c.scene.overlay.contours->intervalM},
+                         {"levels", c.contours.levels},
+                         {"lines", c.contours.lines}};
     if (c.baseFloorM)
         j["base"] = {{"floor_elevation_m", *c.baseFloorM}, {"thickness_m", c.zRangeM[0] - *c.baseFloorM}};
     j["sun"] = {{"azimuth_deg", c.sun.azimuthDeg},

@@ -21,6 +21,7 @@
 #include "annotate/overlay.h"
 #include "core/diagnostics.h"
 #include "emit/geometry_kind.h"
+#include "emit/surface_contours.h"
 #include "emit/write_scene.h"
 #include "geo/normalize.h"
 #include "measure/auto_depth.h"
@@ -118,6 +119,7 @@ struct CompileResult {
         std::string datetime;          ///< as written in the scene
         double lonDeg = 0, latDeg = 0; ///< where it was computed (fromDatetime)
     } sun;
+    emit::SurfaceContours contours;             ///< [overlay] contours as drawn
     std::optional<double> drapeImageCoverage;  ///< [texture] image: the share of the surface's nodes it covers
     std::optional<double> baseFloorM;   ///< the block model's floor elevation; unset: no block
     std::array<double, 2> zRangeM{};    ///< the surface's lowest and highest elevation (nodes with data)

@@ -303,7 +303,8 @@ double finestMetresPerPixel(const CameraView& view, const ScenePlacement& where,
 }
 
 Bindings sceneBindings(const ScenePlacement& where, GeometryWriter geometry, const scene::LookSpec& look,
-                       const scene::RenderSpec& render, const ParameterList& header, GeometryWriter base) {
+                       const scene::RenderSpec& render, const ParameterList& header, GeometryWriter base,
+                       GeometryWriter contours) {
     const scene::CameraSpec& camera = look.camera;
     Bindings b;
     std::string head;
@@ -381,6 +382,8 @@ Bindings sceneBindings(const ScenePlacement& where, GeometryWriter geometry, con
     b["terrain"].writer = std::move(geometry);
     if (base) b["base"].writer = std::move(base);
     else b["base"].text = "";
+    if (contours) b["contours"].writer = std::move(contours);
+    else b["contours"].text = "";
     return b;
 }
 
@@ -398,9 +401,10 @@ std::optional<Template> loadSceneTemplate(const std::filesystem::path& templates
 }
 
 bool writeScene(const std::filesystem::path& out, const Template& tmpl, const ScenePlacement& where,
-                GeometryWriter geometry, GeometryWriter base, const scene::LookSpec& look,
+                GeometryWriter geometry, GeometryWriter base, GeometryWriter contours, const scene::LookSpec& look,
                 const scene::RenderSpec& render, const ParameterList& header, Diagnostics& diags) {
-    const Bindings bindings = sceneBindings(where, std::move(geometry), look, render, header, std::move(base));
+    const Bindings bindings =
+        sceneBindings(where, std::move(geometry), look, render, header, std::move(base), std::move(contours));
     if (!checkTemplate(tmpl, bindings, diags)) return false;
     AtomicFile file(out);
     renderTemplate(tmpl, bindings, file.stream());

@@ -56,9 +56,11 @@ using GeometryWriter = std::function<void(std::FILE* out)>;
 
 /// The template's bindings: header (every key and value through
 /// oneLineText in core/text_escape.h), camera and sun (from the terrain's placement), the
-/// geometry, and the block model under it (`base`: empty for a floating surface).
+/// geometry, the block model under it (`base`: empty for a floating surface)
+/// and the contour lines on it (`contours`: empty for none).
 Bindings sceneBindings(const ScenePlacement& where, GeometryWriter geometry, const scene::LookSpec& look,
-                       const scene::RenderSpec& render, const ParameterList& header, GeometryWriter base = {});
+                       const scene::RenderSpec& render, const ParameterList& header, GeometryWriter base = {},
+                       GeometryWriter contours = {});
 
 /// Loads `<templatesDir>/scene.pov.in`.
 std::optional<Template> loadSceneTemplate(const std::filesystem::path& templatesDir,
@@ -66,7 +68,7 @@ std::optional<Template> loadSceneTemplate(const std::filesystem::path& templates
 
 /// Checks bindings, then writes the .pov atomically (temp file + rename).
 bool writeScene(const std::filesystem::path& out, const Template& tmpl, const ScenePlacement& where,
-                GeometryWriter geometry, GeometryWriter base, const scene::LookSpec& look,
+                GeometryWriter geometry, GeometryWriter base, GeometryWriter contours, const scene::LookSpec& look,
                 const scene::RenderSpec& render, const ParameterList& header, Diagnostics& diags);
 
 }  // namespace relief::emit

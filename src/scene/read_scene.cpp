@@ -794,6 +794,34 @@ std::optional<SceneSpec> readScene(const std::filesystem::path& path, Diagnostic
         if (auto v = s.boolean("legend")) scene.overlay.legend = *v;
         if (auto v = s.boolean("scale_bar")) scene.overlay.scaleBar = *v;
         if (auto v = s.boolean("north_arrow")) scene.overlay.northArrow = *v;
+        s.markKnown("contours");
+        if (const toml::node* n = s.find("contours")) {
+            // An inline table: { interval_m = 50, index_every = 5, color = "#3e3426" }.
+            const toml::table* t = n->as_table();
+            ContourSpec contours;
+            bool ok = t != nullptr && t->contains("interval_m");
+            for (auto&& [k, v] : t ? *t : toml::table{}) {
+                const std::string key(k.str());
+                if (key == "interval_m") {
+                    const auto d = v.value<double>();
+                    ok = ok && d && *d > 0 && std::isfinite(*d);
+                    if (d) contours.intervalM = *d;
+                } else if (key == "index_every") {
+                    const auto i = v.value_exact<int64_t>();
+                    ok = ok && i && *i >= 0 && *i <= 100;
+                    if (i) contours.indexEvery = static_cast<int>(*i);
+                } else if (key == "color") {
+                    const auto c = v.value_exact<std::string>();
+                    ok = ok && c && parseHexColor(*c, contours.colour);
+                } else {
+                    ok = false;
+                }
+            }
+            if (ok) scene.overlay.contours = contours;
+            else
+                s.error("contours", "overlay.contours must be { interval_m = <metres> } with optional index_every "
+                                    "= <n> (every n-th line heavier, 0: none) and color = \"#rrggbb\"");
+        }
         s.finish();
     }
 

@@ -217,6 +217,13 @@ struct RenderSpec {
 };
 
 /// [overlay]: what is drawn over the still for a report (annotate/).
+/// [overlay] contours: contour lines drawn on the terrain's surface.
+struct ContourSpec {
+    double intervalM = 50;      ///< between lines, true metres
+    int indexEvery = 5;         ///< every n-th line (from 0 m) is an index contour, drawn heavier
+    ColorStop colour{0, 0.05, 0.035, 0.02};  ///< linear RGB (#3e3426 in sRGB)
+};
+
 struct OverlaySpec {
     enum class Enabled { Auto, On, Off };
     Enabled enabled = Enabled::Auto;  ///< Auto: on for stills at least kMinAutoWidthPx wide
@@ -224,6 +231,7 @@ struct OverlaySpec {
     std::string title, subtitle;
     std::optional<std::string> credits;  ///< unset: the samples' attribution
     bool legend = true, scaleBar = true, northArrow = true;
+    std::optional<ContourSpec> contours;  ///< unset: none
     KeyLocations locs;
 };
 

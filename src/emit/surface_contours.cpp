@@ -1,0 +1,107 @@
+#include "emit/surface_contours.h"
+
+#include <cmath>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "core/number_format.h"
+#include "measure/contours.h"
+
+namespace relief::emit {
+
+namespace {
+
+std::string point(const Vec3& v) {
+    char buf[120];
+    char* p = buf;
+    *p++ = '<';
+    p = writeFixed(p, v.x, 5);
+    *p++ = ',';
+    p = writeFixed(p, v.y, 5);
+    *p++ = ',';
+    p = writeFixed(p, v.z, 5);
+    *p++ = '>';
+    return std::string(buf, p);
+}
+
+std::vector<double> levelsOf(const ScenePlacement& where, const scene::ContourSpec& spec) {
+    std::vector<double> levels;
+    for (double k = std::ceil(where.zMinM / spec.intervalM); k * spec.intervalM <= where.zMaxM && levels.size() < 100000;
+         ++k)
+        levels.push_back(k * spec.intervalM);
+    return levels;
+}
+
+}  // namespace
+
+int contourLevelCount(const ScenePlacement& where, const scene::ContourSpec& spec) {
+    return static_cast<int>(levelsOf(where, spec).size());
+}
+
+SurfaceContours writeSurfaceContours(std::FILE* out, const geo::GeoGrid& refined, const ScenePlacement& where,
+                                     const scene::ContourSpec& spec, double widthM, std::string& error) {
+    SurfaceContours made;
+    const std::vector<double> levels = levelsOf(where, spec);
+    made.levels = static_cast<int>(levels.size());
+    if (levels.empty()) return made;
+    const auto lines = measure::contourLines(refined, levels, error);
+    if (!error.empty()) return made;
+
+    std::vector<Vec3> vertices;
+    std::vector<std::array<std::uint32_t, 3>> faces;
+    for (size_t li = 0; li < lines.size(); ++li) {
+        const long long index = std::llround(levels[li] / spec.intervalM);
+        const bool heavy = spec.indexEvery > 0 && index % spec.indexEvery == 0;
+        const double half = 0.5 * widthM * (heavy ? 2 : 1);
+        for (const curves::PiecewiseBezier& line : lines[li]) {
+            std::vector<curves::Point2> pts;
+            for (const auto& seg : line.segments)
+                for (const auto& p : seg.control)
+                    if (pts.empty() || std::hypot(p.x - pts.back().x, p.y - pts.back().y) > 1e-9) pts.push_back(p);
+            if (pts.size() < 2) continue;
+            ++made.lines;
+            // Two vertices a point, across the line; a run of quads along it,
+            // broken where the surface has no data.
+            std::int64_t previous = -1;
+            for (size_t i = 0; i < pts.size(); ++i) {
+                const auto& a = pts[i > 0 ? i - 1 : i];
+                const auto& b = pts[i + 1 < pts.size() ? i + 1 : i];
+                double tx = b.x - a.x, ty = b.y - a.y;
+                const double len = std::hypot(tx, ty);
+                tx /= len, ty /= len;
+                const double nx = -ty * half, ny = tx * half;
+                const auto left = refined.sample(pts[i].x + nx, pts[i].y + ny);
+                const auto right = refined.sample(pts[i].x - nx, pts[i].y - ny);
+                if (!left || !right) {
+                    previous = -1;
+                    continue;
+                }
+                const double lift = 0.4 * half;
+                const auto v = static_cast<std::uint32_t>(vertices.size());
+                vertices.push_back(where.scenePoint({pts[i].x + nx, pts[i].y + ny, *left + lift}));
+                vertices.push_back(where.scenePoint({pts[i].x - nx, pts[i].y - ny, *right + lift}));
+                ++made.points;
+                if (previous >= 0) {
+                    const auto u = static_cast<std::uint32_t>(previous);
+                    faces.push_back({u, u + 1, v + 1});
+                    faces.push_back({u, v + 1, v});
+                }
+                previous = v;
+            }
+        }
+    }
+    if (faces.empty()) return made;
+    const auto& c = spec.colour;
+    fmt::print(out, "// Contour lines every {} m ([overlay] contours), lying on the surface.\n",
+               formatShortest(spec.intervalM));
+    fmt::print(out, "mesh2 {{\n  vertex_vectors {{\n    {}", vertices.size());
+    for (const Vec3& v : vertices) fmt::print(out, ",\n{}", point(v));
+    fmt::print(out, "\n  }}\n  face_indices {{\n    {}", faces.size());
+    for (const auto& f : faces) fmt::print(out, ",\n<{},{},{}>", f[0], f[1], f[2]);
+    fmt::print(out, "\n  }}\n  texture {{ pigment {{ rgb {} }} finish {{ ambient 0.35 diffuse 0.4 }} }}\n  no_shadow\n}}\n",
+               point({c.r, c.g, c.b}));
+    return made;
+}
+
+}  // namespace relief::emit

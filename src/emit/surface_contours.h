@@ -1,0 +1,31 @@
+#pragma once
+// Stage 4, contour lines on the terrain ([overlay] contours): GDAL's contours
+// of the refined surface drawn as thin ribbons lying on it, so that ridges
+// hide them as they hide the ground, every n-th (an index contour) heavier.
+
+#include <cstdio>
+#include <string>
+
+#include "emit/mesh.h"
+#include "geo/geo_grid.h"
+#include "scene/scene_spec.h"
+
+namespace relief::emit {
+
+struct SurfaceContours {
+    int levels = 0;
+    long long lines = 0, points = 0;
+};
+
+/// Writes the contour lines of `refined` at every multiple of
+/// spec.intervalM within the surface's range as one mesh2: a ribbon along
+/// each line, lying on the surface (its edges' heights sampled from it, lifted
+/// a fifth of its width), `widthM` wide (index contours twice that). Nodes
+/// without data have none. `error` is set when GDAL fails.
+SurfaceContours writeSurfaceContours(std::FILE* out, const geo::GeoGrid& refined, const ScenePlacement& where,
+                                     const scene::ContourSpec& spec, double widthM, std::string& error);
+
+/// How many levels spec gives over the surface's range.
+int contourLevelCount(const ScenePlacement& where, const scene::ContourSpec& spec);
+
+}  // namespace relief::emit
