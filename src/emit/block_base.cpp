@@ -105,14 +105,17 @@ void writeBlockBase(std::FILE* out, const geo::GeoGrid& refined, const ScenePlac
     if (block.faces.empty()) return;
     const double floorM = *where.baseElevationM;
     const auto& points = refined.grid.points;
-    fmt::print(out, "// The block model ([base]): walls from the surface's edge down to a floor at {:.2f} m.\n", floorM);
-    fmt::print(out, "mesh2 {{\n  vertex_vectors {{\n    {}", block.vertices.size());
+    // Formatted in memory, then written: a failed write (a full disk) is the
+    // .pov's AtomicFile's to report, not an exception from here.
+    fmt::memory_buffer sdl;
+    fmt::format_to(std::back_inserter(sdl), "// The block model ([base]): walls from the surface's edge down to a floor at {:.2f} m.\n", floorM);
+    fmt::format_to(std::back_inserter(sdl), "mesh2 {{\n  vertex_vectors {{\n    {}", block.vertices.size());
     for (const auto& v : block.vertices)
-        fmt::print(out, ",\n{}", point(v.floor ? where.scenePointAtElevation(points[v.node], floorM)
+        fmt::format_to(std::back_inserter(sdl), ",\n{}", point(v.floor ? where.scenePointAtElevation(points[v.node], floorM)
                                               : where.scenePoint(points[v.node])));
-    fmt::print(out, "\n  }}\n  texture_list {{\n    {}", where.paletteColors.size());
+    fmt::format_to(std::back_inserter(sdl), "\n  }}\n  texture_list {{\n    {}", where.paletteColors.size());
     for (const auto& c : where.paletteColors)
-        fmt::print(out, ",\n    texture {{ pigment {{ rgb {} }} finish {{ TerrainFinish }} }}",
+        fmt::format_to(std::back_inserter(sdl), ",\n    texture {{ pigment {{ rgb {} }} finish {{ TerrainFinish }} }}",
                    point({kBlockWallShade * c.r, kBlockWallShade * c.g, kBlockWallShade * c.b}));
     // The walls' colours: the surface's at the top, the lowest at the floor.
     const auto shade = [&](std::uint32_t v) {
@@ -121,10 +124,11 @@ void writeBlockBase(std::FILE* out, const geo::GeoGrid& refined, const ScenePlac
         if (where.colouring == scene::LookSpec::Colouring::Slope) return kPaletteSize - 1;
         return vertex.floor ? 0 : int(paletteIndex(where, where.elevation(points[vertex.node])));
     };
-    fmt::print(out, "\n  }}\n  face_indices {{\n    {}", block.faces.size());
+    fmt::format_to(std::back_inserter(sdl), "\n  }}\n  face_indices {{\n    {}", block.faces.size());
     for (const auto& f : block.faces)
-        fmt::print(out, ",\n<{},{},{}>,{},{},{}", f[0], f[1], f[2], shade(f[0]), shade(f[1]), shade(f[2]));
-    fmt::print(out, "\n  }}\n}}\n");
+        fmt::format_to(std::back_inserter(sdl), ",\n<{},{},{}>,{},{},{}", f[0], f[1], f[2], shade(f[0]), shade(f[1]), shade(f[2]));
+    fmt::format_to(std::back_inserter(sdl), "\n  }}\n}}\n");
+    std::fwrite(sdl.data(), 1, sdl.size(), out);
 }
 
 }  // namespace relief::emit

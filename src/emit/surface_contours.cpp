@@ -93,14 +93,16 @@ SurfaceContours writeSurfaceContours(std::FILE* out, const geo::GeoGrid& refined
     }
     if (faces.empty()) return made;
     const auto& c = spec.colour;
-    fmt::print(out, "// Contour lines every {} m ([overlay] contours), lying on the surface.\n",
+    fmt::memory_buffer sdl;  // written at once: a failed write is the .pov's AtomicFile's to report
+    fmt::format_to(std::back_inserter(sdl), "// Contour lines every {} m ([overlay] contours), lying on the surface.\n",
                formatShortest(spec.intervalM));
-    fmt::print(out, "mesh2 {{\n  vertex_vectors {{\n    {}", vertices.size());
-    for (const Vec3& v : vertices) fmt::print(out, ",\n{}", point(v));
-    fmt::print(out, "\n  }}\n  face_indices {{\n    {}", faces.size());
-    for (const auto& f : faces) fmt::print(out, ",\n<{},{},{}>", f[0], f[1], f[2]);
-    fmt::print(out, "\n  }}\n  texture {{ pigment {{ rgb {} }} finish {{ ambient 0.35 diffuse 0.4 }} }}\n  no_shadow\n}}\n",
+    fmt::format_to(std::back_inserter(sdl), "mesh2 {{\n  vertex_vectors {{\n    {}", vertices.size());
+    for (const Vec3& v : vertices) fmt::format_to(std::back_inserter(sdl), ",\n{}", point(v));
+    fmt::format_to(std::back_inserter(sdl), "\n  }}\n  face_indices {{\n    {}", faces.size());
+    for (const auto& f : faces) fmt::format_to(std::back_inserter(sdl), ",\n<{},{},{}>", f[0], f[1], f[2]);
+    fmt::format_to(std::back_inserter(sdl), "\n  }}\n  texture {{ pigment {{ rgb {} }} finish {{ ambient 0.35 diffuse 0.4 }} }}\n  no_shadow\n}}\n",
                point({c.r, c.g, c.b}));
+    std::fwrite(sdl.data(), 1, sdl.size(), out);
     return made;
 }
 

@@ -20,7 +20,7 @@ pid=$!
 sleep 1.2
 kill -9 "$pid"; wait "$pid" 2>/dev/null
 [ -e out/still.png ] && fail "a PNG under its final name after SIGKILL"
-if [ -e out/still.pov ]; then tail -c 3 out/still.pov | grep -q '}' || fail "an incomplete .pov under its final name"; fi
+if [ -e out/still.pov ]; then tail -n 1 out/still.pov | grep -qx '// End of the scene.' || fail "an incomplete .pov under its final name"; fi
 touch out/still.pov.tmp-999999 out/still.height.tmp-999999.png   # as a run killed while writing leaves them
 mkdir -p /tmp/relief-povray-999999-XXXXXX
 "$relief" render -q "$scene" -o out/still.png || fail "the render after a killed one"
