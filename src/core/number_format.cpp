@@ -64,4 +64,17 @@ char* writeFixed(char* out, double value, int decimals) {
 
 std::string formatShortest(double value) { return fmt::format("{}", value); }
 
+std::string fixedVector(double x, double y, double z, int decimals) {
+    char buf[128];
+    char* p = buf;
+    *p++ = '<';
+    p = writeFixed(p, x, decimals);
+    *p++ = ',';
+    p = writeFixed(p, y, decimals);
+    *p++ = ',';
+    p = writeFixed(p, z, decimals);
+    *p++ = '>';
+    return std::string(buf, p);
+}
+
 }  // namespace relief

@@ -13,6 +13,10 @@ namespace relief {
 /// Writes at most 32 characters at `out` and returns the end.
 char* writeFixed(char* out, double value, int decimals);
 
+/// "<x,y,z>" with `decimals` fixed decimals each (writeFixed), as POV-Ray's
+/// vectors are written.
+std::string fixedVector(double x, double y, double z, int decimals);
+
 /// Appends an unsigned integer in decimal. Writes at most 20 characters.
 char* writeUnsigned(char* out, std::uint64_t value);
 

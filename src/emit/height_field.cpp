@@ -54,6 +54,22 @@ std::string num(double v) {
     char buf[40];
     return std::string(buf, writeFixed(buf, v, 6));
 }
+
+// A drape PNG as a linear image map laid flat (x east, z north): the unit
+// square scaled by (sx, sz) and moved by (tx, tz), each line after `indent`.
+std::string drapeTexture(const std::string& png, double sx, double sz, double tx, double tz, const char* indent) {
+    return fmt::format(
+        "{0}texture {{\n"
+        "{0}  pigment {{\n"
+        "{0}    image_map {{ png \"{1}\" gamma 1.0 map_type 0 interpolate 2 }}\n"
+        "{0}    rotate x*90\n"
+        "{0}    scale <{2}, 1, {3}>\n"
+        "{0}    translate <{4}, 0, {5}>\n"
+        "{0}  }}\n"
+        "{0}  finish {{ TerrainFinish }}\n"
+        "{0}}}",
+        indent, png, num(sx), num(sz), num(tx), num(tz));
+}
 }  // namespace
 
 void writeHeightFieldSdl(std::FILE* out, const HeightField& field, const geo::GeoGrid& refined,
@@ -71,20 +87,12 @@ void writeHeightFieldSdl(std::FILE* out, const HeightField& field, const geo::Ge
         "height_field {{\n"
         "  png \"{}\"\n"
         "  smooth\n"
-        "  texture {{\n"
-        "    pigment {{\n"
-        "      image_map {{ png \"{}\" gamma 1.0 map_type 0 interpolate 2 }}\n"
-        "      rotate x*90\n"
-        "      scale <{}, 1, {}>\n"
-        "      translate <{}, 0, {}>\n"
-        "    }}\n"
-        "    finish {{ TerrainFinish }}\n"
-        "  }}\n"
+        "{}\n"
         "  scale <{}, {}, {}>\n"
         "  translate <{}, {}, {}>\n"
         "}}",
-        heightPng, drapePng, num(cols / (cols - 1)), num(rows / (rows - 1)), num(-0.5 / (cols - 1)),
-        num(-0.5 / (rows - 1)), num(ne.x - sw.x), num(height), num(ne.z - sw.z), num(sw.x), num(sw.y), num(sw.z));
+        heightPng, drapeTexture(drapePng, cols / (cols - 1), rows / (rows - 1), -0.5 / (cols - 1), -0.5 / (rows - 1), "  "),
+        num(ne.x - sw.x), num(height), num(ne.z - sw.z), num(sw.x), num(sw.y), num(sw.z));
     std::fwrite(sdl.data(), 1, sdl.size(), out);
 }
 
@@ -144,18 +152,10 @@ std::string drapeTextureSdl(const geo::GeoGrid& refined, const ScenePlacement& w
     const double cols = refined.cols(), rows = refined.rows();
     // Pixel i's centre, (i + 0.5) / n of the map, on node i: the map spans
     // n / (n - 1) node spacings, starting half a spacing west (south) of node 0.
-    return fmt::format(
-        "\ntexture {{\n"
-        "  pigment {{\n"
-        "    image_map {{ png \"{}\" gamma 1.0 map_type 0 interpolate 2 }}\n"
-        "    rotate x*90\n"
-        "    scale <{}, 1, {}>\n"
-        "    translate <{}, 0, {}>\n"
-        "  }}\n"
-        "  finish {{ TerrainFinish }}\n"
-        "}}",
-        drapePng, num(width * cols / (cols - 1)), num(depth * rows / (rows - 1)), num(west - 0.5 * width / (cols - 1)),
-        num(south - 0.5 * depth / (rows - 1)));
+    std::string sdl(1, '\n');
+    sdl += drapeTexture(drapePng, width * cols / (cols - 1), depth * rows / (rows - 1),
+                        west - 0.5 * width / (cols - 1), south - 0.5 * depth / (rows - 1), "");
+    return sdl;
 }
 
 std::string writeDrapePng(const Drape& drape, const std::filesystem::path& png) {

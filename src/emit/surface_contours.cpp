@@ -12,18 +12,7 @@ namespace relief::emit {
 
 namespace {
 
-std::string point(const Vec3& v) {
-    char buf[120];
-    char* p = buf;
-    *p++ = '<';
-    p = writeFixed(p, v.x, 5);
-    *p++ = ',';
-    p = writeFixed(p, v.y, 5);
-    *p++ = ',';
-    p = writeFixed(p, v.z, 5);
-    *p++ = '>';
-    return std::string(buf, p);
-}
+std::string point(const Vec3& v) { return fixedVector(v.x, v.y, v.z, 5); }
 
 std::vector<double> levelsOf(const ScenePlacement& where, const scene::ContourSpec& spec) {
     std::vector<double> levels;
