@@ -354,6 +354,13 @@ std::optional<CompileResult> compileScene(const LoadedScene& loaded,
         f.metresPerPixel = annotate::metresPerPixelAtTarget(view, where.metresPerUnit, spec.render.width);
         f.northDeg = annotate::northOnImageDeg(view, geo::gridConvergenceDeg(net.frame, where.originM.x, where.originM.y),
                                                spec.render.width, spec.render.height);
+        // Where the terrain lies on the still (points in front of the eye only).
+        std::vector<std::array<double, 2>> onImage;
+        const Vec3 forward = view.target - view.eye;
+        for (const Vec3& p : where.outline)
+            if (!view.perspective || dot(p - view.eye, forward) > 0)
+                onImage.push_back(emit::projectToImage(view, p, spec.render.width, spec.render.height));
+        f.terrain = annotate::TerrainOnImage::fromPoints(onImage, spec.render.width);
     }
     result.depth = surface->depth;
     result.autoDepth = surface->autoDepth;
@@ -825,6 +832,8 @@ std::string sidecarJson(const CompileResult& c, const OutputPaths& paths,
                                          {"pixels", overlays->scaleBar.pixels},
                                          {"valid", c.overlayFacts.perspective ? "at the centre of the view" : "everywhere"}};
         j["overlay"]["north_deg_clockwise_from_up"] = overlays->northDeg;
+        j["overlay"]["placement"] = overlays->placement;
+        j["overlay"]["on_terrain"] = overlays->onTerrain;
     }
     return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }

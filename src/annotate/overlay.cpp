@@ -1,6 +1,7 @@
 #include "annotate/overlay.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <memory>
@@ -56,6 +57,21 @@ public:
     // the top at y, 1 the bottom.
     std::pair<double, double> text(const std::string& s, double x, double y, double sizeUnits, bool bold,
                                    double anchorX = 0, double maxWidth = 0, int maxLines = 1, double anchorY = 0) {
+        return laidOut(s, x, y, sizeUnits, bold, anchorX, maxWidth, maxLines, anchorY, true);
+    }
+    /// The size text() would give, drawing nothing.
+    std::pair<double, double> measure(const std::string& s, double sizeUnits, bool bold, double maxWidth = 0,
+                                      int maxLines = 1, double anchorX = 0) {
+        // A wrapped layout reports its whole width: a text that fits on one
+        // line is measured as the line it is.
+        const auto natural = laidOut(s, 0, 0, sizeUnits, bold, anchorX, 0, 1, 0, false);
+        if (maxWidth <= 0 || natural.first <= maxWidth) return natural;
+        return laidOut(s, 0, 0, sizeUnits, bold, anchorX, maxWidth, maxLines, 0, false);
+    }
+
+private:
+    std::pair<double, double> laidOut(const std::string& s, double x, double y, double sizeUnits, bool bold,
+                                      double anchorX, double maxWidth, int maxLines, double anchorY, bool draw) {
         Owned<PangoLayout> layout(pango_cairo_create_layout(cr_));
         Owned<PangoFontDescription> font(pango_font_description_from_string(bold ? "DejaVu Sans Bold" : "DejaVu Sans"));
         // Never below 10 px: a label a reader cannot read is no label.
@@ -73,6 +89,7 @@ public:
         PangoRectangle box;  // the lines as laid out (a right-aligned line starts right of 0)
         pango_layout_get_pixel_extents(layout.get(), nullptr, &box);
         const double w = box.width, h = box.height;
+        if (!draw) return {w, h};
         cairo_move_to(cr_, x - anchorX * w - box.x, y - anchorY * h - box.y);
         pango_cairo_layout_path(cr_, layout.get());
         cairo_set_line_join(cr_, CAIRO_LINE_JOIN_ROUND);
@@ -84,12 +101,118 @@ public:
         return {w, h};
     }
 
-private:
     cairo_t* cr_;
     double unit_;
 };
 
+struct Box {
+    double x0, y0, x1, y1;
+    double w() const { return x1 - x0; }
+    double h() const { return y1 - y0; }
+    bool meets(const Box& o, double pad) const {
+        return x0 < o.x1 + pad && o.x0 < x1 + pad && y0 < o.y1 + pad && o.y0 < y1 + pad;
+    }
+};
+
+// Where the overlays go: each in the first of its places that neither the
+// terrain nor an overlay placed before it covers (a corner of it may touch
+// the terrain: 2 of 81 points); else the first no overlay covers (its halo
+// keeps it legible on the terrain).
+class Placer {
+public:
+    Placer(int W, int H, double u, const TerrainOnImage& terrain) : W_(W), H_(H), u_(u), terrain_(terrain) {}
+
+    struct Choice {
+        double dx = 0, dy = 0;  ///< move from the default box
+        std::string where;      ///< "top-left", ...
+        bool onTerrain = false;
+    };
+
+    using Candidates = std::vector<std::pair<Box, std::string>>;
+
+    /// `box` moved to a corner of the still (2 units in from its edges).
+    Box corner(const Box& box, const std::string& where) const {
+        const double m = 2 * u_;
+        const double x = where.find("left") != std::string::npos ? m : W_ - m - box.w();
+        const double y = where.find("top") != std::string::npos ? m : H_ - m - box.h();
+        return {x, y, x + box.w(), y + box.h()};
+    }
+
+    /// `box` at its default place, named `defaultName`, then in each corner of `order`.
+    Choice place(const Box& box, const std::string& defaultName, const std::vector<std::string>& order) {
+        Candidates candidates{{box, defaultName}};
+        for (const std::string& where : order) candidates.push_back({corner(box, where), where});
+        return place(box, candidates);
+    }
+
+    /// The first of `candidates` (boxes the size of `box`) that is free.
+    Choice place(const Box& box, const Candidates& candidates) {
+        const auto freeOfOverlays = [&](const Box& b) {
+            return std::none_of(placed_.begin(), placed_.end(), [&](const Box& p) { return b.meets(p, u_); });
+        };
+        const std::pair<Box, std::string>* chosen = nullptr;
+        for (const auto& c : candidates)
+            if (freeOfOverlays(c.first) && !coversTerrain(c.first)) {
+                chosen = &c;
+                break;
+            }
+        if (!chosen)
+            for (const auto& c : candidates)
+                if (freeOfOverlays(c.first)) {
+                    chosen = &c;
+                    break;
+                }
+        if (!chosen) chosen = &candidates.front();
+        placed_.push_back(chosen->first);
+        return {chosen->first.x0 - box.x0, chosen->first.y0 - box.y0, chosen->second, coversTerrain(chosen->first)};
+    }
+
+private:
+    bool coversTerrain(const Box& b) const {
+        constexpr int kSamples = 9, kAllowed = 2;
+        int on = 0;
+        for (int i = 0; i < kSamples; ++i)
+            for (int j = 0; j < kSamples; ++j)
+                on += terrain_.covers(b.x0 + b.w() * i / (kSamples - 1), b.y0 + b.h() * j / (kSamples - 1));
+        return on > kAllowed;
+    }
+    int W_, H_;
+    double u_;
+    const TerrainOnImage& terrain_;
+    std::vector<Box> placed_;
+};
+
 }  // namespace
+
+TerrainOnImage TerrainOnImage::fromPoints(const std::vector<std::array<double, 2>>& points, int widthPx) {
+    TerrainOnImage t;
+    const int bands = std::max(1, static_cast<int>(std::ceil(widthPx / t.bandPx)));
+    t.top.assign(bands, 1e300);
+    t.bottom.assign(bands, -1e300);
+    for (const auto& [x, y] : points) {
+        if (!(x >= 0 && x < widthPx) || !std::isfinite(y)) continue;
+        const int b = static_cast<int>(x / t.bandPx);
+        t.top[b] = std::min(t.top[b], y), t.bottom[b] = std::max(t.bottom[b], y);
+    }
+    // Bands between covered ones: linear between their neighbours (the lattice's
+    // nodes land a few pixels apart).
+    int last = -1;
+    for (int b = 0; b < bands; ++b) {
+        if (t.top[b] > t.bottom[b]) continue;
+        for (int k = last + 1; last >= 0 && k < b; ++k) {
+            const double f = double(k - last) / (b - last);
+            t.top[k] = t.top[last] + f * (t.top[b] - t.top[last]);
+            t.bottom[k] = t.bottom[last] + f * (t.bottom[b] - t.bottom[last]);
+        }
+        last = b;
+    }
+    return t;
+}
+
+bool TerrainOnImage::covers(double x, double y) const {
+    const int b = static_cast<int>(std::floor(x / bandPx));
+    return b >= 0 && b < static_cast<int>(top.size()) && y >= top[b] && y <= bottom[b];
+}
 
 ScaleBar chooseScaleBar(double metresPerPixel, int widthPx) {
     ScaleBar bar;
@@ -158,20 +281,52 @@ std::string drawOverlays(PngImage8& image, const scene::OverlaySpec& spec, const
     Painter paint(c, u);
     OverlayRecord rec;
 
+    // Each overlay: its box where it goes by default, then moved (cairo_translate)
+    // to the place the placer chooses.
+    Placer placer(W, H, u, facts.terrain);
+    const auto placed = [&](const char* name, const Placer::Choice& choice) {
+        rec.drawn.push_back(name);
+        rec.placement[name] = choice.where;
+        if (choice.onTerrain) rec.onTerrain.push_back(name);
+    };
+
     // Title and subtitle, top left.
-    double y = 2.2 * u;
-    if (!spec.title.empty()) {
-        y += paint.text(spec.title, 2.5 * u, y, 3.6, true, 0, 0.62 * W, 2).second;
-        rec.drawn.push_back("title");
-    }
-    if (!spec.subtitle.empty()) {
-        paint.text(spec.subtitle, 2.5 * u, y + 0.3 * u, 2.2, false, 0, 0.62 * W, 2);
-        rec.drawn.push_back("subtitle");
+    if (!spec.title.empty() || !spec.subtitle.empty()) {
+        double w = 0, h = 0;
+        if (!spec.title.empty()) {
+            const auto [tw, th] = paint.measure(spec.title, 3.6, true, 0.62 * W, 2);
+            w = std::max(w, tw), h += th;
+        }
+        if (!spec.subtitle.empty()) {
+            const auto [sw, sh] = paint.measure(spec.subtitle, 2.2, false, 0.62 * W, 2);
+            w = std::max(w, sw), h += sh + 0.3 * u;
+        }
+        const Box box{2.5 * u, 2.2 * u, 2.5 * u + w, 2.2 * u + h};
+        const auto choice = placer.place(box, "top-left", {"top-right"});  // a title stays at the top
+        cairo_save(c);
+        cairo_translate(c, choice.dx, choice.dy);
+        // Right-aligned in a right-hand corner.
+        const bool right = choice.where.find("right") != std::string::npos;
+        const double x = right ? box.x1 : box.x0, anchor = right ? 1 : 0;
+        double y = box.y0;
+        if (!spec.title.empty()) {
+            y += paint.text(spec.title, x, y, 3.6, true, anchor, 0.62 * W, 2).second;
+            placed("title", choice);
+        }
+        if (!spec.subtitle.empty()) {
+            paint.text(spec.subtitle, x, y + 0.3 * u, 2.2, false, anchor, 0.62 * W, 2);
+            placed("subtitle", choice);
+        }
+        cairo_restore(c);
     }
 
     // North arrow, top right: an arrow pointing where true north lies.
     if (spec.northArrow) {
         const double cx = W - 6 * u, cy = 7.5 * u, len = 3.6 * u;
+        const Box box{cx - 1.9 * len, cy - 1.9 * len - 1.3 * u, cx + 1.9 * len, cy + 1.9 * len};
+        const auto choice = placer.place(box, "top-right", {"top-left", "bottom-right", "bottom-left"});
+        cairo_save(c);
+        cairo_translate(c, choice.dx, choice.dy);
         cairo_save(c);
         cairo_translate(c, cx, cy);
         cairo_rotate(c, facts.northDeg * kPi / 180);
@@ -188,13 +343,73 @@ std::string drawOverlays(PngImage8& image, const scene::OverlaySpec& spec, const
         cairo_restore(c);
         const double a = facts.northDeg * kPi / 180;
         paint.text("N", cx + std::sin(a) * 1.75 * len, cy - std::cos(a) * 1.75 * len - 1.3 * u, 2.4, true, 0.5);
-        rec.drawn.push_back("north_arrow");
+        cairo_restore(c);
+        placed("north_arrow", choice);
         rec.northDeg = facts.northDeg;
+    }
+
+    // Credits, bottom right: whose data (CC BY and the OGL ask for it).
+    if (!facts.credits.empty()) {
+        const auto [w, h] = paint.measure(facts.credits, 1.4, false, 0.55 * W, 4, 1);
+        const Box box{W - 2 * u - w, H - 1.2 * u - h, W - 2 * u, H - 1.2 * u};
+        const auto choice = placer.place(box, "bottom-right", {"bottom-left"});
+        const bool right = choice.where.find("right") != std::string::npos;
+        // Left-aligned in a left-hand corner.
+        paint.text(facts.credits, right ? box.x1 + choice.dx : box.x0 + choice.dx, box.y1 + choice.dy, 1.4, false,
+                   right ? 1 : 0, 0.55 * W, 4, 1);
+        placed("credits", choice);
+    }
+
+    // Scale bar, bottom left: four alternating segments.
+    if (spec.scaleBar) {
+        const ScaleBar bar = chooseScaleBar(facts.metresPerPixel, W);
+        if (bar.pixels > 0) {
+            const double x0 = 3 * u, y0 = H - 7 * u, h = 0.9 * u;
+            const double labelW = paint.measure(bar.label, 1.7, false).first;
+            const double noteW = facts.perspective ? paint.measure("at the centre of the view", 1.4, false).first : 0;
+            const Box box{x0 - 1.2 * u, y0 - 2.8 * u, std::max(x0 + bar.pixels + labelW / 2, x0 + noteW),
+                          y0 + h + (facts.perspective ? 3.2 * u : 0.6 * u)};
+            const auto choice = placer.place(box, "bottom-left", {"bottom-right", "top-left", "top-right"});
+            cairo_save(c);
+            cairo_translate(c, choice.dx, choice.dy);
+            cairo_set_line_width(c, 0.15 * u);
+            for (int i = 0; i < 4; ++i) {
+                cairo_rectangle(c, x0 + i * bar.pixels / 4, y0, bar.pixels / 4, h);
+                if (i % 2 == 0) cairo_set_source_rgb(c, 0.08, 0.08, 0.08);
+                else cairo_set_source_rgb(c, 1, 1, 1);
+                cairo_fill_preserve(c);
+                cairo_set_source_rgb(c, 0.08, 0.08, 0.08);
+                cairo_stroke(c);
+            }
+            paint.text("0", x0, y0 - 2.6 * u, 1.7, false, 0.5);
+            paint.text(bar.label, x0 + bar.pixels, y0 - 2.6 * u, 1.7, false, 0.5);
+            if (facts.perspective)
+                paint.text("at the centre of the view", x0, y0 + h + 0.6 * u, 1.4, false, 0);
+            cairo_restore(c);
+            placed("scale_bar", choice);
+            rec.scaleBar = bar;
+        }
     }
 
     // Elevation legend, right: the ramp as a bar, ticks in true metres.
     if (spec.legend && facts.palette.size() >= 2) {
         const double barW = 2.0 * u, barH = 0.38 * H, x0 = W - 13 * u, y0 = 17 * u;
+        const bool exaggerated = std::abs(facts.exaggeration - 1) > 1e-9;
+        const double titleW = paint.measure(facts.legendTitle, 1.9, true).first;
+        const double noteW = facts.legendNote.empty() ? 0 : paint.measure(facts.legendNote, 1.6, false).first;
+        const double bottom = y0 + barH + 1.2 * u + (exaggerated ? 2.4 * u : 0) + (facts.legendNote.empty() ? 0 : 2.4 * u);
+        const Box box{std::min({x0 - 1.5 * u, x0 + barW - titleW / 2, W - 2 * u - noteW}), y0 - 3.6 * u,
+                      std::max(W - 2 * u, x0 + barW + titleW / 2), bottom};
+        // Down the right edge from below the north arrow, then down the left edge.
+        Placer::Candidates candidates;
+        for (const bool left : {false, true})
+            for (double top = box.y0; top + box.h() <= H - 2 * u || top == box.y0; top += 2 * u) {
+                const double x = left ? 2 * u : box.x0;
+                candidates.push_back({{x, top, x + box.w(), top + box.h()}, left ? "left" : "right"});
+            }
+        const auto choice = placer.place(box, candidates);
+        cairo_save(c);
+        cairo_translate(c, choice.dx, choice.dy);
         paint.text(facts.legendTitle, x0 + barW, y0 - 3.4 * u, 1.9, true, 0.5);
         const int steps = static_cast<int>(std::ceil(barH));
         for (int i = 0; i < steps; ++i) {  // top: the highest
@@ -219,42 +434,14 @@ std::string drawOverlays(PngImage8& image, const scene::OverlaySpec& spec, const
             paint.text(formatShortest(v), x0 + barW + 1.2 * u, ty - 1.0 * u, 1.7, false);
         }
         double noteY = y0 + barH + 1.2 * u;
-        if (std::abs(facts.exaggeration - 1) > 1e-9) {
+        if (exaggerated) {
             paint.text(fmt::format("vertical \u00d7{}", formatShortest(facts.exaggeration)), x0 + barW, noteY, 1.6,
                        false, 0.5);
             noteY += 2.4 * u;
         }
         if (!facts.legendNote.empty()) paint.text(facts.legendNote, W - 2 * u, noteY, 1.6, false, 1);
-        rec.drawn.push_back("legend");
-    }
-
-    // Scale bar, bottom left: four alternating segments.
-    if (spec.scaleBar) {
-        const ScaleBar bar = chooseScaleBar(facts.metresPerPixel, W);
-        if (bar.pixels > 0) {
-            const double x0 = 3 * u, y0 = H - 7 * u, h = 0.9 * u;
-            cairo_set_line_width(c, 0.15 * u);
-            for (int i = 0; i < 4; ++i) {
-                cairo_rectangle(c, x0 + i * bar.pixels / 4, y0, bar.pixels / 4, h);
-                if (i % 2 == 0) cairo_set_source_rgb(c, 0.08, 0.08, 0.08);
-                else cairo_set_source_rgb(c, 1, 1, 1);
-                cairo_fill_preserve(c);
-                cairo_set_source_rgb(c, 0.08, 0.08, 0.08);
-                cairo_stroke(c);
-            }
-            paint.text("0", x0, y0 - 2.6 * u, 1.7, false, 0.5);
-            paint.text(bar.label, x0 + bar.pixels, y0 - 2.6 * u, 1.7, false, 0.5);
-            if (facts.perspective)
-                paint.text("at the centre of the view", x0, y0 + h + 0.6 * u, 1.4, false, 0);
-            rec.drawn.push_back("scale_bar");
-            rec.scaleBar = bar;
-        }
-    }
-
-    // Credits, bottom right: whose data (CC BY and the OGL ask for it).
-    if (!facts.credits.empty()) {
-        paint.text(facts.credits, W - 2 * u, H - 1.2 * u, 1.4, false, 1, 0.55 * W, 4, 1);
-        rec.drawn.push_back("credits");
+        cairo_restore(c);
+        placed("legend", choice);
     }
 
     cairo_surface_flush(surface.get());

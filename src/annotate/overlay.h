@@ -7,6 +7,8 @@
 //
 // Every string is set as text (pango_layout_set_text), never as markup: a
 // title "<b>x</b> &amp;" prints as written.
+#include <array>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -18,6 +20,18 @@ namespace relief::annotate {
 
 /// What the overlays say, computed from the scene, its placement and its
 /// camera (pipeline.cpp): the numbers, not how to draw them.
+/// Where the terrain lies on a still, column by column: in each band of
+/// `bandPx` pixels, from its highest point on the image to its lowest (a
+/// terrain seen from above covers what lies between). Made from the terrain's
+/// outline (the surface's and the block floor's nodes on a coarse lattice)
+/// projected into the image; bands between two covered ones are filled in.
+struct TerrainOnImage {
+    double bandPx = 4;
+    std::vector<double> top, bottom;  ///< per band, pixels (y down); top > bottom: nothing there
+    static TerrainOnImage fromPoints(const std::vector<std::array<double, 2>>& points, int widthPx);
+    bool covers(double x, double y) const;
+};
+
 struct OverlayFacts {
     std::string credits;  ///< the scene's, or the samples' attribution
     // The legend: the ramp as drawn (linear RGB), over true elevations.
@@ -33,6 +47,8 @@ struct OverlayFacts {
     // The north arrow: true north's direction in the image, degrees clockwise
     // from straight up, at the terrain's centre.
     double northDeg = 0;
+    // Where the terrain is on the still, for the overlays to keep off it.
+    TerrainOnImage terrain;
 };
 
 /// A scale bar: a round length (1, 2 or 5 x 10^k m) near a fifth of the
@@ -63,9 +79,13 @@ bool overlaysWanted(const scene::OverlaySpec& spec, int widthPx);
 /// What was drawn, for the sidecar.
 struct OverlayRecord {
     std::vector<std::string> drawn;  ///< "title", "legend", ...
+    std::map<std::string, std::string> placement;  ///< each drawn item's place: "top-left", ..., "right"
+    std::vector<std::string> onTerrain;  ///< items no free place could keep off the terrain
     ScaleBar scaleBar;
     double northDeg = 0;
 };
+
+
 
 /// Draws the overlays the spec asks for onto `image` (8-bit RGB or RGBA,
 /// changed in place). Returns "" or the error.

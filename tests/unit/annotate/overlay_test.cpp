@@ -105,7 +105,14 @@ TEST(Overlay, DrawsInTheCornersAndKeepsTheMiddle) {
     facts.metresPerPixel = 2;
     OverlayRecord record;
     ASSERT_EQ(drawOverlays(image, spec, facts, &record), "");
-    EXPECT_EQ(record.drawn, (std::vector<std::string>{"title", "north_arrow", "legend", "scale_bar", "credits"}));
+    EXPECT_EQ(record.drawn, (std::vector<std::string>{"title", "north_arrow", "credits", "scale_bar", "legend"}));
+    // No terrain known: every item in its own place.
+    EXPECT_EQ(record.placement, (std::map<std::string, std::string>{{"title", "top-left"},
+                                                                     {"north_arrow", "top-right"},
+                                                                     {"credits", "bottom-right"},
+                                                                     {"scale_bar", "bottom-left"},
+                                                                     {"legend", "right"}}));
+    EXPECT_TRUE(record.onTerrain.empty());
     EXPECT_EQ(record.scaleBar.metres, 200);
     auto changed = [&](int x0, int y0, int x1, int y1) {
         int n = 0;
@@ -120,6 +127,47 @@ TEST(Overlay, DrawsInTheCornersAndKeepsTheMiddle) {
     EXPECT_GT(changed(0, 400, 200, 480), 200);   // the scale bar
     EXPECT_GT(changed(300, 440, 640, 480), 100); // the credits
     EXPECT_EQ(changed(200, 150, 480, 380), 0);   // the middle
+}
+
+// Terrain over the left half of the still, top to bottom: the title crosses
+// to the top right; the north arrow, its corner taken, goes down to the bottom
+// right; the credits, their corner taken and the other on the terrain, go
+// there (on the terrain, said so); the scale bar takes the first corner no
+// overlay holds; the legend keeps the right edge.
+TEST(Overlay, ItemsMoveOffTheTerrainWhereTheyCan) {
+    PngImage8 image;
+    image.width = 640;
+    image.height = 480;
+    image.channels = 3;
+    image.pixels.assign(640 * 480 * 3, 128);
+    scene::OverlaySpec spec;
+    spec.title = "Somewhere";
+    OverlayFacts facts;
+    facts.credits = "Data: someone";
+    facts.palette = {{0, 0, 0.5, 0}, {0, 1, 1, 1}};
+    facts.zMinM = 10;
+    facts.zMaxM = 300;
+    facts.metresPerPixel = 2;
+    std::vector<std::array<double, 2>> left;
+    for (int x = 0; x < 320; x += 9)
+        for (int y : {0, 479}) left.push_back({double(x), double(y)});
+    facts.terrain = TerrainOnImage::fromPoints(left, 640);
+    EXPECT_TRUE(facts.terrain.covers(100, 240));
+    EXPECT_TRUE(facts.terrain.covers(6, 10));  // between two points' bands: filled in
+    EXPECT_FALSE(facts.terrain.covers(400, 240));
+    OverlayRecord record;
+    ASSERT_EQ(drawOverlays(image, spec, facts, &record), "");
+    EXPECT_EQ(record.placement.at("title"), "top-right");
+    EXPECT_EQ(record.placement.at("north_arrow"), "bottom-right");
+    EXPECT_EQ(record.placement.at("credits"), "bottom-left");
+    EXPECT_EQ(record.placement.at("scale_bar"), "top-left");
+    EXPECT_EQ(record.placement.at("legend"), "right");
+    EXPECT_EQ(record.onTerrain, (std::vector<std::string>{"credits", "scale_bar"}));
+    // The title is drawn where it was placed: in the top right quarter.
+    int ink = 0;
+    for (int y = 0; y < 40; ++y)
+        for (int x = 320; x < 640; ++x) ink += image.pixels[(size_t(y) * 640 + x) * 3] != 128;
+    EXPECT_GT(ink, 200);
 }
 
 }  // namespace
