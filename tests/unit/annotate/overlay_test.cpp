@@ -86,23 +86,35 @@ TEST(Overlay, AutoOnlyOnStillsWideEnough) {
     EXPECT_FALSE(overlaysWanted(spec, 4000));
 }
 
-// Drawn on a grey still: the title's corner, the legend's column and the
-// scale bar's corner change; the middle, where the terrain is, does not. A
-// hostile title is set as text (Pango never sees markup) and cut to one line.
-TEST(Overlay, DrawsInTheCornersAndKeepsTheMiddle) {
+// A grey 640 x 480 still, and facts for every overlay: a two-colour legend
+// from 10 to 300 m, 2 m a pixel, credits.
+PngImage8 greyStill() {
     PngImage8 image;
     image.width = 640;
     image.height = 480;
     image.channels = 3;
     image.pixels.assign(640 * 480 * 3, 128);
-    scene::OverlaySpec spec;
-    spec.title = "<b>x</b> &amp; #fopen {{terrain}} " + std::string(5000, 'W');
+    return image;
+}
+
+OverlayFacts sampleFacts(std::string credits) {
     OverlayFacts facts;
-    facts.credits = "Data: someone, CC BY 4.0";
+    facts.credits = std::move(credits);
     facts.palette = {{0, 0, 0.5, 0}, {0, 1, 1, 1}};
     facts.zMinM = 10;
     facts.zMaxM = 300;
     facts.metresPerPixel = 2;
+    return facts;
+}
+
+// Drawn on a grey still: the title's corner, the legend's column and the
+// scale bar's corner change; the middle, where the terrain is, does not. A
+// hostile title is set as text (Pango never sees markup) and cut to one line.
+TEST(Overlay, DrawsInTheCornersAndKeepsTheMiddle) {
+    PngImage8 image = greyStill();
+    scene::OverlaySpec spec;
+    spec.title = "<b>x</b> &amp; #fopen {{terrain}} " + std::string(5000, 'W');
+    OverlayFacts facts = sampleFacts("Data: someone, CC BY 4.0");
     OverlayRecord record;
     ASSERT_EQ(drawOverlays(image, spec, facts, &record), "");
     EXPECT_EQ(record.drawn, (std::vector<std::string>{"title", "north_arrow", "credits", "scale_bar", "legend"}));
@@ -135,19 +147,10 @@ TEST(Overlay, DrawsInTheCornersAndKeepsTheMiddle) {
 // there (on the terrain, said so); the scale bar takes the first corner no
 // overlay holds; the legend keeps the right edge.
 TEST(Overlay, ItemsMoveOffTheTerrainWhereTheyCan) {
-    PngImage8 image;
-    image.width = 640;
-    image.height = 480;
-    image.channels = 3;
-    image.pixels.assign(640 * 480 * 3, 128);
+    PngImage8 image = greyStill();
     scene::OverlaySpec spec;
     spec.title = "Somewhere";
-    OverlayFacts facts;
-    facts.credits = "Data: someone";
-    facts.palette = {{0, 0, 0.5, 0}, {0, 1, 1, 1}};
-    facts.zMinM = 10;
-    facts.zMaxM = 300;
-    facts.metresPerPixel = 2;
+    OverlayFacts facts = sampleFacts("Data: someone");
     std::vector<std::array<double, 2>> left;
     for (int x = 0; x < 320; x += 9)
         for (int y : {0, 479}) left.push_back({double(x), double(y)});
