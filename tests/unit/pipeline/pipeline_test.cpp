@@ -2,9 +2,14 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
+#include <numbers>
 #include <fstream>
 
+#include <GeographicLib/UTMUPS.hpp>
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.h"
@@ -108,6 +113,48 @@ TEST(Pipeline, RefinedSurfaceKeepsTheNetsFrameAndExtent) {
     const Vec3& corner = s->refined.grid.at(s->refined.rows() - 1, s->refined.cols() - 1);
     EXPECT_NEAR(corner.x, s->refined.xMax(), 1e-6);
     EXPECT_NEAR(corner.y, s->refined.yMax(), 1e-6);
+}
+
+// [lighting] datetime: the sidecar's sun is the true bearing; the .pov's
+// light comes from the grid bearing, the true one less the meridian
+// convergence (Auckland is 2.2 degrees west of UTM 60's central meridian:
+// grid north there is 1.3 degrees east of true north).
+TEST(Pipeline, TheSunFromADateLightsAlongTheGridBearing) {
+    const fs::path dir = freshDir("sun");
+    SceneJob job;
+    job.until = SceneJob::Until::Pov;
+    job.scenePath = kSource / "tests/golden/small/scene.toml";
+    job.output = dir / "small.pov";
+    job.templatesDir = kSource / "templates";
+    job.threads = 1;
+    job.overrides = {{"lighting.datetime", "2026-06-21T14:00:00+12:00"}};
+    Diagnostics diags;
+    const JobOutcome outcome = runSceneJob(job, diags, nullptr);
+    ASSERT_EQ(outcome.status, JobStatus::Ok) << (diags.all().empty() ? "" : formatDiagnostic(diags.all()[0]));
+    const auto sidecar = nlohmann::json::parse(readFile(dir / "small.json"));
+    const auto& sun = sidecar["sun"];
+    EXPECT_EQ(sun["from"], "datetime");
+    const double lon = sun["at_lonlat"][0], lat = sun["at_lonlat"][1], trueAzimuth = sun["azimuth_deg"];
+    // A winter afternoon in Auckland: the sun north-north-west, 25.5 degrees up (PyEphem 4.1.4, refracted
+    // for 1010 hPa and 10 C: 335.245, 25.503).
+    EXPECT_NEAR(trueAzimuth, 335.245, 0.02);
+    EXPECT_NEAR(double(sun["altitude_deg"]), 25.503, 0.02);
+    int zone = 0;
+    bool northp = false;
+    double x = 0, y = 0, gamma = 0, k = 0;
+    GeographicLib::UTMUPS::Forward(lat, lon, zone, northp, x, y, gamma, k);
+    EXPECT_NEAR(gamma, 1.34, 0.05);
+    // The light's direction in the .pov: from the point it aims at to the light.
+    const std::string pov = readFile(dir / "small.pov");
+    const auto vectorAfter = [&](const std::string& key) {
+        const size_t at = pov.find('<', pov.find(key));
+        double v[3];
+        EXPECT_EQ(std::sscanf(pov.c_str() + at, "<%lf,%lf,%lf>", &v[0], &v[1], &v[2]), 3) << key;
+        return std::array<double, 3>{v[0], v[1], v[2]};
+    };
+    const auto light = vectorAfter("light_source {"), aim = vectorAfter("point_at");
+    const double gridAzimuth = std::atan2(light[0] - aim[0], light[2] - aim[2]) * 180 / std::numbers::pi;
+    EXPECT_NEAR(std::fmod(gridAzimuth + 360, 360), trueAzimuth - gamma, 1e-3);
 }
 
 }  // namespace
