@@ -90,8 +90,9 @@ void addSceneCommands(CLI::App& app, std::vector<Command>& out) {
             ->check(CLI::Range(0, 256));
         sub->add_flag("-q,--quiet", o->common.quiet, "print errors only");
         sub->add_option("--set", o->common.sets,
-                        "override a scene key: section.key=value (e.g. render.width=320, "
-                        "subdivision.omega=1/32); repeatable");
+                        "override a scene key: section.key=value, the value as TOML writes it (render.width=320, "
+                        "subdivision.omega=1/32, camera.position=[-3.17,55.94,600], "
+                        "overlay.contours={interval_m=10}, lighting.datetime=2026-06-21T09:00:00+01:00); repeatable");
     };
     CLI::App* compile = app.add_subcommand(
         "compile", "write the POV-Ray scene (.pov) and a JSON sidecar; no rendering");

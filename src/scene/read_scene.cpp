@@ -296,11 +296,13 @@ bool applyOverrides(toml::table& root, const SceneOverrides& overrides, Diagnost
             t->insert_or_assign(key, static_cast<int64_t>(i));
             continue;
         }
-        if (!text.empty() && text.front() == '[') {  // an array, e.g. camera.position=[-3.18, 55.95, 400]
+        // TOML's own forms: an array (camera.position=[-3.18, 55.95, 400]), an inline
+        // table (overlay.contours={interval_m=10}), a quoted string.
+        if (!text.empty() && (text.front() == '[' || text.front() == '{' || text.front() == '"')) {
             try {
                 toml::table parsed = toml::parse("v = " + text);
-                if (toml::array* a = parsed.get_as<toml::array>("v")) {
-                    t->insert_or_assign(key, std::move(*a));
+                if (toml::node* v = parsed.get("v"); v && (v->is_array() || v->is_table() || v->is_string())) {
+                    t->insert_or_assign(key, std::move(*v));
                     continue;
                 }
             } catch (const toml::parse_error&) {

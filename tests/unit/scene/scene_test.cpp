@@ -2,6 +2,9 @@
 
 #include <filesystem>
 #include <fstream>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "scene/color_ramp.h"
 #include "scene/read_scene.h"
@@ -65,6 +68,59 @@ TEST(ReadScene, EachSpecKeepsTheLocationOfEveryKey) {
     expectAt(s->look.locs.at("camera.fov_deg"), 9, 11);
     expectAt(s->render.locs.at("render.width"), 0, 0);         // no [render]: the file
     EXPECT_DOUBLE_EQ(s->subdivision.scheme.params.at("omega"), 3.0 / 64);
+    std::filesystem::remove_all(dir);
+}
+
+// The report-ready keys, from the file and from overrides written as TOML
+// writes values (an inline table, a quoted string): the block's thickness or
+// false, slope and blend colouring, contours, the sun's date and time.
+TEST(ReadScene, ReportKeysFromTheFileAndFromOverrides) {
+    const auto dir = std::filesystem::temp_directory_path() / "relief-scene-report-test";
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir / "s.csv") << "lon,lat,elev\n";
+    std::ofstream(dir / "s.toml") << "[samples]\npath = \"s.csv\"\n"
+                                     "[base]\nthickness_m = 40\n"
+                                     "[texture]\nmode = \"blend\"\nrock_color = \"#808080\"\nrock_to_deg = 50\n";
+    Diagnostics diags;
+    auto s = readScene(dir / "s.toml", diags);
+    ASSERT_TRUE(s);
+    ASSERT_FALSE(diags.hasErrors());
+    EXPECT_TRUE(s->look.base.enabled);
+    EXPECT_EQ(s->look.base.thicknessM, 40.0);
+    EXPECT_EQ(s->look.colouring, LookSpec::Colouring::Blend);
+    EXPECT_DOUBLE_EQ(s->look.rockFromDeg, 30);
+    EXPECT_DOUBLE_EQ(s->look.rockToDeg, 50);
+    EXPECT_NEAR(s->look.rockColour.r, 0.2158605, 1e-6);  // #80 made linear
+    EXPECT_FALSE(s->overlay.contours);
+    EXPECT_FALSE(s->look.sunTime);
+
+    s = readScene(dir / "s.toml", diags,
+                  {{"base.thickness_m", "false"},
+                   {"overlay.contours", "{interval_m = 25, index_every = 4, color = \"#102030\"}"},
+                   {"lighting.datetime", "\"2026-06-21T09:00:00+12:00\""},
+                   {"texture.mode", "slope"}});
+    ASSERT_TRUE(s);
+    ASSERT_FALSE(diags.hasErrors());
+    EXPECT_FALSE(s->look.base.enabled);
+    ASSERT_TRUE(s->overlay.contours);
+    EXPECT_DOUBLE_EQ(s->overlay.contours->intervalM, 25);
+    EXPECT_EQ(s->overlay.contours->indexEvery, 4);
+    ASSERT_TRUE(s->look.sunTime);
+    EXPECT_EQ(s->look.sunTime->utcSeconds, 1781989200);  // 2026-06-20T21:00:00Z
+    EXPECT_EQ(s->look.sunTimeText, "2026-06-21T09:00:00+12:00");
+    EXPECT_EQ(s->look.colouring, LookSpec::Colouring::Slope);
+
+    // Each wrong value: an error at its key.
+    for (const auto& [key, value] : std::vector<std::pair<std::string, std::string>>{
+             {"overlay.contours", "{interval_m = -5}"},
+             {"overlay.contours", "{interval = 5}"},
+             {"base.thickness_m", "-1"},
+             {"texture.rock_from_deg", "60"},
+             {"texture.mode", "shaded"}}) {
+        Diagnostics bad;
+        readScene(dir / "s.toml", bad, {{key, value}});
+        EXPECT_EQ(bad.errorCount(), 1) << key << " = " << value;
+    }
     std::filesystem::remove_all(dir);
 }
 
