@@ -452,24 +452,37 @@ std::optional<CompileResult> compileScene(const LoadedScene& loaded,
     }
     emit::GeometryWriter base;
     if (where.baseElevationM) base = [&](std::FILE* out) { emit::writeBlockBase(out, refined, where); };
+    // [overlay] contours: built before anything is written, so that lines over
+    // the output limits are refused with nothing left behind.
     emit::GeometryWriter contours;
-    std::string contourError;
+    emit::ContourRibbons ribbons;
     if (spec.overlay.contours && spec.overlay.enabled != scene::OverlaySpec::Enabled::Off) {
         // A line a pixel and a fifth wide at the centre of the view (index lines twice that).
         const double widthM = 1.2 * result.overlayFacts.metresPerPixel;
-        contours = [&, widthM](std::FILE* out) {
-            result.contours = emit::writeSurfaceContours(out, refined, where, *spec.overlay.contours, widthM, contourError);
-        };
+        std::string contourError;
+        ribbons = emit::buildSurfaceContours(refined, where, *spec.overlay.contours, widthM, contourError);
+        const SourceLoc at = spec.overlay.locs.at("overlay.contours");
+        if (!contourError.empty()) {
+            diags.error(at, "overlay.contours: GDAL: " + contourError);
+            return std::nullopt;
+        }
+        const scene::LimitsSpec& limits = spec.limits;
+        const double triangles = double(ribbons.faces.size()), mb = ribbons.sdlBytes() / 1e6;
+        if (triangles + double(result.meshTriangles) > limits.maxTriangles || mb > limits.maxSdlMB) {
+            diags.error(at, fmt::format("overlay.contours: interval_m = {} m draws {} lines of {:.3g} triangles "
+                                        "({:.3g} MB of SDL), past limits.max_triangles ({:.3g} with the surface's "
+                                        "{:.3g}) or limits.max_sdl_mb ({}): choose a wider interval",
+                                        formatShortest(spec.overlay.contours->intervalM), ribbons.made.lines,
+                                        triangles, mb, limits.maxTriangles, double(result.meshTriangles),
+                                        formatShortest(limits.maxSdlMB)));
+            return std::nullopt;
+        }
+        result.contours = ribbons.made;
+        contours = [&](std::FILE* out) { emit::writeSurfaceContours(out, ribbons, *spec.overlay.contours); };
     }
     if (!emit::writeScene(options.povPath, *tmpl, where, geometry, base, contours, look, spec.render,
                           result.parameters, diags))
         return std::nullopt;
-    if (!contourError.empty()) {
-        std::error_code ec;
-        std::filesystem::remove(options.povPath, ec);
-        diags.error(spec.overlay.locs.at("overlay.contours"), "overlay.contours: GDAL: " + contourError);
-        return std::nullopt;
-    }
     written.keep = true;
     if (!options.dumpNetPath.empty())
         writeFileAtomically(options.dumpNetPath, options.dumpNetPath.extension() == ".asc"

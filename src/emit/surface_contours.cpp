@@ -28,17 +28,18 @@ int contourLevelCount(const ScenePlacement& where, const scene::ContourSpec& spe
     return static_cast<int>(levelsOf(where, spec).size());
 }
 
-SurfaceContours writeSurfaceContours(std::FILE* out, const geo::GeoGrid& refined, const ScenePlacement& where,
-                                     const scene::ContourSpec& spec, double widthM, std::string& error) {
-    SurfaceContours made;
+ContourRibbons buildSurfaceContours(const geo::GeoGrid& refined, const ScenePlacement& where,
+                                    const scene::ContourSpec& spec, double widthM, std::string& error) {
+    ContourRibbons ribbons;
+    SurfaceContours& made = ribbons.made;
     const std::vector<double> levels = levelsOf(where, spec);
     made.levels = static_cast<int>(levels.size());
-    if (levels.empty()) return made;
+    if (levels.empty()) return ribbons;
     const auto lines = measure::contourLines(refined, levels, error);
-    if (!error.empty()) return made;
+    if (!error.empty()) return ribbons;
 
-    std::vector<Vec3> vertices;
-    std::vector<std::array<std::uint32_t, 3>> faces;
+    std::vector<Vec3>& vertices = ribbons.vertices;
+    std::vector<std::array<std::uint32_t, 3>>& faces = ribbons.faces;
     for (size_t li = 0; li < lines.size(); ++li) {
         const long long index = std::llround(levels[li] / spec.intervalM);
         const bool heavy = spec.indexEvery > 0 && index % spec.indexEvery == 0;
@@ -80,7 +81,13 @@ SurfaceContours writeSurfaceContours(std::FILE* out, const geo::GeoGrid& refined
             }
         }
     }
-    if (faces.empty()) return made;
+    return ribbons;
+}
+
+void writeSurfaceContours(std::FILE* out, const ContourRibbons& ribbons, const scene::ContourSpec& spec) {
+    const auto& vertices = ribbons.vertices;
+    const auto& faces = ribbons.faces;
+    if (faces.empty()) return;
     const auto& c = spec.colour;
     fmt::memory_buffer sdl;  // written at once: a failed write is the .pov's AtomicFile's to report
     fmt::format_to(std::back_inserter(sdl), "// Contour lines every {} m ([overlay] contours), lying on the surface.\n",
@@ -92,7 +99,6 @@ SurfaceContours writeSurfaceContours(std::FILE* out, const geo::GeoGrid& refined
     fmt::format_to(std::back_inserter(sdl), "\n  }}\n  texture {{ pigment {{ rgb {} }} finish {{ ambient 0.35 diffuse 0.4 }} }}\n  no_shadow\n}}\n",
                point({c.r, c.g, c.b}));
     std::fwrite(sdl.data(), 1, sdl.size(), out);
-    return made;
 }
 
 }  // namespace relief::emit

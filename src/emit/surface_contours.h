@@ -3,8 +3,11 @@
 // of the refined surface drawn as thin ribbons lying on it, so that ridges
 // hide them as they hide the ground, every n-th (an index contour) heavier.
 
+#include <array>
+#include <cstdint>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "emit/mesh.h"
 #include "geo/geo_grid.h"
@@ -17,13 +20,26 @@ struct SurfaceContours {
     long long lines = 0, points = 0;
 };
 
-/// Writes the contour lines of `refined` at every multiple of
-/// spec.intervalM within the surface's range as one mesh2: a ribbon along
-/// each line, lying on the surface (its edges' heights sampled from it, lifted
-/// a fifth of its width), `widthM` wide (index contours twice that). Nodes
-/// without data have none. `error` is set when GDAL fails.
-SurfaceContours writeSurfaceContours(std::FILE* out, const geo::GeoGrid& refined, const ScenePlacement& where,
-                                     const scene::ContourSpec& spec, double widthM, std::string& error);
+/// The ribbons: two vertices a point of a line (scene units), two triangles
+/// between consecutive points.
+struct ContourRibbons {
+    SurfaceContours made;
+    std::vector<Vec3> vertices;
+    std::vector<std::array<std::uint32_t, 3>> faces;
+    /// The SDL they will take, in bytes (about 30 a vertex, 20 a face).
+    double sdlBytes() const { return 30.0 * vertices.size() + 20.0 * faces.size(); }
+};
+
+/// The contour lines of `refined` at every multiple of spec.intervalM within
+/// the surface's range (GDAL), each as a ribbon lying on the surface (its
+/// edges' heights sampled from it, lifted a fifth of its width), `widthM` wide
+/// (index contours twice that). Nodes without data have none. `error` is set
+/// when GDAL fails.
+ContourRibbons buildSurfaceContours(const geo::GeoGrid& refined, const ScenePlacement& where,
+                                    const scene::ContourSpec& spec, double widthM, std::string& error);
+
+/// Writes the ribbons as one mesh2, unshadowed, in spec.colour.
+void writeSurfaceContours(std::FILE* out, const ContourRibbons& ribbons, const scene::ContourSpec& spec);
 
 /// How many levels spec gives over the surface's range.
 int contourLevelCount(const ScenePlacement& where, const scene::ContourSpec& spec);

@@ -31,6 +31,8 @@ SourceLoc KeyLocations::at(const std::string& qualifiedKey) const {
 namespace {
 
 SourceLoc locOf(const std::string& file, const toml::source_region& r) {
+    // A value from --set was parsed from the command line, not the file: no line of it.
+    if (!r.path) return {file, 0, 0};
     return {file, static_cast<int>(r.begin.line), static_cast<int>(r.begin.column)};
 }
 
