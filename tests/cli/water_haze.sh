@@ -8,8 +8,12 @@ relief=$1 src=$2 work=$3
 command -v povray >/dev/null || { echo "SKIP: povray is not installed"; exit 77; }
 rm -rf "$work" && mkdir -p "$work" || exit 1
 status=0
-scene="$src/scenes/mountain-gentle.toml"
-size=(--set render.width=320 --set render.height=240 --set subdivision.depth=2)
+# The example scene without its own water and haze, its data where it is.
+scene="$work/mountain-gentle-plain.toml"
+sed '/^\[water\]/,/^$/d; /^\[atmosphere\]/,/^$/d' "$src/scenes/mountain-gentle.toml" > "$scene"
+grep -Eq '^\[(water|atmosphere)\]' "$scene" && { echo "FAIL: the plain scene keeps water or haze"; exit 1; }
+size=(--set render.width=320 --set render.height=240 --set subdivision.depth=2
+      --set samples.path="$src/scenes/data/topobathy_full.csv")
 "$relief" render -q "$scene" "${size[@]}" -o "$work/plain.png" || status=1
 "$relief" render -q "$scene" "${size[@]}" --set water.level_m=0 -o "$work/water.png" || status=1
 "$relief" render -q "$scene" "${size[@]}" --set atmosphere.haze=0.5 -o "$work/haze.png" || status=1

@@ -82,11 +82,11 @@ void expectClosed(const geo::GeoGrid& grid) {
     EXPECT_EQ(block.wallTriangles + block.floorTriangles, static_cast<long long>(block.faces.size()));
 }
 
-TEST(BlockBase, ARectangleHasFourWallsAndAFloorOfRuns) {
+TEST(BlockBase, ARectangleHasFourWallsAndAFloorOfTwoTriangles) {
     const geo::GeoGrid grid = rampGrid(3, 4);
     const BlockGeometry block = buildBlockBase(grid);
     EXPECT_EQ(block.wallTriangles, 2 * (3 + 3 + 2 + 2));  // two a perimeter edge
-    EXPECT_EQ(block.floorTriangles, 2 * 2);               // one run a row of cells
+    EXPECT_EQ(block.floorTriangles, 2);                   // the rows merged into one rectangle
     expectClosed(grid);
 }
 
