@@ -813,10 +813,10 @@ std::string sidecarJson(const CompileResult& c, const OutputPaths& paths,
     j["sun"] = {{"azimuth_deg", c.sun.azimuthDeg},
                 {"altitude_deg", c.sun.altitudeDeg},
                 {"from", c.sun.fromDatetime ? "datetime" : "scene"}};
+    j["sun"]["azimuth_is"] = c.sun.fromDatetime ? "true bearing" : "bearing on the frame's grid, as given";
     if (c.sun.fromDatetime) {
         j["sun"]["datetime"] = c.sun.datetime;
         j["sun"]["at_lonlat"] = {c.sun.lonDeg, c.sun.latDeg};
-        j["sun"]["azimuth_is"] = "true bearing";
     }
     j["camera"] = {{"eye_lonlat_h", c.cameraEyeLonLatH},
                    {"look_at_lonlat_h", c.cameraTargetLonLatH},
