@@ -1,9 +1,11 @@
 #include "emit/surface_contours.h"
 
 #include <cmath>
+#include <memory>
 #include <vector>
 
 #include <fmt/format.h>
+#include <ogr_geometry.h>
 
 #include "core/number_format.h"
 #include "measure/contours.h"
@@ -45,10 +47,31 @@ ContourRibbons buildSurfaceContours(const geo::GeoGrid& refined, const ScenePlac
         const bool heavy = spec.indexEvery > 0 && index % spec.indexEvery == 0;
         const double half = 0.5 * widthM * (heavy ? 2 : 1);
         for (const curves::PiecewiseBezier& line : lines[li]) {
-            std::vector<curves::Point2> pts;
+            // The line as GDAL traced it has a point at every cell it crosses, several a
+            // pixel: simplified (GEOS, Douglas-Peucker) to a quarter of the line's width, which
+            // no pixel shows, it takes a fraction of the SDL and of POV-Ray's time.
+            OGRLineString traced;
             for (const auto& seg : line.segments)
-                for (const auto& p : seg.control)
-                    if (pts.empty() || std::hypot(p.x - pts.back().x, p.y - pts.back().y) > 1e-9) pts.push_back(p);
+                for (const auto& p : seg.control) traced.addPoint(p.x, p.y);
+            std::vector<curves::Point2> pts;
+            const std::unique_ptr<OGRGeometry> simple(traced.Simplify(0.25 * widthM));
+            const auto* simpleLine = simple ? dynamic_cast<const OGRLineString*>(simple.get()) : nullptr;
+            const OGRLineString& kept = simpleLine && simpleLine->getNumPoints() >= 2 ? *simpleLine : traced;
+            // ... but not into long thin triangles, whose bounding boxes POV-Ray's rays
+            // would meet everywhere: pieces at most six widths long, each end on the surface.
+            const double longest = 6 * widthM;
+            for (int i = 0; i < kept.getNumPoints(); ++i) {
+                const curves::Point2 p{kept.getX(i), kept.getY(i)};
+                if (!pts.empty()) {
+                    const curves::Point2 a = pts.back();
+                    const double d = std::hypot(p.x - a.x, p.y - a.y);
+                    if (d <= 1e-9) continue;
+                    const int pieces = static_cast<int>(std::ceil(d / longest));
+                    for (int k = 1; k < pieces; ++k)
+                        pts.push_back({a.x + (p.x - a.x) * k / pieces, a.y + (p.y - a.y) * k / pieces});
+                }
+                pts.push_back(p);
+            }
             if (pts.size() < 2) continue;
             ++made.lines;
             // Two vertices a point, across the line; a run of quads along it,
@@ -58,7 +81,12 @@ ContourRibbons buildSurfaceContours(const geo::GeoGrid& refined, const ScenePlac
                 const auto& a = pts[i > 0 ? i - 1 : i];
                 const auto& b = pts[i + 1 < pts.size() ? i + 1 : i];
                 double tx = b.x - a.x, ty = b.y - a.y;
+                if (std::hypot(tx, ty) < 1e-9) tx = pts[i].x - a.x, ty = pts[i].y - a.y;  // a line back on itself
                 const double len = std::hypot(tx, ty);
+                if (!(len > 1e-9)) {
+                    previous = -1;
+                    continue;
+                }
                 tx /= len, ty /= len;
                 const double nx = -ty * half, ny = tx * half;
                 const auto left = refined.sample(pts[i].x + nx, pts[i].y + ny);
