@@ -629,6 +629,11 @@ std::optional<Surface> buildSurface(const LoadedScene& loaded, Diagnostics& diag
     else if (s.geometry.kind == scene::GeometryKind::Adaptive)
         s.estimate = subdiv::estimateOutput(scheme, net->rows(), net->cols(), s.depth,
                                             subdiv::GeometryCost::Adaptive);
+    // The colours held beside the grid: a height field's drape (16-bit RGBA, a
+    // node each); an image drape's too on any kind, and the image on the grid (RGB and coverage).
+    const bool heightField = s.geometry.kind == scene::GeometryKind::HeightField;
+    const bool image = spec.look.colouring == scene::LookSpec::Colouring::Image;
+    s.estimate.memoryBytes += s.estimate.vertices * ((heightField || image ? 8 : 0) + (image ? 4 : 0));
     if (!subdiv::checkBudget(s.estimate, budget,
                              sub.locs.at(sub.depthAuto ? "subdivision.depth" : "subdivision.scheme"),
                              s.depth, diags))
