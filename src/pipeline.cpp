@@ -90,6 +90,7 @@ emit::ParameterList describe(const scene::SceneSpec& s, const geo::ControlNet& n
     for (const auto& [k, v] : s.overrides) add("override " + k, v);
     add("samples.path", s.samples.pathAsWritten);
     if (!s.samples.attribution.empty()) add("samples.attribution", s.samples.attribution);
+    else if (!net.attribution.empty()) add("samples.attribution", net.attribution + " (from the raster's metadata)");
     add("samples.count", std::to_string(net.sampleCount));
     add("frame", net.frame.describe());
     add("net.size", fmt::format("{} rows x {} cols", net.grid.rows, net.grid.cols));
@@ -316,7 +317,9 @@ std::optional<CompileResult> compileScene(const LoadedScene& loaded,
     result.zRangeM = {where.zMinM, where.zMaxM};
     {
         annotate::OverlayFacts& f = result.overlayFacts;
-        f.credits = spec.overlay.credits ? *spec.overlay.credits : spec.samples.attribution;
+        // Whose data: the scene's credit line, else the one the raster's metadata carries.
+        result.dataAttribution = !spec.samples.attribution.empty() ? spec.samples.attribution : net.attribution;
+        f.credits = spec.overlay.credits ? *spec.overlay.credits : result.dataAttribution;
         // The legend: the ramp over elevation (a blend's first layer, without rock),
         // or the slope palette over degrees.
         f.palette.assign(where.paletteColors.begin(),
@@ -405,6 +408,12 @@ std::optional<CompileResult> compileScene(const LoadedScene& loaded,
         image = geo::imageOnGrid(look.drapeImage, look.drapeImageText, refined, diags);
         if (!image) return std::nullopt;
         result.drapeImageCoverage = double(image->coveredCount) / double(image->covered.size());
+        // The image's credit joins the data's (a map's or a photo's licence asks for it too).
+        result.imageAttribution = !look.drapeImageAttribution.empty() ? look.drapeImageAttribution : image->attribution;
+        if (!spec.overlay.credits && !result.imageAttribution.empty())
+            result.overlayFacts.credits += (result.overlayFacts.credits.empty() ? "" : " ") + result.imageAttribution;
+        if (!result.imageAttribution.empty())
+            result.parameters.emplace_back("texture.image_attribution", result.imageAttribution);
         if (!heightField) {
             result.drapePng = options.povPath.parent_path() / emit::siblingPngName(options.povPath, "drape");
             if (const std::string pngError = emit::writeDrapePng(emit::imageDrape(refined, where, *image), result.drapePng);
@@ -761,7 +770,7 @@ std::string sidecarJson(const CompileResult& c, const OutputPaths& paths,
                    {"scene_sha1", c.scene.sceneSha1},
                    {"samples", c.scene.samples.path.string()},
                    {"sample_count", c.net.sampleCount}};
-    if (!c.scene.samples.attribution.empty()) j["inputs"]["attribution"] = c.scene.samples.attribution;
+    if (!c.dataAttribution.empty()) j["inputs"]["attribution"] = c.dataAttribution;
     ordered_json params = ordered_json::object();
     for (const auto& [k, v] : c.parameters) params[k] = v;
     j["parameters"] = params;
@@ -841,7 +850,9 @@ std::string sidecarJson(const CompileResult& c, const OutputPaths& paths,
     if (!c.heightPng.empty()) j["outputs"]["height_png"] = c.heightPng.string();
     if (!c.drapePng.empty()) j["outputs"]["drape_png"] = c.drapePng.string();
     if (c.drapeImageCoverage)
-        j["texture"] = {{"image", c.scene.look.drapeImageText}, {"image_covers", *c.drapeImageCoverage}};
+        j["texture"] = {{"image", c.scene.look.drapeImageText},
+                        {"image_covers", *c.drapeImageCoverage},
+                        {"image_attribution", c.imageAttribution}};
     if (render) j["outputs"]["png"] = paths.png.string();
     if (overlays) {
         j["overlay"] = {{"drawn", overlays->drawn}};

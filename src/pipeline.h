@@ -121,6 +121,8 @@ struct CompileResult {
     } sun;
     emit::SurfaceContours contours;             ///< [overlay] contours as drawn
     std::optional<double> drapeImageCoverage;  ///< [texture] image: the share of the surface's nodes it covers
+    std::string dataAttribution;   ///< the samples' credit: the scene's, else the raster's metadata's
+    std::string imageAttribution;  ///< [texture] image's credit: the scene's, else the image's metadata's
     std::optional<double> baseFloorM;   ///< the block model's floor elevation; unset: no block
     std::array<double, 2> zRangeM{};    ///< the surface's lowest and highest elevation (nodes with data)
     annotate::OverlayFacts overlayFacts;            ///< what the still's overlays say

@@ -29,6 +29,7 @@ struct ControlNet : GeoGrid {
     std::string raster;            ///< rasters: what was read and how, e.g.
                                    ///< "122 x 174 cells, band 1, NZGD2000 / New Zealand Transverse Mercator 2000, bilinear"
     size_t filledOutsideHull = 0;  ///< nodes set by the nearest-sample fill (linear gridding)
+    std::string attribution;       ///< rasters: the credit their metadata carries (rasterCredit), if any
 };
 
 /// A frame point (metres) to WGS84 latitude, longitude (degrees) and height

@@ -61,6 +61,15 @@ Dataset openRaster(const std::filesystem::path& path) {
     return ds;
 }
 
+// The credit a raster's metadata carries: GeoTIFF's copyright tag, or a
+// COPYRIGHT, LICENSE, LICENCE or ATTRIBUTION item (as GDAL's drivers name
+// them); a licence such as CC BY asks for it in the still.
+std::string rasterCredit(GDALDatasetH ds) {
+    for (const char* key : {"TIFFTAG_COPYRIGHT", "COPYRIGHT", "ATTRIBUTION", "LICENSE", "LICENCE"})
+        if (const char* v = GDALGetMetadataItem(ds, key, nullptr); v && *v) return v;
+    return {};
+}
+
 // The chain from a net node to a raster pixel and back: frame <-> WGS84
 // (GeographicLib) <-> the raster's CRS (PROJ, through GDAL) <-> pixel and line
 // (the geotransform). GDAL's warper calls it with its own pixel coordinates of
@@ -379,6 +388,7 @@ std::optional<ControlNet> warpedNet(const Dataset& src, const scene::SamplesSpec
     net.sampleCount = static_cast<size_t>(width) * height;
     const char* crsName = OSRGetName(rasterSrs.get());
     static constexpr const char* kResampling[] = {"bilinear", "cubic", "average", "nearest"};
+    net.attribution = rasterCredit(src.get());
     net.raster = fmt::format("{} x {} cells, band {}, {}, {}", width, height, samples.band,
                              crsName ? crsName : "unnamed CRS", kResampling[static_cast<int>(samples.resample)]);
     if (!layoutNet(netSpec, {west, south, east, north}, cell, net, diags)) return std::nullopt;
@@ -762,6 +772,7 @@ std::optional<ImageOnGrid> imageOnGrid(const std::filesystem::path& path, const 
         return std::nullopt;
     }
     ImageOnGrid out;
+    out.attribution = rasterCredit(src.get());
     out.rows = rows;
     out.cols = cols;
     const size_t n = static_cast<size_t>(rows) * cols;

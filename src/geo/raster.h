@@ -38,6 +38,7 @@ std::optional<ControlNet> rasterNet(const scene::SamplesSpec& samples, const sce
 /// in any CRS GDAL reads (RGB in bands 1-3, or one grey band) resampled
 /// bilinearly onto `grid`'s nodes through the same chain as a DEM.
 struct ImageOnGrid {
+    std::string attribution;  ///< the credit the image's metadata carries (rasterCredit), if any
     int rows = 0, cols = 0;
     std::vector<std::uint8_t> rgb;      ///< 3 a node, in the grid's order (row 0 south), sRGB
     std::vector<std::uint8_t> covered;  ///< 1 where the image has data

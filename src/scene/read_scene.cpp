@@ -599,6 +599,7 @@ std::optional<SceneSpec> readScene(const std::filesystem::path& path, Diagnostic
             s.error(s.find("rock_to_deg") ? "rock_to_deg" : "rock_from_deg",
                     fmt::format("texture.rock_to_deg ({}) must be above texture.rock_from_deg ({})",
                                 formatShortest(scene.look.rockToDeg), formatShortest(scene.look.rockFromDeg)));
+        if (auto v = s.string("image_attribution")) scene.look.drapeImageAttribution = *v;
         if (auto v = s.string("image")) {
             const std::filesystem::path image = path.parent_path() / *v;
             std::error_code ec;

@@ -187,6 +187,7 @@ struct LookSpec {
     double rockFromDeg = 30, rockToDeg = 45;        ///< slopes where rock starts and takes over
     std::filesystem::path drapeImage;               ///< Colouring::Image: the raster, resolved against the scene
     std::string drapeImageText;                     ///< as written
+    std::string drapeImageAttribution;              ///< [texture] image_attribution: the image's credit line
     double sunAzimuthDeg = 315;   ///< compass bearing the light comes from
     double sunAltitudeDeg = 45;
     /// [lighting] datetime: the sun is placed where it was then, over the

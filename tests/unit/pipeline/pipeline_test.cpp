@@ -10,9 +10,11 @@
 #include <fstream>
 
 #include <GeographicLib/UTMUPS.hpp>
+#include <gdal.h>
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.h"
+#include "geo/gdal_drivers.h"
 
 namespace relief {
 namespace {
@@ -155,6 +157,54 @@ TEST(Pipeline, TheSunFromADateLightsAlongTheGridBearing) {
     const auto light = vectorAfter("light_source {"), aim = vectorAfter("point_at");
     const double gridAzimuth = std::atan2(light[0] - aim[0], light[2] - aim[2]) * 180 / std::numbers::pi;
     EXPECT_NEAR(std::fmod(gridAzimuth + 360, 360), trueAzimuth - gamma, 1e-3);
+}
+
+// Whose data: a raster whose metadata names its credit (GeoTIFF's copyright
+// tag) carries it to the header, the sidecar and the still's credits when the
+// scene gives none; a draped image's credit joins it.
+TEST(Pipeline, ARastersOwnCreditIsTheDefaultAttribution) {
+    const fs::path dir = freshDir("credit");
+    geo::registerGdalDrivers();
+    const auto copyWithCredit = [&](const fs::path& from, const fs::path& to, const char* credit) {
+        GDALDatasetH src = GDALOpen(from.c_str(), GA_ReadOnly);
+        ASSERT_NE(src, nullptr);
+        GDALDatasetH mem = GDALCreateCopy(GDALGetDriverByName("MEM"), "", src, FALSE, nullptr, nullptr, nullptr);
+        GDALSetMetadataItem(mem, "TIFFTAG_COPYRIGHT", credit, nullptr);
+        GDALClose(GDALCreateCopy(GDALGetDriverByName("GTiff"), to.c_str(), mem, FALSE, nullptr, nullptr, nullptr));
+        GDALClose(mem);
+        GDALClose(src);
+    };
+    copyWithCredit(kSource / "scenes/data/rasters/cyl_elev.tif", dir / "dem.tif", "DEM: someone, CC BY 4.0");
+    copyWithCredit(kSource / "scenes/data/rasters/cyl_tile.tif", dir / "map.tif", "Map: someone else, CC BY-SA");
+    std::ofstream(dir / "s.toml") << "[samples]\npath = \"dem.tif\"\nvertical_unit = \"m\"\n[net]\nspacing_m = 10000\n"
+                                     "[subdivision]\ndepth = 0\n";
+    SceneJob job;
+    job.until = SceneJob::Until::Pov;
+    job.scenePath = dir / "s.toml";
+    job.output = dir / "s.pov";
+    job.templatesDir = kSource / "templates";
+    job.threads = 1;
+    Diagnostics diags;
+    JobOutcome outcome = runSceneJob(job, diags, nullptr);
+    ASSERT_EQ(outcome.status, JobStatus::Ok) << (diags.all().empty() ? "" : formatDiagnostic(diags.all()[0]));
+    auto sidecar = nlohmann::json::parse(readFile(dir / "s.json"));
+    EXPECT_EQ(sidecar["inputs"]["attribution"], "DEM: someone, CC BY 4.0");
+    EXPECT_EQ(outcome.compiled->overlayFacts.credits, "DEM: someone, CC BY 4.0");
+    EXPECT_NE(readFile(dir / "s.pov").find("// samples.attribution: DEM: someone, CC BY 4.0 (from the raster's metadata)"),
+              std::string::npos);
+
+    job.overrides = {{"texture.image", "map.tif"}};
+    outcome = runSceneJob(job, diags, nullptr);
+    ASSERT_EQ(outcome.status, JobStatus::Ok) << (diags.all().empty() ? "" : formatDiagnostic(diags.all()[0]));
+    sidecar = nlohmann::json::parse(readFile(dir / "s.json"));
+    EXPECT_EQ(sidecar["texture"]["image_attribution"], "Map: someone else, CC BY-SA");
+    EXPECT_EQ(outcome.compiled->overlayFacts.credits, "DEM: someone, CC BY 4.0 Map: someone else, CC BY-SA");
+
+    // The scene's own line wins over the file's.
+    job.overrides = {{"samples.attribution", "Ours"}};
+    outcome = runSceneJob(job, diags, nullptr);
+    ASSERT_EQ(outcome.status, JobStatus::Ok);
+    EXPECT_EQ(outcome.compiled->overlayFacts.credits, "Ours");
 }
 
 }  // namespace
