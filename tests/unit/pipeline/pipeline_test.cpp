@@ -30,6 +30,17 @@ fs::path freshDir(const std::string& name) {
     return dir;
 }
 
+// A job that compiles `scene` to `pov` (and its sidecar), on one thread.
+SceneJob compileJob(const fs::path& scene, const fs::path& pov) {
+    SceneJob job;
+    job.until = SceneJob::Until::Pov;
+    job.scenePath = scene;
+    job.output = pov;
+    job.templatesDir = kSource / "templates";
+    job.threads = 1;
+    return job;
+}
+
 TEST(Pipeline, OutputPathsSitBesideTheStill) {
     const OutputPaths p = outputPathsFor("out/x/still.png");
     EXPECT_EQ(p.pov, fs::path("out/x/still.pov"));
@@ -40,12 +51,7 @@ TEST(Pipeline, OutputPathsSitBesideTheStill) {
 // library writes the sidecar, whose sizes come from the one mesh size formula.
 TEST(Pipeline, CompileJobWritesThePovAndItsSidecar) {
     const fs::path dir = freshDir("compile");
-    SceneJob job;
-    job.until = SceneJob::Until::Pov;
-    job.scenePath = kSource / "tests/golden/small/scene.toml";
-    job.output = dir / "small.pov";
-    job.templatesDir = kSource / "templates";
-    job.threads = 1;
+    SceneJob job = compileJob(kSource / "tests/golden/small/scene.toml", dir / "small.pov");
     Diagnostics diags;
     std::vector<ProgressEvent> events;
     const JobOutcome outcome = runSceneJob(job, diags, [&](const ProgressEvent& e) { events.push_back(e); });
@@ -123,12 +129,7 @@ TEST(Pipeline, RefinedSurfaceKeepsTheNetsFrameAndExtent) {
 // grid north there is 1.3 degrees east of true north).
 TEST(Pipeline, TheSunFromADateLightsAlongTheGridBearing) {
     const fs::path dir = freshDir("sun");
-    SceneJob job;
-    job.until = SceneJob::Until::Pov;
-    job.scenePath = kSource / "tests/golden/small/scene.toml";
-    job.output = dir / "small.pov";
-    job.templatesDir = kSource / "templates";
-    job.threads = 1;
+    SceneJob job = compileJob(kSource / "tests/golden/small/scene.toml", dir / "small.pov");
     job.overrides = {{"lighting.datetime", "2026-06-21T14:00:00+12:00"}};
     Diagnostics diags;
     const JobOutcome outcome = runSceneJob(job, diags, nullptr);
@@ -178,12 +179,7 @@ TEST(Pipeline, ARastersOwnCreditIsTheDefaultAttribution) {
     copyWithCredit(kSource / "scenes/data/rasters/cyl_tile.tif", dir / "map.tif", "Map: someone else, CC BY-SA");
     std::ofstream(dir / "s.toml") << "[samples]\npath = \"dem.tif\"\nvertical_unit = \"m\"\n[net]\nspacing_m = 10000\n"
                                      "[subdivision]\ndepth = 0\n";
-    SceneJob job;
-    job.until = SceneJob::Until::Pov;
-    job.scenePath = dir / "s.toml";
-    job.output = dir / "s.pov";
-    job.templatesDir = kSource / "templates";
-    job.threads = 1;
+    SceneJob job = compileJob(dir / "s.toml", dir / "s.pov");
     Diagnostics diags;
     JobOutcome outcome = runSceneJob(job, diags, nullptr);
     ASSERT_EQ(outcome.status, JobStatus::Ok) << (diags.all().empty() ? "" : formatDiagnostic(diags.all()[0]));
