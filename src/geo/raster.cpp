@@ -277,7 +277,10 @@ std::optional<ControlNet> warpedNet(const Dataset& src, const scene::SamplesSpec
             return std::nullopt;
         }
     }
-    auto [toRaster, toWgs84] = wgs84Transforms(rasterSrs.get());
+    // Named, not structured bindings: lambdas below capture them (clang 14 cannot capture a binding).
+    auto transforms = wgs84Transforms(rasterSrs.get());
+    Transform& toRaster = transforms.first;
+    Transform& toWgs84 = transforms.second;
     if (!toRaster || !toWgs84) {
         diags.error(fileLoc, "PROJ cannot transform between WGS84 and the raster's CRS");
         return std::nullopt;
@@ -731,7 +734,9 @@ std::optional<ImageOnGrid> imageOnGrid(const std::filesystem::path& path, const 
         diags.error(fileLoc, "texture.image has no CRS: give it one with gdal_translate -a_srs EPSG:...");
         return std::nullopt;
     }
-    auto [toImage, toWgs84] = wgs84Transforms(imageSrs.get());
+    auto transforms = wgs84Transforms(imageSrs.get());
+    Transform& toImage = transforms.first;
+    Transform& toWgs84 = transforms.second;
     if (!toImage || !toWgs84) {
         diags.error(fileLoc, "texture.image: its CRS cannot be carried to WGS84");
         return std::nullopt;
