@@ -1,6 +1,7 @@
 #include "scene/color_ramp.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 
@@ -45,12 +46,13 @@ const std::vector<std::string>& rampPresetNames() {
 
 bool parseHexColor(const std::string& text, ColorStop& out) {
     if (text.size() != 7 || text[0] != '#') return false;
+    // Six hex digits and nothing else: strtol alone would take "-8", " 8" or "+8" as a byte.
+    if (!std::all_of(text.begin() + 1, text.end(), [](unsigned char c) { return std::isxdigit(c) != 0; }))
+        return false;
     double rgb[3];
     for (int i = 0; i < 3; ++i) {
         const std::string part = text.substr(1 + 2 * i, 2);
-        char* end = nullptr;
-        const long v = std::strtol(part.c_str(), &end, 16);
-        if (end != part.c_str() + 2) return false;
+        const long v = std::strtol(part.c_str(), nullptr, 16);
         rgb[i] = srgbToLinear(static_cast<double>(v) / 255.0);
     }
     out.r = rgb[0];

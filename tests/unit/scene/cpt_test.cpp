@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <string>
+
 #include <cmath>
 
 #include "scene/color_ramp.h"
@@ -40,20 +42,42 @@ TEST(Cpt, SlicesBecomeStops) {
     EXPECT_DOUBLE_EQ(sampleRamp(*stops, 19.999).g, 1);
 }
 
-TEST(Cpt, ShippedPaletteReads) {
-    Diagnostics diags;
-    std::string text;
-    {
-        FILE* f = std::fopen(RELIEF_SOURCE_DIR "/scenes/palettes/relief-hypsometric.cpt", "rb");
-        ASSERT_TRUE(f);
-        char buf[4096];
-        text.assign(buf, std::fread(buf, 1, sizeof buf, f));
-        std::fclose(f);
+// Every palette shipped in scenes/palettes/ reads, over the range its header gives.
+TEST(Cpt, ShippedPalettesRead) {
+    const struct {
+        const char* file;
+        size_t stops;
+        double lo, hi;
+    } shipped[] = {{"relief-hypsometric.cpt", 6, 0, 1000},
+                   {"gmt-dem2.cpt", 8, 0, 4900},
+                   {"gmt-etopo1.cpt", 0, -11000, 8500},
+                   {"cpt-city-elevation.cpt", 0, 0, 7000}};
+    for (const auto& p : shipped) {
+        Diagnostics diags;
+        std::string text;
+        {
+            FILE* f = std::fopen((std::string(RELIEF_SOURCE_DIR "/scenes/palettes/") + p.file).c_str(), "rb");
+            ASSERT_TRUE(f) << p.file;
+            char buf[8192];
+            text.assign(buf, std::fread(buf, 1, sizeof buf, f));
+            std::fclose(f);
+        }
+        const auto stops = parseCpt(text, p.file, diags);
+        ASSERT_TRUE(stops) << p.file;
+        EXPECT_EQ(diags.errorCount(), 0) << p.file;
+        if (p.stops > 0) {
+            EXPECT_EQ(stops->size(), p.stops) << p.file;
+        }
+        EXPECT_NEAR(stops->front().elevM, p.lo, 1) << p.file;
+        EXPECT_NEAR(stops->back().elevM, p.hi, 1) << p.file;
     }
-    const auto stops = parseCpt(text, "relief-hypsometric.cpt", diags);
-    ASSERT_TRUE(stops);
-    EXPECT_EQ(stops->size(), 6u);
-    EXPECT_EQ(stops->back().elevM, 1000);
+}
+
+// fuzz_cpt's finding: "#-88e0d" was read as a colour with negative components.
+TEST(Cpt, ASignedHexColourIsAnError) {
+    Diagnostics diags;
+    EXPECT_FALSE(parseCpt(".5\t#-88e0d 5\t#-88d0d\n", "signed.cpt", diags));
+    EXPECT_GE(diags.errorCount(), 1);
 }
 
 TEST(Cpt, BadPalettesAreErrorsAtTheirLines) {

@@ -131,6 +131,12 @@ TEST(ColorRamp, HexAndInterpolation) {
     EXPECT_DOUBLE_EQ(c.g, 0.0);
     EXPECT_FALSE(parseHexColor("ff0000", c));
     EXPECT_FALSE(parseHexColor("#ff00zz", c));
+    // A sign or a space is no hex digit (fuzz_cpt found "#-88e0d" read as negative colours).
+    EXPECT_FALSE(parseHexColor("#-88e0d", c));
+    EXPECT_FALSE(parseHexColor("#+8ffff", c));
+    EXPECT_FALSE(parseHexColor("# 8ffff", c));
+    ASSERT_TRUE(parseHexColor("#0A0b0C", c));
+    EXPECT_GT(c.b, c.r);
     const std::vector<ColorStop> stops{{0, 0, 0, 0}, {100, 1, 0.5, 0}};
     const ColorStop mid = sampleRamp(stops, 50);
     EXPECT_DOUBLE_EQ(mid.r, 0.5);
