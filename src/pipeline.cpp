@@ -10,6 +10,7 @@
 
 #include "core/atomic_file.h"
 #include "core/date_time.h"
+#include "core/input_file.h"
 #include "core/number_format.h"
 #include "core/png_file.h"
 #include "core/text_escape.h"
@@ -45,6 +46,18 @@ std::string depthLabel(const scene::SubdivisionSpec& sub) {
 subdiv::Budget budgetOf(const scene::LimitsSpec& limits) {
     return {limits.maxTriangles, limits.maxSdlMB, limits.maxParseS,
             limits.maxMemoryMB > 0 ? limits.maxMemoryMB : subdiv::defaultMemoryBudgetMB()};
+}
+
+geo::NetBudget netBudgetOf(const scene::LimitsSpec& limits) {
+    const double mb = budgetOf(limits).maxMemoryMB;
+    geo::NetBudget b;
+    b.maxNodes = std::min(1e9, mb * 1e6 / geo::kNetBytesPerNode);
+    b.why = limits.maxMemoryMB > 0
+                ? fmt::format("limits.max_memory_mb = {} ({} bytes a node)", formatShortest(mb), geo::kNetBytesPerNode)
+                : fmt::format("the memory relief may use ({:.0f} MB, three quarters of this machine's; "
+                              "limits.max_memory_mb) at {} bytes a node",
+                              mb, geo::kNetBytesPerNode);
+    return b;
 }
 
 namespace {
@@ -232,6 +245,11 @@ std::optional<CompileResult> compileScene(const LoadedScene& loaded,
         if (camera.position && !(camera.positionFrameM = toFrame(*camera.position, "camera.position")))
             return std::nullopt;
         if (camera.lookAt && !(camera.lookAtFrameM = toFrame(*camera.lookAt, "camera.look_at"))) return std::nullopt;
+        if (camera.positionFrameM && camera.lookAtFrameM && length(*camera.positionFrameM - *camera.lookAtFrameM) < 1e-3) {
+            diags.error(look.locs.at("camera.look_at"), "camera.look_at is where camera.position is: a camera must "
+                                                        "look at a point away from itself");
+            return std::nullopt;
+        }
     }
 
     // The sun: the scene's angles, or where it stood at [lighting] datetime
@@ -279,6 +297,8 @@ std::optional<CompileResult> compileScene(const LoadedScene& loaded,
         field = emit::quantizeHeights(refined, where);
         result.heightPng = options.povPath.parent_path() / emit::siblingPngName(options.povPath, "height");
         result.drapePng = options.povPath.parent_path() / emit::siblingPngName(options.povPath, "drape");
+        options.outputs->add(result.heightPng, "the height field's PNG");
+        options.outputs->add(result.drapePng, "the height field's drape PNG");
         result.heightStepM = field->stepM();
         result.meshVertices = static_cast<long long>(refined.grid.points.size());
         result.meshTriangles = gridMeshSize(refined.rows(), refined.cols()).triangles;
@@ -380,17 +400,6 @@ std::optional<CompileResult> compileScene(const LoadedScene& loaded,
             return std::nullopt;
         }
     }
-    // The height field's PNGs and the .pov are one output: when one of them
-    // cannot be written (a full disk), none is left, not PNGs without a .pov.
-    struct RemovedUnlessKept {
-        std::vector<std::filesystem::path> files;
-        bool keep = false;
-        ~RemovedUnlessKept() {
-            std::error_code ec;
-            if (!keep)
-                for (const auto& f : files) std::filesystem::remove(f, ec);
-        }
-    } written;
     if (spec.overlay.contours) {
         constexpr int kMaxContourLevels = 1000;
         if (const int n = emit::contourLevelCount(where, *spec.overlay.contours); n > kMaxContourLevels) {
@@ -416,28 +425,25 @@ std::optional<CompileResult> compileScene(const LoadedScene& loaded,
             result.parameters.emplace_back("texture.image_attribution", result.imageAttribution);
         if (!heightField) {
             result.drapePng = options.povPath.parent_path() / emit::siblingPngName(options.povPath, "drape");
-            if (const std::string pngError = emit::writeDrapePng(emit::imageDrape(refined, where, *image), result.drapePng);
+            const std::filesystem::path staged = options.outputs->add(result.drapePng, "the drape PNG");
+            if (const std::string pngError = emit::writeDrapePng(emit::imageDrape(refined, where, *image), staged);
                 !pngError.empty()) {
                 diags.error({}, pngError);
                 return std::nullopt;
             }
-            written.files.push_back(result.drapePng);
         }
     }
     emit::GeometryWriter geometry;
     if (heightField) {
-        std::string pngError = emit::writeHeightFieldPng(*field, result.heightPng);
-        if (pngError.empty()) {
-            written.files.push_back(result.heightPng);
+        std::string pngError = emit::writeHeightFieldPng(*field, options.outputs->staged(result.heightPng));
+        if (pngError.empty())
             pngError = emit::writeDrapePng(image ? emit::imageDrape(refined, where, *image)
                                                  : emit::elevationDrape(refined, where),
-                                           result.drapePng);
-        }
+                                           options.outputs->staged(result.drapePng));
         if (!pngError.empty()) {
             diags.error({}, pngError);
             return std::nullopt;
         }
-        written.files.push_back(result.drapePng);
         geometry = [&](std::FILE* out) {
             emit::writeHeightFieldSdl(out, *field, refined, where, result.heightPng.filename().string(),
                                       result.drapePng.filename().string());
@@ -489,17 +495,17 @@ std::optional<CompileResult> compileScene(const LoadedScene& loaded,
         result.contours = ribbons.made;
         contours = [&](std::FILE* out) { emit::writeSurfaceContours(out, ribbons, *spec.overlay.contours); };
     }
-    if (!emit::writeScene(options.povPath, *tmpl, where, geometry, base, contours, look, spec.render,
+    const std::filesystem::path stagedPov = options.outputs->staged(options.povPath);
+    if (!emit::writeScene(stagedPov, *tmpl, where, geometry, base, contours, look, spec.render,
                           result.parameters, diags))
         return std::nullopt;
-    written.keep = true;
     if (!options.dumpNetPath.empty())
-        writeFileAtomically(options.dumpNetPath, options.dumpNetPath.extension() == ".asc"
-                                                     ? geo::netToAsciiGrid(net)
-                                                     : geo::netToCsv(net));
+        writeFileAtomically(options.outputs->staged(options.dumpNetPath), options.dumpNetPath.extension() == ".asc"
+                                                                            ? geo::netToAsciiGrid(net)
+                                                                            : geo::netToCsv(net));
     result.times.emit = secondsSince(t0);
     std::error_code ec;
-    result.povBytes = std::filesystem::file_size(options.povPath, ec);
+    result.povBytes = std::filesystem::file_size(stagedPov, ec);
     result.scene = spec;
     result.scene.look = look;
     result.net = std::move(surface->net);
@@ -512,7 +518,21 @@ namespace {
 // (what takes long on real data).
 std::optional<geo::ControlNet> griddedSamples(const scene::SceneSpec& spec, Diagnostics& diags,
                                               const ProgressFn& progress) {
-    const auto samples = geo::readSamples(spec.samples, diags);
+    // The samples held in memory take several times the file's bytes: a file
+    // over a quarter of the memory budget is refused before it is read.
+    const double budgetMB = budgetOf(spec.limits).maxMemoryMB;
+    const auto maxBytes = static_cast<std::uintmax_t>(budgetMB * 1e6 / 4);
+    std::error_code ec;
+    if (const auto bytes = std::filesystem::file_size(spec.samples.path, ec); !ec && bytes > maxBytes) {
+        diags.error(spec.limits.locs.has("limits.max_memory_mb") ? spec.limits.locs.at("limits.max_memory_mb")
+                                                                 : SourceLoc{spec.samples.pathAsWritten, 0, 0},
+                    fmt::format("the samples file is {}, more than a quarter of limits.max_memory_mb = {:.0f} "
+                                "(the samples in memory take several times the file): thin the samples, give them "
+                                "as a raster, or raise the limit",
+                                byteSize(bytes), budgetMB));
+        return std::nullopt;
+    }
+    const auto samples = geo::readSamples(spec.samples, diags, maxBytes);
     if (diags.hasErrors()) return std::nullopt;
     // A DEM exported as lon,lat,elev is a lattice in its own CRS: resampled as
     // the raster it is. Tried: the scene's samples.crs, else degrees, Web
@@ -528,9 +548,12 @@ std::optional<geo::ControlNet> griddedSamples(const scene::SceneSpec& spec, Diag
         if (!lattice) continue;
         const std::string task = fmt::format("resampling the {} x {} lattice of samples in {}", lattice->cols,
                                              lattice->rows, crs);
-        return geo::latticeNet(*lattice, spec.samples, spec.frame, spec.net, diags, [&](double fraction) {
-            if (progress) progress({ProgressEvent::Stage::Compiling, task, static_cast<int>(100 * fraction)});
-        });
+        return geo::latticeNet(
+            *lattice, spec.samples, spec.frame, spec.net, diags,
+            [&](double fraction) {
+                if (progress) progress({ProgressEvent::Stage::Compiling, task, static_cast<int>(100 * fraction)});
+            },
+            netBudgetOf(spec.limits));
     }
     if (!spec.samples.crs.empty())
         diags.warning(spec.samples.locs.at("samples.crs"),
@@ -538,7 +561,6 @@ std::optional<geo::ControlNet> griddedSamples(const scene::SceneSpec& spec, Diag
                                   "scattered samples",
                                   samples.size(), spec.samples.crs));
     const double griddingMB = samples.size() * subdiv::kGriddingBytesPerSample / 1e6;
-    const double budgetMB = budgetOf(spec.limits).maxMemoryMB;
     if (griddingMB > budgetMB) {
         diags.error(spec.limits.locs.has("limits.max_memory_mb") ? spec.limits.locs.at("limits.max_memory_mb")
                                                                  : SourceLoc{spec.samples.pathAsWritten, 0, 0},
@@ -561,7 +583,8 @@ std::optional<geo::ControlNet> griddedSamples(const scene::SceneSpec& spec, Diag
             progress({ProgressEvent::Stage::Compiling, task, percent});
         };
     }
-    return geo::normalize(spec.frame, spec.net, spec.samples.pathAsWritten, samples, diags, gridding);
+    return geo::normalize(spec.frame, spec.net, spec.samples.pathAsWritten, samples, diags, gridding,
+                          netBudgetOf(spec.limits));
 }
 
 }  // namespace
@@ -574,17 +597,21 @@ std::optional<Surface> buildSurface(const LoadedScene& loaded, Diagnostics& diag
     auto t0 = Clock::now();
     std::optional<geo::ControlNet> net;
     if (geo::isRasterDem(spec.samples.path)) {
-        net = geo::rasterNet(spec.samples, spec.frame, spec.net, diags, [&](double fraction) {
-            if (progress) progress({ProgressEvent::Stage::Compiling, "resampling the raster", static_cast<int>(100 * fraction)});
-        });
+        net = geo::rasterNet(
+            spec.samples, spec.frame, spec.net, diags,
+            [&](double fraction) {
+                if (progress)
+                    progress({ProgressEvent::Stage::Compiling, "resampling the raster", static_cast<int>(100 * fraction)});
+            },
+            netBudgetOf(spec.limits));
         if (!net) return std::nullopt;
     } else {
         for (const char* key : {"samples.band", "samples.resample", "samples.nodata", "samples.vertical_unit"})
             if (spec.samples.locs.has(key))
                 diags.error(spec.samples.locs.at(key),
-                            fmt::format("{} is only used with a raster DEM, and {} is a table of samples "
-                                        "(lon,lat,elev): remove it",
-                                        key, spec.samples.pathAsWritten));
+                            fmt::format("{} is only used with a raster DEM, and GDAL does not read {} as a "
+                                        "raster (relief takes it for a CSV of samples): remove it",
+                                        key, printableExcerpt(spec.samples.pathAsWritten, 200)));
         if (diags.hasErrors()) return std::nullopt;
         net = griddedSamples(spec, diags, progress);
         if (!net) return std::nullopt;
@@ -669,95 +696,133 @@ std::filesystem::path defaultOutput(const std::filesystem::path& scenePath,
 
 }  // namespace
 
-JobOutcome runSceneJob(const SceneJob& job, Diagnostics& diags, const ProgressFn& progress) {
-    using Stage = ProgressEvent::Stage;
-    JobOutcome outcome;
-    auto say = [&](Stage stage, std::string text, int percent = -1) {
-        if (progress) progress({stage, std::move(text), percent});
-    };
-    say(Stage::Reading, "reading " + job.scenePath.string());
-    auto loaded = loadScene(job.scenePath, diags, job.overrides);
-    if (!loaded) return outcome;
-    const bool render = job.until == SceneJob::Until::Png;
-    if (render) {
-        outcome.paths = outputPathsFor(
-            job.output.empty() ? defaultOutput(job.scenePath, loaded->scene.render.output, ".png")
-                               : job.output);
-    } else {
-        // Only compiling: the .pov is the output, and the scene's PNG name does not apply.
-        outcome.paths.pov = job.output.empty() ? defaultOutput(job.scenePath, "", ".pov") : job.output;
-        outcome.paths.sidecar = outcome.paths.pov;
-        outcome.paths.sidecar.replace_extension(".json");
-    }
-    CompileOptions copts;
-    copts.povPath = outcome.paths.pov;
-    copts.templatesDir = job.templatesDir;
-    copts.dumpNetPath = job.dumpNetPath;
-    copts.threads = job.threads;
-    copts.progress = progress;
-    for (const auto& p : {outcome.paths.png, outcome.paths.pov, job.dumpNetPath})
-        if (!p.empty()) createParentFolder(p);
-    // What a killed run left (its temporary files) goes before this run writes there.
-    removeStaleTemporaries(outcome.paths.pov.parent_path());
-    say(Stage::Compiling, fmt::format("compiling {} ({}, {})", job.scenePath.string(),
-                                      loaded->resolved.family, depthLabel(loaded->scene.subdivision)));
-    outcome.compiled = compileScene(*loaded, copts, diags);
-    if (!outcome.compiled) return outcome;
-    if (!render) {
-        writeFileAtomically(outcome.paths.sidecar, sidecarJson(*outcome.compiled, outcome.paths, nullptr));
-        outcome.status = JobStatus::Ok;
-        return outcome;
-    }
+namespace {
 
-    const scene::RenderSpec& still = loaded->scene.render;
+// The job's outputs, declared before any work is done, so that two of them
+// with one name, or an output over an input, are refused at once: the still,
+// the .pov, the net dump, the sidecar last (the seal of the set).
+void declareOutputs(const SceneJob& job, const LoadedScene& loaded, const OutputPaths& paths, OutputSet& outputs) {
+    const bool render = job.until == SceneJob::Until::Png;
+    const char* given = job.output.empty() ? nullptr : "-o";
+    if (render) outputs.add(paths.png, given ? given : "the still");
+    outputs.add(paths.pov, !render && given ? given : "the .pov");
+    if (!job.dumpNetPath.empty()) outputs.add(job.dumpNetPath, "--dump-net");
+    outputs.add(paths.sidecar, "the sidecar", true);
+    const scene::SceneSpec& s = loaded.scene;
+    outputs.checkNotAnOutput(job.scenePath, "the scene file");
+    outputs.checkNotAnOutput(s.samples.path, "samples.path");
+    if (!s.look.drapeImage.empty()) outputs.checkNotAnOutput(s.look.drapeImage, "texture.image");
+}
+
+// POV-Ray renders the staged .pov into the staged still; the overlays are
+// drawn on it. False with the reason in `diags` (BadInput) or in
+// `outcome.render` (ToolFailed).
+bool renderStill(const SceneJob& job, const LoadedScene& loaded, const OutputSet& outputs, JobOutcome& outcome,
+                 Diagnostics& diags, const ProgressFn& progress) {
+    const CompileResult& compiled = *outcome.compiled;
+    const scene::RenderSpec& still = loaded.scene.render;
+    const std::filesystem::path png = outputs.staged(outcome.paths.png);
     render::RenderRequest req;
-    req.pov = outcome.paths.pov;
-    req.png = outcome.paths.png;
+    req.pov = outputs.staged(outcome.paths.pov);
+    req.png = png;
     req.width = still.width;
     req.height = still.height;
     req.antialias = still.antialias;
     req.alpha = still.background == scene::Background::Transparent;
-    // The height field's PNG is found by its name through the library path.
-    req.includeDirs = {job.templatesDir};
-    if (!outcome.compiled->drapePng.empty()) {
-        req.includeDirs.push_back(std::filesystem::absolute(outcome.paths.pov).parent_path());
-        req.inputFiles = {outcome.compiled->drapePng};
-        if (!outcome.compiled->heightPng.empty()) req.inputFiles.push_back(outcome.compiled->heightPng);
-    }
+    req.templatesDir = job.templatesDir;
+    for (const auto& f : {compiled.heightPng, compiled.drapePng})
+        if (!f.empty()) req.inputFiles.push_back(outputs.staged(f));
     req.threads = job.threads;
     req.sandbox = job.sandbox;
     req.timeoutSeconds = still.timeoutS;
     outcome.render = render::renderPov(req, [&](const render::RenderProgress& p) {
-        say(Stage::Rendering, p.text, p.percent);
+        if (progress) progress({ProgressEvent::Stage::Rendering, p.text, p.percent});
     });
     if (outcome.render.cannotWriteOutput) {  // not POV-Ray's failure: a full disk, say
         diags.error({}, outcome.render.error);
-        return outcome;
+        return false;
     }
     if (!outcome.render.ok) {
         outcome.status = JobStatus::ToolFailed;
-        return outcome;
+        return false;
     }
-    if (annotate::overlaysWanted(loaded->scene.overlay, still.width)) {
-        PngImage8 image;
-        std::string error = readPng8(outcome.paths.png, image);
-        annotate::OverlayRecord record;
-        if (error.empty()) error = annotate::drawOverlays(image, loaded->scene.overlay, outcome.compiled->overlayFacts, &record);
-        if (error.empty())
-            error = writePngAtomically(outcome.paths.png, {image.width, image.height, image.channels, false,
-                                                           image.pixels.data()});
-        if (!error.empty()) {
-            std::error_code ec;
-            std::filesystem::remove(outcome.paths.png, ec);  // a still without its overlays is not the output
-            diags.error({}, "the overlays: " + error);
-            return outcome;
-        }
-        outcome.overlays = record;
+    if (!annotate::overlaysWanted(loaded.scene.overlay, still.width)) return true;
+    PngImage8 image;
+    std::string error = readPng8(png, image);
+    annotate::OverlayRecord record;
+    if (error.empty()) error = annotate::drawOverlays(image, loaded.scene.overlay, compiled.overlayFacts, &record);
+    if (error.empty())
+        error = writePngAtomically(png, {image.width, image.height, image.channels, false, image.pixels.data()});
+    if (!error.empty()) {
+        diags.error({}, "the overlays: " + error);
+        return false;
     }
-    writeFileAtomically(outcome.paths.sidecar,
-                        sidecarJson(*outcome.compiled, outcome.paths, &outcome.render, outcome.overlays));
+    outcome.overlays = record;
+    return true;
+}
+
+// The job's outputs, named from the scene and the job.
+OutputPaths jobPaths(const SceneJob& job, const LoadedScene& loaded) {
+    if (job.until == SceneJob::Until::Png)
+        return outputPathsFor(job.output.empty() ? defaultOutput(job.scenePath, loaded.scene.render.output, ".png")
+                                                 : job.output);
+    // Only compiling: the .pov is the output, and the scene's PNG name does not apply.
+    OutputPaths paths;
+    paths.pov = job.output.empty() ? defaultOutput(job.scenePath, "", ".pov") : job.output;
+    paths.sidecar = paths.pov;
+    paths.sidecar.replace_extension(".json");
+    return paths;
+}
+
+JobOutcome runStagedJob(const SceneJob& job, Diagnostics& diags, const ProgressFn& progress, OutputSet& outputs) {
+    JobOutcome outcome;
+    if (progress) progress({ProgressEvent::Stage::Reading, "reading " + job.scenePath.string(), -1});
+    auto loaded = loadScene(job.scenePath, diags, job.overrides);
+    if (!loaded) return outcome;
+    outcome.paths = jobPaths(job, *loaded);
+    declareOutputs(job, *loaded, outcome.paths, outputs);
+    CompileOptions copts;
+    copts.povPath = outcome.paths.pov;
+    copts.outputs = &outputs;
+    copts.templatesDir = job.templatesDir;
+    copts.dumpNetPath = job.dumpNetPath;
+    copts.threads = job.threads;
+    copts.progress = progress;
+    if (progress)
+        progress({ProgressEvent::Stage::Compiling,
+                  fmt::format("compiling {} ({}, {})", job.scenePath.string(), loaded->resolved.family,
+                              depthLabel(loaded->scene.subdivision)),
+                  -1});
+    outcome.compiled = compileScene(*loaded, copts, diags);
+    if (!outcome.compiled) return outcome;
+    const bool render = job.until == SceneJob::Until::Png;
+    if (render && !renderStill(job, *loaded, outputs, outcome, diags, progress)) return outcome;
+    writeFileAtomically(outputs.staged(outcome.paths.sidecar),
+                        sidecarJson(*outcome.compiled, outcome.paths, render ? &outcome.render : nullptr,
+                                    outcome.overlays));
+    if (job.stillOnly)
+        for (const auto& f : {outcome.paths.pov, outcome.paths.sidecar, outcome.compiled->heightPng,
+                              outcome.compiled->drapePng, job.dumpNetPath})
+            if (!f.empty()) outputs.drop(f);
     outcome.status = JobStatus::Ok;
     return outcome;
+}
+
+}  // namespace
+
+JobOutcome runSceneJob(const SceneJob& job, Diagnostics& diags, const ProgressFn& progress) {
+    // An output that cannot be made or written (a full disk, a name given
+    // twice) is bad input like any other, with nothing left behind.
+    try {
+        OutputSet own;
+        OutputSet& outputs = job.outputs ? *job.outputs : own;
+        JobOutcome outcome = runStagedJob(job, diags, progress, outputs);
+        if (outcome.status == JobStatus::Ok && !job.outputs) own.commit();
+        return outcome;
+    } catch (const std::runtime_error& e) {
+        diags.error({}, e.what());
+        return JobOutcome{};
+    }
 }
 
 std::string sidecarJson(const CompileResult& c, const OutputPaths& paths,

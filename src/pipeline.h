@@ -20,6 +20,7 @@
 
 #include "annotate/overlay.h"
 #include "core/diagnostics.h"
+#include "core/output_set.h"
 #include "emit/geometry_kind.h"
 #include "emit/surface_contours.h"
 #include "emit/write_scene.h"
@@ -53,6 +54,9 @@ std::string autoDepthSummary(const measure::DepthChoice& choice, double toleranc
 /// The output budget of a scene's [limits].
 subdiv::Budget budgetOf(const scene::LimitsSpec& limits);
 
+/// The most nodes the control net may have under a scene's [limits].
+geo::NetBudget netBudgetOf(const scene::LimitsSpec& limits);
+
 /// What a job is doing, for the command line to show.
 struct ProgressEvent {
     enum class Stage { Reading, Compiling, Rendering } stage = Stage::Reading;
@@ -79,7 +83,11 @@ std::optional<Surface> buildSurface(const LoadedScene& loaded, Diagnostics& diag
                                     const ProgressFn& progress = {});
 
 struct CompileOptions {
-    std::filesystem::path povPath;       ///< where the .pov goes
+    std::filesystem::path povPath;       ///< where the .pov goes (declared in `outputs`)
+    /// The run's outputs: the .pov and the dump are declared there by the
+    /// caller, the height field's and drape's PNGs by compileScene, and all
+    /// are written where the set stages them.
+    OutputSet* outputs = nullptr;
     std::filesystem::path templatesDir;
     std::filesystem::path dumpNetPath;   ///< optional: .csv (x,y,z) or .asc (ESRI ASCII grid)
     int threads = 0;                     ///< refiner threads; 0 = all cores
@@ -158,6 +166,11 @@ struct SceneJob {
     std::filesystem::path dumpNetPath;
     int threads = 0;            ///< refiner and POV-Ray threads; 0 = all cores
     bool sandbox = true;        ///< POV-Ray in bubblewrap (render/povray.h)
+    bool stillOnly = false;     ///< keep the PNG alone (relief test): no .pov, PNGs or sidecar beside it
+    /// Where the outputs are declared and staged. Null: a set of the job's
+    /// own, committed when the job succeeds. Given (relief sweep): the caller
+    /// commits it with its own outputs, so that the whole sweep appears at once.
+    OutputSet* outputs = nullptr;
 };
 
 enum class JobStatus { Ok, BadInput, ToolFailed };
@@ -171,8 +184,9 @@ struct JobOutcome {
 };
 
 /// Loads, compiles and (Until::Png) renders; writes the .pov, the JSON sidecar
-/// and the PNG (atomically; nothing when a stage fails), creating the output
-/// folders. Diagnostics go to `diags`, progress to `progress` (may be empty).
+/// and the PNG as one set (core/output_set.h: nothing when a stage fails),
+/// creating the output folders. Diagnostics go to `diags` (an output that
+/// cannot be written too), progress to `progress` (may be empty).
 JobOutcome runSceneJob(const SceneJob& job, Diagnostics& diags, const ProgressFn& progress);
 
 /// The JSON sidecar: inputs, parameters, net size, vertex and triangle

@@ -11,6 +11,8 @@
 
 #include <fmt/format.h>
 
+#include "core/text_escape.h"
+
 namespace relief::cli {
 
 const char* const kExitCodes =
@@ -26,7 +28,9 @@ void printDiagnostics(const Diagnostics& diags, bool wrote) {
         return std::tie(a.loc.file, a.loc.line) < std::tie(b.loc.file, b.loc.line);
     });
     // Without a place in a file (an override, a full disk), the line says who speaks.
-    for (const auto& d : sorted) std::cerr << (d.loc.file.empty() ? "relief: " : "") << formatDiagnostic(d) << '\n';
+    // Inputs reach messages (paths, values, a file's bytes): shown as text, never run as terminal commands.
+    for (const auto& d : sorted)
+        std::cerr << (d.loc.file.empty() ? "relief: " : "") << terminalText(formatDiagnostic(d)) << '\n';
     if (diags.errorCount() > 0)
         std::cerr << fmt::format("relief: {} error{}, {} warning{}; {}\n", diags.errorCount(),
                                  diags.errorCount() == 1 ? "" : "s", diags.warningCount(),
@@ -87,10 +91,10 @@ int runCommands(CLI::App& app, const std::vector<Command>& commands, int argc, c
             if (c.app->parsed()) return c.run();
         return code(Exit::BadInput);
     } catch (const std::runtime_error& e) {  // I/O: cannot write an output
-        std::cerr << "relief: error: " << e.what() << '\n';
+        std::cerr << "relief: error: " << terminalText(e.what()) << "\nrelief: nothing written\n";
         return code(Exit::BadInput);
     } catch (const std::exception& e) {
-        std::cerr << "relief: internal error: " << e.what() << '\n';
+        std::cerr << "relief: internal error: " << terminalText(e.what()) << '\n';
         return code(Exit::Internal);
     }
 }
@@ -100,7 +104,7 @@ bool parseOverrides(const std::vector<std::string>& list, scene::SceneOverrides&
     for (const auto& kv : list) {
         const auto eq = kv.find('=');
         if (eq == std::string::npos || eq == 0) {
-            std::cerr << "relief: error: " << kv << ": write section.key=value, e.g. subdivision.omega=1/32\n";
+            std::cerr << "relief: error: " << terminalText(kv, 200) << ": write section.key=value, e.g. subdivision.omega=1/32\n";
             return false;
         }
         out.emplace_back(kv.substr(0, eq), kv.substr(eq + 1));
@@ -110,8 +114,9 @@ bool parseOverrides(const std::vector<std::string>& list, scene::SceneOverrides&
 
 Progress::Progress(bool quiet) : quiet_(quiet), tty_(::isatty(STDERR_FILENO)) {}
 
-void Progress::show(const std::string& line, int percent) {
+void Progress::show(const std::string& text, int percent) {
     if (quiet_) return;
+    const std::string line = terminalText(text, 400);  // POV-Ray's lines and paths: text, never terminal commands
     if (tty_) {
         std::cerr << "\r\033[K" << line << std::flush;
         open_ = true;
@@ -163,7 +168,7 @@ bool parseParams(const std::vector<std::string>& list, std::map<std::string, dou
                                ? std::nullopt
                                : scene::parseFraction(kv.substr(eq + 1));
         if (!value) {
-            std::cerr << "relief: error: " << kv
+            std::cerr << "relief: error: " << terminalText(kv, 200)
                       << ": write KEY=VALUE, the value a number or a fraction such as 7/32\n";
             return false;
         }

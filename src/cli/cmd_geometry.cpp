@@ -6,6 +6,8 @@
 #include <memory>
 
 #include <fmt/format.h>
+
+#include "core/text_escape.h"
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.h"
@@ -158,7 +160,7 @@ int runCompareGeometry(const CompareGeometryOptions& o) {
         const auto ends = split(text, ':');
         m::ProfileLine l{text};
         if (ends.size() != 2 || !parseLonLat(ends[0], l.lon1, l.lat1) || !parseLonLat(ends[1], l.lon2, l.lat2)) {
-            std::cerr << "relief: error: --profile " << text
+            std::cerr << "relief: error: --profile " << relief::terminalText(text, 200)
                       << ": write LON,LAT:LON,LAT in WGS84 degrees, e.g. 174.76,-36.88:174.77,-36.87\n";
             return code(Exit::BadInput);
         }
@@ -170,7 +172,7 @@ int runCompareGeometry(const CompareGeometryOptions& o) {
             char* end = nullptr;
             const double z = std::strtod(v.c_str(), &end);
             if (end == v.c_str() || *end || !std::isfinite(z)) {
-                std::cerr << "relief: error: --levels " << o.levels << ": write elevations in metres, "
+                std::cerr << "relief: error: --levels " << relief::terminalText(o.levels, 200) << ": write elevations in metres, "
                           << "e.g. --levels 100,200,300\n";
                 return code(Exit::BadInput);
             }
@@ -284,7 +286,8 @@ void addGeometryCommands(CLI::App& app, std::vector<Command>& out) {
     profileCmd->add_option("--to", profile->to, "end: LON,LAT")->required();
     profileCmd->add_option("--samples", profile->samples, "points along the line (default 1001)")
         ->check(CLI::Range(2, 1000000));
-    profileCmd->add_option("--exaggeration", profile->exaggeration, "vertical exaggeration of the plot (default: chosen)");
+    profileCmd->add_option("--exaggeration", profile->exaggeration, "vertical exaggeration of the plot (default: chosen)")
+        ->check(CLI::Range(0.0, 1000.0));
     profileCmd->add_option("-o,--output", profile->common.output,
                            "SVG (default out/<scene>-profile.svg); curve files beside it");
     profileCmd->add_option("--set", profile->common.sets, "override a scene key: section.key=value");

@@ -7,6 +7,8 @@
 #include <memory>
 
 #include <fmt/format.h>
+
+#include "core/text_escape.h"
 #include <nlohmann/json.hpp>
 
 #include "compare/compare_images.h"
@@ -81,7 +83,7 @@ int runDiff(const DiffOptions& o) {
         createParentFolder(o.diffImage);
         const std::string err = relief::compare::writeDifferenceImage(o.a, o.b, o.diffImage);
         if (!err.empty()) {
-            std::cerr << "relief: error: " << err << '\n';
+            std::cerr << "relief: error: " << relief::terminalText(err) << '\n';
             return code(Exit::DiffFileError);
         }
     }
@@ -90,7 +92,7 @@ int runDiff(const DiffOptions& o) {
         return code(exitFor(d.verdict));
     }
     if (d.verdict == Verdict::FileError || d.verdict == Verdict::NotComparable) {
-        std::cerr << "relief: error: " << d.error << '\n';
+        std::cerr << "relief: error: " << relief::terminalText(d.error) << '\n';
         std::cout << relief::compare::verdictName(d.verdict) << '\n';
         return code(exitFor(d.verdict));
     }
@@ -128,7 +130,7 @@ struct TestOptions {
 int runTest(const TestOptions& o) {
     relief::Diagnostics diags;
     auto manifest = relief::regress::readManifest(o.manifest, diags);
-    if (!manifest) {
+    if (!manifest || (o.update && !relief::regress::checkUpdatable(*manifest, diags))) {
         printDiagnostics(diags, false);
         return code(Exit::BadInput);
     }
@@ -146,7 +148,7 @@ int runTest(const TestOptions& o) {
         *manifest, ro, [](const relief::regress::CaseResult& r, size_t done, size_t total) {
             std::cout << fmt::format("[{}/{}] {:<7} {} ({:.1f} s): {}\n", done, total,
                                      relief::regress::statusName(r.status), r.testCase->name,
-                                     r.seconds, r.message)
+                                     r.seconds, relief::terminalText(r.message))
                       << std::flush;
         });
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -158,7 +160,8 @@ int runTest(const TestOptions& o) {
                   r.status == relief::regress::CaseStatus::New;
     std::cout << fmt::format("report: {}/index.html (also summary.json, junit.xml)\n", o.report);
     if (failed && !o.update)
-        std::cout << fmt::format("to accept the new images: relief test {} --update\n", o.manifest);
+        std::cout << fmt::format("to accept the new images: relief test {} --update\n",
+                                 relief::terminalText(relief::shellQuoted(o.manifest), 500));
     std::cout << fmt::format("{} passed, {} failed\n", results.size() - failed, failed);
     return code(failed && !o.update ? Exit::TestCaseFailed : Exit::Ok);
 }
@@ -205,7 +208,7 @@ int runSweep(const SweepOptions& o) {
             const bool ok = e.outcome->status == relief::JobStatus::Ok;
             printDiagnostics(*e.diags, ok);
             if (e.outcome->status == relief::JobStatus::ToolFailed)
-                std::cerr << "relief: POV-Ray failed:\n" << e.outcome->render.error << '\n';
+                std::cerr << "relief: POV-Ray failed:\n" << relief::terminalText(e.outcome->render.error, 8000, true) << '\n';
             if (ok && !o.common.quiet)
                 std::cerr << fmt::format("{} -> {} ({})\n", still, e.outcome->paths.png.string(),
                                          e.outcome->compiled->certified);
@@ -214,7 +217,7 @@ int runSweep(const SweepOptions& o) {
     if (result.status != relief::JobStatus::Ok)
         return code(result.status == relief::JobStatus::ToolFailed ? Exit::ToolFailed : Exit::BadInput);
     if (!result.sheetWritten) {
-        std::cerr << "relief: error: " << result.sheetMessage << '\n';
+        std::cerr << "relief: error: " << relief::terminalText(result.sheetMessage) << '\n';
         return code(Exit::BadInput);
     }
     if (!result.sheetMessage.empty()) std::cerr << "relief: " << result.sheetMessage << '\n';

@@ -6,6 +6,8 @@
 
 #include <fmt/format.h>
 
+#include "core/text_escape.h"
+
 #include "pipeline.h"
 
 namespace relief::cli {
@@ -37,8 +39,9 @@ int runScene(const CommonOptions& o, const std::string& dumpNet, relief::SceneJo
     }
     printDiagnostics(diags, true);  // warnings
     if (outcome.status == relief::JobStatus::ToolFailed) {
-        std::cerr << "relief: POV-Ray failed on " << outcome.paths.pov.string() << ":\n"
-                  << outcome.render.error << '\n';
+        std::cerr << "relief: POV-Ray failed on the scene compiled from " << relief::terminalText(job.scenePath.string(), 500)
+                  << " (nothing written; relief compile writes the .pov to look at):\n"
+                  << relief::terminalText(outcome.render.error, 8000, true) << '\n';
         return code(Exit::ToolFailed);
     }
     if (!o.quiet) {

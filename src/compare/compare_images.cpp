@@ -8,9 +8,13 @@
 
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
+#include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
 
 #include "core/atomic_file.h"
+#include "core/input_file.h"
+#include "core/png_file.h"
+#include "subdiv/budget.h"
 
 namespace relief::compare {
 
@@ -27,15 +31,53 @@ const char* verdictName(Verdict v) {
 
 namespace {
 
+// An image's size from its header, held against what can be decoded: the
+// memory budget (the comparison works in floats, both images at once), and,
+// for a PNG, what its bytes can hold (deflate compresses at most 1032:1), so
+// that a 140 kB file claiming 12000 x 12000 pixels is refused before anything
+// is allocated for it.
+std::string sizeProblem(const std::filesystem::path& path, std::uintmax_t fileBytes) {
+    auto in = OIIO::ImageInput::open(path.string());
+    if (!in) {
+        (void)OIIO::geterror();  // OpenImageIO's own message names no more than we do
+        return "cannot read as an image (not a format OpenImageIO reads, or damaged)";
+    }
+    const OIIO::ImageSpec& spec = in->spec();
+    const double pixels = double(spec.width) * double(spec.height) * std::max(1, spec.depth);
+    const double values = pixels * std::max(1, spec.nchannels);
+    const double decodedBytes = values * std::max<size_t>(1, spec.format.size());
+    const std::string format = in->format_name();
+    in->close();
+    if (!(pixels > 0)) return "the image has no pixels";
+    const double budgetMB = subdiv::defaultMemoryBudgetMB();
+    if (2 * values * sizeof(float) / 1e6 > budgetMB)
+        return fmt::format("it says it is {} x {} pixels with {} channels: comparing two such images needs about "
+                           "{:.0f} MB, more than the {:.0f} MB relief may use",
+                           spec.width, spec.height, spec.nchannels, 2 * values * sizeof(float) / 1e6, budgetMB);
+    if (format == "png" && decodedBytes > 1032.0 * double(fileBytes) + 65536)
+        return fmt::format("it says it is {} x {} pixels, more than its {} can hold: the file is damaged",
+                           spec.width, spec.height, byteSize(fileBytes));
+    // OpenImageIO lets libpng print its own messages on a damaged PNG: found first, quietly.
+    if (format == "png")
+        if (const std::string problem = checkPng(path); !problem.empty())
+            return fmt::format("it is a damaged or truncated PNG ({})", problem);
+    return "";
+}
+
 bool readImage(const std::filesystem::path& path, OIIO::ImageBuf& buf, std::string& error) {
     std::error_code ec;
-    if (!std::filesystem::exists(path, ec)) {
-        error = fmt::format("{}: no such file", path.string());
+    if (std::string problem = inputFileProblem(path); !problem.empty()) {
+        error = fmt::format("{}: {}", path.string(), problem);
+        return false;
+    }
+    if (std::string problem = sizeProblem(path, std::filesystem::file_size(path, ec)); !problem.empty()) {
+        error = fmt::format("{}: {}", path.string(), problem);
         return false;
     }
     buf.reset(path.string());
     if (!buf.read(0, 0, true)) {  // native pixel type: no float copy of the image
-        error = fmt::format("{}: cannot read as an image ({})", path.string(), buf.geterror());
+        (void)buf.geterror();
+        error = fmt::format("{}: cannot read as an image (damaged or truncated)", path.string());
         return false;
     }
     return true;

@@ -1,46 +1,59 @@
 #pragma once
-// Outputs are never half-written: everything goes to a temporary file in the
-// destination's folder and is renamed into place only when complete.
+// Outputs are never half-written: everything is written in a private folder
+// beside its final name and moved into place only when complete
+// (core/output_set.h, which also commits several files as one set).
 #include <cstdio>
 #include <filesystem>
 #include <functional>
 #include <string>
 #include <string_view>
 
+#include "core/output_set.h"
+
 namespace relief {
 
+/// One output file, written whole or not at all.
 class AtomicFile {
 public:
-    /// Opens `<final>.tmp-<pid>` for writing. Throws std::runtime_error with the
-    /// path and the system's reason when that fails (missing folder, no permission).
+    /// Creates the file in a private folder beside `finalPath` (a new name
+    /// no one else can have made: never opened through a planted link).
+    /// Throws std::runtime_error with the path and the system's reason when
+    /// that fails (missing folder, no permission).
     explicit AtomicFile(std::filesystem::path finalPath);
-    ~AtomicFile();  ///< removes the temporary file unless commit() succeeded
+    ~AtomicFile();  ///< drops the file unless commit() succeeded
     AtomicFile(const AtomicFile&) = delete;
     AtomicFile& operator=(const AtomicFile&) = delete;
 
     std::FILE* stream() { return file_; }
     void write(std::string_view bytes);
-    const std::filesystem::path& tempPath() const { return temp_; }
     const std::filesystem::path& finalPath() const { return final_; }
 
-    /// Flushes, closes and renames into place. Throws on any I/O error.
+    /// Flushes, syncs, closes and moves into place. Throws on any I/O error.
     void commit();
 
 private:
-    std::filesystem::path final_;
-    std::filesystem::path temp_;
+    std::filesystem::path final_, shown_;  ///< shown_: the name in messages (shownPath)
+    OutputSet set_;
     std::FILE* file_ = nullptr;
-    bool committed_ = false;
 };
+
+/// Creates `path` for writing, exclusively (O_CREAT | O_EXCL | O_NOFOLLOW):
+/// the file is new, never a link someone planted. Throws std::runtime_error
+/// naming `shown` and the system's reason.
+std::FILE* createNewFile(const std::filesystem::path& path, const std::filesystem::path& shown);
+
+/// Flushes, syncs to disk and closes `file`; throws std::runtime_error naming
+/// `shown` on any error (a full disk: ENOSPC).
+void closeWritten(std::FILE* file, const std::filesystem::path& shown);
 
 /// Writes `bytes` to `path` atomically.
 void writeFileAtomically(const std::filesystem::path& path, std::string_view bytes);
 
 /// For writers that take a path rather than bytes (an image library's):
-/// `write` writes the temporary file it is given (in the destination's folder,
-/// with the destination's extension, so formats are told by it) and returns ""
-/// or its error; the file is renamed into place only on success, and removed
-/// otherwise. Returns "" or the error, naming `path`.
+/// `write` writes the file it is given (in a private folder beside `path`,
+/// with the same name, so formats are told by the extension) and returns ""
+/// or its error; the file is moved into place only on success. Returns "" or
+/// the error, naming `path`.
 std::string writeThroughTemporary(const std::filesystem::path& path,
                                   const std::function<std::string(const std::filesystem::path&)>& write);
 
@@ -48,15 +61,9 @@ std::string writeThroughTemporary(const std::filesystem::path& path,
 /// std::runtime_error naming the folder and the system's reason.
 void createParentFolder(const std::filesystem::path& file);
 
-/// Removes the temporary files a killed run left in `folder`: names that end
-/// in ".tmp-<pid>" (optionally followed by an extension) whose process is no
-/// longer running. Returns how many were removed.
-int removeStaleTemporaries(const std::filesystem::path& folder);
-
-/// Whether process `pid` is running (on this machine, in this PID namespace).
-bool processRunning(long pid);
-
 /// Reads a whole file; throws std::runtime_error naming the path on failure.
+/// For relief's own files (tests, benchmarks); inputs go through
+/// readInputFile (core/input_file.h).
 std::string readFile(const std::filesystem::path& path);
 
 }  // namespace relief

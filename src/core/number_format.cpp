@@ -47,6 +47,10 @@ char* writeUnsigned(char* out, std::uint64_t value) {
 char* writeFixed(char* out, double value, int decimals) {
     const std::uint64_t scale = kPow10[decimals];
     const double scaled = std::fabs(value) * static_cast<double>(scale);
+    // Past 2^63 (or NaN) the integer cast is undefined: such a value (which
+    // the stages refuse before it gets here) is written in exponent form, at
+    // most 14 characters.
+    if (!(scaled < 9.2e18)) return fmt::format_to(out, "{:.6e}", value);
     const auto units = static_cast<std::uint64_t>(scaled + 0.5);
     if (units == 0) {
         *out++ = '0';

@@ -96,11 +96,41 @@ bool decode(std::FILE* file, PngImage8& image, std::vector<png_bytep>& rows, std
     return true;
 }
 
+bool decodeRows(std::FILE* file, std::vector<png_byte>& row, std::string& error) {
+    png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &error, onPngError, onPngWarning);
+    if (!png) return false;
+    png_infop info = png_create_info_struct(png);
+    if (!info || setjmp(png_jmpbuf(png))) {
+        png_destroy_read_struct(&png, &info, nullptr);
+        return false;
+    }
+    png_init_io(png, file);
+    png_read_info(png, info);
+    const int passes = png_set_interlace_handling(png);
+    png_read_update_info(png, info);
+    row.resize(png_get_rowbytes(png, info));
+    const png_uint_32 height = png_get_image_height(png, info);
+    for (int pass = 0; pass < passes; ++pass)
+        for (png_uint_32 y = 0; y < height; ++y) png_read_row(png, row.data(), nullptr);
+    png_read_end(png, nullptr);
+    png_destroy_read_struct(&png, &info, nullptr);
+    return true;
+}
+
 }  // namespace
+
+std::string checkPng(const std::filesystem::path& path) {
+    std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), std::fclose);
+    if (!file) return "it cannot be opened";
+    std::vector<png_byte> row;
+    std::string error;
+    if (!decodeRows(file.get(), row, error)) return error.empty() ? "libpng failed" : error;
+    return "";
+}
 
 std::string writePngAtomically(const std::filesystem::path& path, const PngPixels& p) {
     if (p.width <= 0 || p.height <= 0 || p.channels < 1 || p.channels > 4 || !p.data)
-        return fmt::format("cannot write {}: no pixels", path.string());
+        return fmt::format("cannot write {}: no pixels", shownPath(path).string());
     const size_t rowBytes = size_t(p.width) * size_t(p.channels) * (p.sixteenBit ? 2 : 1);
     std::vector<png_bytep> rows(size_t(p.height));
     for (size_t y = 0; y < rows.size(); ++y)
@@ -109,7 +139,7 @@ std::string writePngAtomically(const std::filesystem::path& path, const PngPixel
         AtomicFile out(path);
         std::string error;
         if (!encode(out.stream(), p, rows.data(), error))
-            return fmt::format("cannot write {}: {}", path.string(), error.empty() ? "libpng failed" : error);
+            return fmt::format("cannot write {}: {}", shownPath(path).string(), error.empty() ? "libpng failed" : error);
         out.commit();
     } catch (const std::exception& e) {
         return e.what();

@@ -29,4 +29,9 @@ struct PngImage8 {
 /// Returns "" or the error, naming `path`.
 std::string readPng8(const std::filesystem::path& path, PngImage8& image);
 
+/// Decodes a whole PNG a row at a time and keeps nothing: "" when it is
+/// whole, else why not (a truncated or damaged file), quietly. For readers
+/// that would print libpng's own messages on a damaged file (OpenImageIO's).
+std::string checkPng(const std::filesystem::path& path);
+
 }  // namespace relief

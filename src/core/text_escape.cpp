@@ -1,5 +1,9 @@
 #include "core/text_escape.h"
 
+#include <algorithm>
+#include <cctype>
+#include <cstring>
+
 #include <fmt/format.h>
 
 namespace relief {
@@ -26,6 +30,49 @@ size_t utf8Length(std::string_view text, size_t i) {
 }
 
 }  // namespace
+
+std::string terminalText(std::string_view text, std::size_t maxBytes, bool keepLines) {
+    std::string out;
+    size_t i = 0;
+    while (i < text.size() && out.size() < maxBytes) {
+        const auto c = static_cast<unsigned char>(text[i]);
+        if (c >= 0x80) {
+            const size_t n = utf8Length(text, i);
+            if (n == 0) out += fmt::format("\\x{:02x}", c), ++i;
+            else out.append(text.substr(i, n)), i += n;
+        } else if ((c < 0x20 && !(keepLines && c == '\n') && c != '\t') || c == 0x7f) {
+            out += fmt::format("\\x{:02x}", c), ++i;
+        } else {
+            out += static_cast<char>(c), ++i;
+        }
+    }
+    if (i < text.size()) out += fmt::format("... ({} more bytes)", text.size() - i);
+    return out;
+}
+
+std::string shellQuoted(std::string_view text) {
+    const bool plain = !text.empty() && std::all_of(text.begin(), text.end(), [](char ch) {
+        const auto c = static_cast<unsigned char>(ch);
+        return std::isalnum(c) || std::strchr("_-./=:,+@%", ch) != nullptr;
+    });
+    if (plain) return std::string(text);
+    std::string out = "'";
+    for (const char ch : text) out += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
+    return out + "'";
+}
+
+bool isUtf8(std::string_view text) {
+    for (size_t i = 0; i < text.size();) {
+        if (static_cast<unsigned char>(text[i]) < 0x80) {
+            ++i;
+            continue;
+        }
+        const size_t n = utf8Length(text, i);
+        if (n == 0) return false;
+        i += n;
+    }
+    return true;
+}
 
 std::string markupText(std::string_view text) {
     std::string out;

@@ -19,6 +19,21 @@ std::string markupText(std::string_view text);
 /// holding one can never start a directive.
 std::string oneLineText(std::string_view text);
 
+/// For a terminal: what an input put in a message shown as text, never as
+/// commands (an ESC sequence, a line break, a NUL): control characters and
+/// bytes that are not UTF-8 as \xNN, line feeds too unless `keepLines`, and
+/// at most about `maxBytes` of it, cut at a character with
+/// "... (N more bytes)".
+std::string terminalText(std::string_view text, std::size_t maxBytes = 2000, bool keepLines = false);
+
+/// A word for a POSIX shell command line that a user copies: as it is when
+/// it holds only letters, digits and _-./=:,+@%, else in single quotes (a '
+/// inside as '\'').
+std::string shellQuoted(std::string_view text);
+
+/// Whether `text` is well-formed UTF-8 (RFC 3629).
+bool isUtf8(std::string_view text);
+
 /// An excerpt of a file for a message: at most `maxChars` characters,
 /// control and non-ASCII bytes as \xNN (a binary file must not fill the
 /// screen), "..." when cut.

@@ -5,20 +5,20 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "core/atomic_file.h"
+#include "core/input_file.h"
 #include "core/number_format.h"
 
 namespace relief::curves {
 
 std::optional<CurveFile> readCurveFile(const std::filesystem::path& path, Diagnostics& diags) {
     const std::string file = path.string();
-    std::string text;
-    try {
-        text = readFile(path);
-    } catch (const std::exception&) {
-        diags.error({file, 0, 0}, "cannot read the curve file");
+    std::string problem;
+    const auto read = readInputFile(path, kMaxCurveBytes, problem);
+    if (!read) {
+        diags.error({file, 0, 0}, "cannot read the curve file: " + problem);
         return std::nullopt;
     }
+    const std::string& text = *read;
     nlohmann::json j;
     try {
         j = nlohmann::json::parse(text);
@@ -77,8 +77,23 @@ std::optional<CurveFile> readCurveFile(const std::filesystem::path& path, Diagno
             diags.error({file, 0, 0}, fmt::format("points[{}] is not finite", index));
             return std::nullopt;
         }
+        // Distances square the coordinates and the exact Hausdorff distance
+        // solves polynomials in them: far below 1e308, whatever the input.
+        if (std::fabs(q.x) > kMaxCoordinate || std::fabs(q.y) > kMaxCoordinate) {
+            diags.error({file, 0, 0}, fmt::format("points[{}] = [{}, {}] is beyond the {:.0e} a coordinate may be "
+                                                  "(in metres, 1e15 is a thousand times the distance to the Sun): "
+                                                  "give the curve in smaller units",
+                                                  index, formatShortest(q.x), formatShortest(q.y), kMaxCoordinate));
+            return std::nullopt;
+        }
         c.points.push_back(q);
         ++index;
+    }
+    if (c.type == "bezier" && c.points.size() > kMaxBezierDegree + 1) {
+        diags.error({file, 0, 0}, fmt::format("a bezier curve of {} points is of degree {}, more than the {} relief "
+                                              "reads: give it as a polyline or a bspline3 of pieces",
+                                              c.points.size(), c.points.size() - 1, kMaxBezierDegree));
+        return std::nullopt;
     }
     const size_t need = c.type == "bspline3" ? (c.closed ? 3 : 4) : c.type == "bezier" ? 1 : 1;
     if (c.points.size() < need) {

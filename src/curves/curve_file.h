@@ -46,8 +46,15 @@ struct CurveFile {
     std::vector<Point2> points;
 };
 
-/// Reads and checks a curve file: valid JSON, a known type, finite numbers,
-/// enough points for the type. Errors name the file (and the point's index).
+/// The largest coordinate a curve file may hold, and the highest degree of a
+/// Bézier: what keeps the exact Hausdorff distance's polynomials finite and
+/// its root finding short.
+inline constexpr double kMaxCoordinate = 1e15;
+inline constexpr size_t kMaxBezierDegree = 20;
+
+/// Reads and checks a curve file: valid JSON, a known type, finite numbers
+/// within kMaxCoordinate, enough points for the type, a Bézier of at most
+/// kMaxBezierDegree. Errors name the file (and the point's index).
 std::optional<CurveFile> readCurveFile(const std::filesystem::path& path, Diagnostics& diags);
 
 /// The file's JSON text (numbers in shortest round-trip form).

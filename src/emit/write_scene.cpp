@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "core/atomic_file.h"
+#include "core/input_file.h"
 #include "core/number_format.h"
 #include "core/text_escape.h"
 
@@ -390,14 +391,16 @@ Bindings sceneBindings(const ScenePlacement& where, GeometryWriter geometry, con
 std::optional<Template> loadSceneTemplate(const std::filesystem::path& templatesDir,
                                           Diagnostics& diags) {
     const auto path = templatesDir / "scene.pov.in";
-    try {
-        return Template{path.string(), readFile(path)};
-    } catch (const std::exception& e) {
+    std::string problem;
+    auto text = readInputFile(path, kMaxTemplateBytes, problem);
+    if (!text) {
         diags.error({path.string(), 0, 0},
-                    "cannot read the scene template; give the folder with --templates or set "
-                    "RELIEF_TEMPLATES");
+                    fmt::format("cannot read the scene template: {}; give the folder with --templates or set "
+                                "RELIEF_TEMPLATES",
+                                problem));
         return std::nullopt;
     }
+    return Template{path.string(), std::move(*text)};
 }
 
 bool writeScene(const std::filesystem::path& out, const Template& tmpl, const ScenePlacement& where,

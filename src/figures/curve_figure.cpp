@@ -1,5 +1,7 @@
 #include "figures/curve_figure.h"
 
+#include <cmath>
+
 #include <fmt/format.h>
 
 #include "core/number_format.h"
@@ -29,6 +31,15 @@ std::optional<CurveFigure> curveFigure(const curves::CurveFile& polygon, const s
             diags.error({polygonName, 0, 0}, fmt::format("an open polygon needs at least {} points for {}",
                                                          subdiv::minPoints(resolved->scheme),
                                                          resolved->family));
+            return std::nullopt;
+        }
+        // Counted before refining: a figure has no use for more points than a screen has pixels many times over.
+        const double points = double(control.size()) * std::pow(double(resolved->scheme.arity), depth);
+        if (points > kMaxCurvePoints) {
+            diags.error({polygonName, 0, 0},
+                        fmt::format("--depth {} refines the {} points into about {:.3g} (x{} a level), more than the "
+                                    "{:.0e} a figure may have: lower --depth",
+                                    depth, control.size(), points, resolved->scheme.arity, kMaxCurvePoints));
             return std::nullopt;
         }
         const auto refined = subdiv::refineCurveLevels(resolved->scheme, control, polygon.closed, depth);

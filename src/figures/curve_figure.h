@@ -24,9 +24,14 @@ struct CurveFigure {
     std::vector<curves::CurveFile> refined; ///< one per variant, in order
 };
 
+/// The most points a refined curve may have (each is SVG text and a point of
+/// the curve file): 1e7, some 300 MB of SVG.
+inline constexpr double kMaxCurvePoints = 1e7;
+
 /// Refines `polygon` (a polyline, open or closed) `depth` times with each
 /// variant's scheme. Reports (at `polygonName`) a polygon that is not a
-/// polyline or too short for a scheme, and every scheme problem at its key.
+/// polyline or too short for a scheme, a refinement beyond kMaxCurvePoints,
+/// and every scheme problem at its key.
 std::optional<CurveFigure> curveFigure(const curves::CurveFile& polygon, const std::string& polygonName,
                                        const std::vector<CurveVariant>& variants, int depth,
                                        const std::string& title, Diagnostics& diags);

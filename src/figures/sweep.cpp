@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "core/atomic_file.h"
+#include "core/output_set.h"
 
 namespace relief::figures {
 
@@ -98,26 +99,55 @@ std::string writeContactSheet(const std::vector<Tile>& tiles, int columns, const
 
 namespace relief::figures {
 
+namespace {
+
+std::string labelOf(const std::vector<std::pair<std::string, std::string>>& combo) {
+    std::string label;
+    for (const auto& [k, v] : combo) label += fmt::format("{}{} = {}", label.empty() ? "" : ", ", k.substr(k.find('.') + 1), v);
+    return label;
+}
+
+SceneJob jobOf(const SweepRequest& request, const std::vector<std::pair<std::string, std::string>>& combo,
+               const fs::path& output) {
+    SceneJob job;
+    job.scenePath = request.scenePath;
+    job.overrides = request.base;
+    job.overrides.insert(job.overrides.end(), combo.begin(), combo.end());
+    job.output = output;
+    job.templatesDir = request.templatesDir;
+    job.threads = request.threads;
+    job.sandbox = request.sandbox;
+    return job;
+}
+
+}  // namespace
+
 SweepResult runSweep(const SweepRequest& request, const std::function<void(const SweepEvent&)>& onEvent) {
     SweepResult result;
     const auto combos = combinations(request.variations);
     const fs::path stills = request.sheet.parent_path() / (request.sheet.stem().string() + "-stills");
-    fs::create_directories(stills);
     auto emit = [&](SweepEvent e) {
         if (onEvent) onEvent(e);
     };
+    // Every combination is read and checked before any is rendered: a bad
+    // value anywhere stops the sweep with nothing written.
     for (size_t i = 0; i < combos.size(); ++i) {
-        std::string label;
-        for (const auto& [k, v] : combos[i])
-            label += fmt::format("{}{} = {}", label.empty() ? "" : ", ", k.substr(k.find('.') + 1), v);
-        SceneJob job;
-        job.scenePath = request.scenePath;
-        job.overrides = request.base;
-        job.overrides.insert(job.overrides.end(), combos[i].begin(), combos[i].end());
-        job.output = stills / fmt::format("{:03}.png", i + 1);
-        job.templatesDir = request.templatesDir;
-        job.threads = request.threads;
-        job.sandbox = request.sandbox;
+        Diagnostics diags;
+        if (loadScene(request.scenePath, diags, jobOf(request, combos[i], {}).overrides)) continue;
+        const JobOutcome refused;
+        SweepEvent done{SweepEvent::Kind::Finished, i + 1, combos.size(), labelOf(combos[i])};
+        done.outcome = &refused;
+        done.diags = &diags;
+        emit(done);
+        result.status = JobStatus::BadInput;
+        return result;
+    }
+    // The stills and the sheet are one set of outputs: all appear, or none.
+    OutputSet outputs;
+    for (size_t i = 0; i < combos.size(); ++i) {
+        const std::string label = labelOf(combos[i]);
+        SceneJob job = jobOf(request, combos[i], stills / fmt::format("{:03}.png", i + 1));
+        job.outputs = &outputs;
         SweepEvent event{SweepEvent::Kind::Started, i + 1, combos.size(), label};
         emit(event);
         Diagnostics diags;
@@ -143,9 +173,17 @@ SweepResult runSweep(const SweepRequest& request, const std::function<void(const
                         : request.variations.empty()
                             ? 1
                             : static_cast<int>(request.variations[0].values.size());
-    result.sheetMessage = writeContactSheet(result.tiles, columns,
-                                            request.scenePath.filename().string(), request.sheet);
-    result.sheetWritten = result.sheetMessage.empty() || result.sheetMessage.rfind("warning", 0) == 0;
+    std::vector<Tile> staged = result.tiles;
+    for (auto& t : staged) t.image = outputs.staged(t.image);
+    try {
+        result.sheetMessage = writeContactSheet(staged, columns, request.scenePath.filename().string(),
+                                                outputs.add(request.sheet, "the contact sheet", true));
+        result.sheetWritten = result.sheetMessage.empty() || result.sheetMessage.rfind("warning", 0) == 0;
+        if (result.sheetWritten) outputs.commit();
+    } catch (const std::runtime_error& e) {
+        result.sheetMessage = e.what();
+        result.sheetWritten = false;
+    }
     return result;
 }
 

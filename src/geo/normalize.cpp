@@ -21,17 +21,34 @@ namespace relief::geo {
 using GeographicLib::GeographicErr;
 using GeographicLib::UTMUPS;
 
+double centreLongitude(std::vector<double> lons) {
+    if (lons.empty()) return 0;
+    for (double& l : lons) l = std::remainder(l, 360.0);  // -180..180
+    std::sort(lons.begin(), lons.end());
+    // Longitudes lie on a circle: the smallest arc that holds them all is the
+    // circle less its widest gap (which, for data across the antimeridian, is
+    // not the one between -180 and 180).
+    size_t widest = lons.size() - 1;  // the gap from the last back round to the first
+    double gap = lons.front() + 360 - lons.back();
+    for (size_t i = 0; i + 1 < lons.size(); ++i)
+        if (lons[i + 1] - lons[i] > gap) gap = lons[i + 1] - lons[i], widest = i;
+    const double start = lons[(widest + 1) % lons.size()];
+    const double arc = 360 - gap;
+    return std::remainder(start + 0.5 * arc, 360.0);
+}
+
 std::optional<Frame> chooseFrame(const scene::FrameSpec& spec,
                                  const std::vector<GeoSample>& samples, Diagnostics& diags) {
-    double latMin = 90, latMax = -90, lonMin = 180, lonMax = -180;
+    double latMin = 90, latMax = -90;
+    std::vector<double> lons;
+    lons.reserve(samples.size());
     for (const auto& s : samples) {
         latMin = std::min(latMin, s.latDeg);
         latMax = std::max(latMax, s.latDeg);
-        lonMin = std::min(lonMin, s.lonDeg);
-        lonMax = std::max(lonMax, s.lonDeg);
+        lons.push_back(s.lonDeg);
     }
     const double latC = 0.5 * (latMin + latMax);
-    const double lonC = 0.5 * (lonMin + lonMax);
+    const double lonC = centreLongitude(std::move(lons));
     Frame f;
     f.kind = spec.kind;
     if (f.kind == scene::FrameKind::Local) {
@@ -250,7 +267,7 @@ std::optional<std::array<double, 4>> frameBoxInside(const Frame& frame, const st
 }
 
 bool layoutNet(const scene::NetSpec& spec, std::array<double, 4> dataBox, double defaultSpacingM,
-               GeoGrid& net, Diagnostics& diags) {
+               GeoGrid& net, Diagnostics& diags, const NetBudget& budget) {
     if (spec.extentLonLat) {
         const auto box = frameBoxInside(net.frame, *spec.extentLonLat);
         if (!box) {
@@ -271,21 +288,24 @@ bool layoutNet(const scene::NetSpec& spec, std::array<double, 4> dataBox, double
     if (spacing > 0) {
         // The largest net with this spacing inside the extent, centred in it.
         const double across = std::floor(width / spacing + 1e-9) + 1, up = std::floor(height / spacing + 1e-9) + 1;
+        const bool given = spec.spacingM > 0;  // else the data's own spacing: no key of the scene to blame
+        const std::string spacingSaid = given ? fmt::format("net.spacing_m = {} m", formatShortest(spacing))
+                                              : fmt::format("a net at the data's own spacing, {} m,", formatShortest(spacing));
         if (!(across >= 4 && up >= 4)) {
-            diags.error(spec.locs.at("net"),
-                        fmt::format("net.spacing_m = {} m gives only {:.0f} x {:.0f} nodes over the "
-                                    "{} x {} m extent; at least 4 x 4 are needed: use a smaller "
-                                    "spacing",
-                                    formatShortest(spacing), up, across, formatShortest(width),
-                                    formatShortest(height)));
+            diags.error(spec.locs.at(given ? "net.spacing_m" : "net"),
+                        fmt::format("{} gives only {:.0f} x {:.0f} nodes over the {} x {} m extent; at least "
+                                    "4 x 4 are needed: {}",
+                                    spacingSaid, up, across, formatShortest(width), formatShortest(height),
+                                    given ? "use a smaller spacing" : "give a smaller net.spacing_m"));
             return false;
         }
-        if (across * up > 1e9) {
-            diags.error(spec.locs.at("net"),
-                        fmt::format("net.spacing_m = {} m gives {:.0f} x {:.0f} nodes over the {} x {} m "
-                                    "extent, more than the 1e9 a net may have: use a larger spacing",
-                                    formatShortest(spacing), up, across, formatShortest(width),
-                                    formatShortest(height)));
+        if (across * up > budget.maxNodes) {
+            diags.error(spec.locs.at(given ? "net.spacing_m" : "net"),
+                        fmt::format("{} gives {:.0f} x {:.0f} nodes over the {} x {} m extent, more than "
+                                    "{:.3g} allowed by {}: {}",
+                                    spacingSaid, up, across, formatShortest(width), formatShortest(height),
+                                    budget.maxNodes, budget.why,
+                                    given ? "use a larger spacing" : "give net.spacing_m (larger) or net.rows and net.cols"));
             return false;
         }
         cols = static_cast<int>(across);
@@ -294,6 +314,13 @@ bool layoutNet(const scene::NetSpec& spec, std::array<double, 4> dataBox, double
         net.x0 = xmin + 0.5 * (width - (cols - 1) * net.dx);
         net.y0 = ymin + 0.5 * (height - (rows - 1) * net.dy);
     } else {
+        if (double(rows) * double(cols) > budget.maxNodes) {
+            diags.error(spec.locs.at(spec.locs.has("net.rows") ? "net.rows" : "net.cols"),
+                        fmt::format("net.rows = {} and net.cols = {} give {:.3g} nodes, more than {:.3g} allowed by "
+                                    "{}: use fewer rows and columns",
+                                    rows, cols, double(rows) * double(cols), budget.maxNodes, budget.why));
+            return false;
+        }
         net.dx = width / (cols - 1);
         net.dy = height / (rows - 1);
         net.x0 = xmin;
@@ -306,7 +333,7 @@ bool layoutNet(const scene::NetSpec& spec, std::array<double, 4> dataBox, double
 
 std::optional<ControlNet> gridSamples(const scene::NetSpec& spec, const std::string& samplesName,
                                       const Frame& frame, const std::vector<FramePoint>& points,
-                                      Diagnostics& diags, const GridProgressFn& progress) {
+                                      Diagnostics& diags, const GridProgressFn& progress, const NetBudget& budget) {
     const std::string& csv = samplesName;
     if (points.size() < 4) {
         diags.error({csv, 0, 0}, fmt::format("only {} distinct sample point(s); at least 4 are "
@@ -322,7 +349,7 @@ std::optional<ControlNet> gridSamples(const scene::NetSpec& spec, const std::str
         xmin = std::min(xmin, fp.p.x), xmax = std::max(xmax, fp.p.x);
         ymin = std::min(ymin, fp.p.y), ymax = std::max(ymax, fp.p.y);
     }
-    if (!layoutNet(spec, {xmin, ymin, xmax, ymax}, 0, net, diags)) return std::nullopt;
+    if (!layoutNet(spec, {xmin, ymin, xmax, ymax}, 0, net, diags, budget)) return std::nullopt;
     const int rows = net.grid.rows, cols = net.grid.cols;
 
     std::vector<double> xs, ys, zs;
@@ -372,12 +399,12 @@ std::optional<ControlNet> gridSamples(const scene::NetSpec& spec, const std::str
 std::optional<ControlNet> normalize(const scene::FrameSpec& frameSpec, const scene::NetSpec& net,
                                     const std::string& samplesName,
                                     const std::vector<GeoSample>& samples, Diagnostics& diags,
-                                    const GridProgressFn& progress) {
+                                    const GridProgressFn& progress, const NetBudget& budget) {
     auto frame = chooseFrame(frameSpec, samples, diags);
     if (!frame) return std::nullopt;
     auto points = projectSamples(*frame, samples, diags);
     if (diags.hasErrors()) return std::nullopt;
-    return gridSamples(net, samplesName, *frame, points, diags, progress);
+    return gridSamples(net, samplesName, *frame, points, diags, progress, budget);
 }
 
 std::string netToCsv(const ControlNet& net) {

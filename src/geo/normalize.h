@@ -44,8 +44,13 @@ bool frameToGeodetic(const Frame& frame, Vec3 p, double& latDeg, double& lonDeg,
 double gridConvergenceDeg(const Frame& frame, double x, double y);
 bool geodeticToFrame(const Frame& frame, double latDeg, double lonDeg, double heightM, Vec3& p);
 
+/// The centre of the smallest arc of the circle of longitudes that holds all
+/// of `lons` (degrees, -180..180): 180 for data from 179 to -179, not 0.
+double centreLongitude(std::vector<double> lons);
+
 /// Chooses the frame for these samples (UTM zone of their centre, unless the
-/// scene forces one; or the local tangent plane at their centre).
+/// scene forces one; or the local tangent plane at their centre), the centre
+/// taken on the circle of longitudes (centreLongitude).
 std::optional<Frame> chooseFrame(const scene::FrameSpec& spec,
                                  const std::vector<GeoSample>& samples, Diagnostics& diags);
 
@@ -64,14 +69,23 @@ std::vector<FramePoint> projectSamples(const Frame& frame, const std::vector<Geo
 /// nullopt when the window does not fit in the frame.
 std::optional<std::array<double, 4>> frameBoxInside(const Frame& frame, const std::array<double, 4>& lonLat);
 
+/// The most nodes a net may have, checked as soon as its size is known and
+/// before anything is allocated for it: what [limits] max_memory_mb leaves
+/// for it at kNetBytesPerNode, and never more than 1e9.
+inline constexpr double kNetBytesPerNode = 48;  ///< the net's nodes, the warp's and the gridding's copies
+struct NetBudget {
+    double maxNodes = 1e9;
+    std::string why = "the 1e9 a net may have";  ///< for the message: "limits.max_memory_mb = 200 (48 bytes a node)"
+};
+
 /// Lays a net (origin, spacing, rows and cols; no heights) over net.extent_m,
 /// else the box inside net.extent_lonlat, else `dataBox` (xmin, ymin, xmax,
 /// ymax in net.frame, which must be set): rows x cols spanning
 /// it, or the largest net of net.spacing_m inside it, centred (or of
 /// `defaultSpacingM` when the scene gives neither; 0: rows and cols). False,
-/// with an error at [net], for fewer than 4 x 4 nodes or more than 1e9.
+/// with an error at [net], for fewer than 4 x 4 nodes or more than `budget`.
 bool layoutNet(const scene::NetSpec& spec, std::array<double, 4> dataBox, double defaultSpacingM,
-               GeoGrid& net, Diagnostics& diags);
+               GeoGrid& net, Diagnostics& diags, const NetBudget& budget = {});
 
 /// How far the gridding is, 0..1 (GDAL reports it per row of the net).
 using GridProgressFn = std::function<void(double fraction)>;
@@ -79,13 +93,14 @@ using GridProgressFn = std::function<void(double fraction)>;
 /// `samplesName` names the samples in messages.
 std::optional<ControlNet> gridSamples(const scene::NetSpec& spec, const std::string& samplesName,
                                       const Frame& frame, const std::vector<FramePoint>& points,
-                                      Diagnostics& diags, const GridProgressFn& progress = {});
+                                      Diagnostics& diags, const GridProgressFn& progress = {},
+                                      const NetBudget& budget = {});
 
 /// Whole stage: chooseFrame, projectSamples, gridSamples.
 std::optional<ControlNet> normalize(const scene::FrameSpec& frame, const scene::NetSpec& net,
                                     const std::string& samplesName,
                                     const std::vector<GeoSample>& samples, Diagnostics& diags,
-                                    const GridProgressFn& progress = {});
+                                    const GridProgressFn& progress = {}, const NetBudget& budget = {});
 
 /// The net as CSV `x,y,z` (metres in the frame, row 0 south first).
 std::string netToCsv(const ControlNet& net);

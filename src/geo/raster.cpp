@@ -16,7 +16,9 @@
 #include <fmt/format.h>
 
 #include "core/number_format.h"
-#include "geo/gdal_drivers.h"
+#include "core/text_escape.h"
+#include "geo/gdal_crs.h"
+#include "geo/gdal_setup.h"
 
 namespace relief::geo {
 
@@ -50,14 +52,17 @@ std::pair<Transform, Transform> wgs84Transforms(OGRSpatialReferenceH srs) {
             Transform(OCTNewCoordinateTransformation(srs, wgs84.get()))};
 }
 
-Dataset openRaster(const std::filesystem::path& path) {
-    geo::registerGdalDrivers();
+// A raster a scene names, opened as GDAL reads it once relief has checked it
+// (gdal_setup.h); `problem` says why not when GDAL must not open it.
+Dataset openRaster(const std::filesystem::path& path, std::string& problem) {
+    problem = gdalInputProblem(path);
+    if (!problem.empty()) return Dataset();
+    // Absolute: a relative name is never taken for a driver's prefix ("NETCDF:...").
+    std::error_code ec;
+    const std::string name = std::filesystem::absolute(path, ec).string();
     CPLPushErrorHandler(CPLQuietErrorHandler);
-    Dataset ds(GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr));
+    Dataset ds(GDALOpenEx(name.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr));
     CPLPopErrorHandler();
-    if (!ds) return ds;
-    const std::string_view driver = GDALGetDriverShortName(GDALGetDatasetDriver(ds.get()));
-    if (driver == "XYZ" || driver == "CSV") ds.reset();  // text tables are samples, not rasters
     return ds;
 }
 
@@ -66,7 +71,14 @@ Dataset openRaster(const std::filesystem::path& path) {
 // them); a licence such as CC BY asks for it in the still.
 std::string rasterCredit(GDALDatasetH ds) {
     for (const char* key : {"TIFFTAG_COPYRIGHT", "COPYRIGHT", "ATTRIBUTION", "LICENSE", "LICENCE"})
-        if (const char* v = GDALGetMetadataItem(ds, key, nullptr); v && *v) return v;
+        if (const char* v = GDALGetMetadataItem(ds, key, nullptr); v && *v) {
+            // A file's own text, cut (at a character) to what a still can show.
+            std::string credit = v;
+            if (credit.size() <= scene::kMaxTextBytes) return credit;
+            size_t cut = scene::kMaxTextBytes;
+            while (cut > 0 && (static_cast<unsigned char>(credit[cut]) & 0xC0) == 0x80) --cut;
+            return credit.substr(0, cut) + "\u2026";
+        }
     return {};
 }
 
@@ -80,7 +92,17 @@ struct NetToRaster {
     int rows = 0;
     OGRCoordinateTransformationH toRaster = nullptr, toWgs84 = nullptr;
     double geo[6] = {}, inverse[6] = {};
+    /// A raster in degrees: 360 degrees in its pixels, so that a node west of
+    /// the antimeridian finds the raster's cells east of it (lon 181 = -179);
+    /// 0 otherwise.
+    double wrapPixels = 0;
+    int width = 0;
 };
+
+// A raster in geographic degrees wraps round the antimeridian.
+double wrapPixelsOf(OGRSpatialReferenceH srs, const double geo[6]) {
+    return OSRIsGeographic(srs) && geo[1] != 0 ? std::fabs(360.0 / geo[1]) : 0;
+}
 
 int transformNetToRaster(void* arg, int dstToSrc, int count, double* x, double* y, double* z, int* ok) {
     const auto& t = *static_cast<const NetToRaster*>(arg);
@@ -94,6 +116,11 @@ int transformNetToRaster(void* arg, int dstToSrc, int count, double* x, double* 
             if (!OCTTransform(t.toRaster, 1, &cx, &cy, &cz)) continue;
             x[i] = t.inverse[0] + cx * t.inverse[1] + cy * t.inverse[2];
             y[i] = t.inverse[3] + cx * t.inverse[4] + cy * t.inverse[5];
+            if (t.wrapPixels > 0 && (x[i] < 0 || x[i] > t.width)) {
+                // Only onto the raster: a node off it stays where it is (continuous for the approximator).
+                const double wrapped = x[i] + (x[i] < 0 ? t.wrapPixels : -t.wrapPixels);
+                if (wrapped >= 0 && wrapped <= t.width) x[i] = wrapped;
+            }
         } else {
             double cx = t.geo[0] + x[i] * t.geo[1] + y[i] * t.geo[2];
             double cy = t.geo[3] + x[i] * t.geo[4] + y[i] * t.geo[5], cz = 0;
@@ -165,6 +192,44 @@ double metresPerUnit(std::string unit) {
 struct PixelBox {
     double x0, y0, x1, y1;
 };
+// What GDAL's warper would read of the raster: every cell, unless the raster
+// has overviews. Beyond kMaxReadCells (16 GB of 32-bit cells) that takes
+// longer than any still is worth, and a header that claims more cells than
+// its file can hold (an ASCII grid: two bytes a cell at least) is damaged or
+// hostile; both are refused from the header, before anything is read.
+constexpr double kMaxReadCells = 4e9;
+std::string headerProblem(GDALDatasetH ds, double cells) {
+    const std::string_view driver = GDALGetDriverShortName(GDALGetDatasetDriver(ds));
+    const bool ascii = driver == "AAIGrid" || driver == "GRASSASCIIGrid" || driver == "GSAG" || driver == "USGSDEM";
+    char** files = GDALGetFileList(ds);
+    std::uintmax_t bytes = 0;
+    std::error_code ec;
+    for (char** f = files; f && *f; ++f) bytes += std::filesystem::file_size(*f, ec), ec.clear();
+    CSLDestroy(files);
+    if (ascii && bytes > 0 && 2 * cells > double(bytes) + 4096)
+        return fmt::format("the raster's header says {} x {} cells, more than its {} bytes can hold (an {} grid "
+                           "takes two bytes a cell at least): the file is damaged or truncated",
+                           GDALGetRasterXSize(ds), GDALGetRasterYSize(ds), bytes, driver);
+    GDALRasterBandH band = GDALGetRasterBand(ds, 1);
+    if (cells > kMaxReadCells && band && GDALGetOverviewCount(band) == 0)
+        return fmt::format("the raster is {} x {} cells ({:.3g}), more than the {:.3g} relief reads from a raster "
+                           "without overviews: add overviews (gdaladdo) or cut a window (gdal_translate -projwin)",
+                           GDALGetRasterXSize(ds), GDALGetRasterYSize(ds), cells, kMaxReadCells);
+    return "";
+}
+
+// Whether the scan for the data's box costs little: a raster of at most 1e8
+// cells, or one with an overview (which GDAL then reads instead) of at most
+// 4e6. A larger raster's default box is all of it.
+bool dataBoxAffordable(GDALRasterBandH band, double cells) {
+    if (cells <= 1e8) return true;
+    for (int i = 0; i < GDALGetOverviewCount(band); ++i) {
+        GDALRasterBandH o = GDALGetOverview(band, i);
+        if (o && double(GDALGetRasterBandXSize(o)) * GDALGetRasterBandYSize(o) <= 4e6) return true;
+    }
+    return false;
+}
+
 std::optional<PixelBox> dataBox(GDALRasterBandH band, int width, int height, double noData) {
     constexpr int kScan = 1024;
     const int bw = std::min(width, kScan), bh = std::min(height, kScan);
@@ -190,15 +255,16 @@ std::optional<PixelBox> dataBox(GDALRasterBandH band, int width, int height, dou
 }  // namespace
 
 bool isRasterDem(const std::filesystem::path& path) {
-    if (openRaster(path)) return true;
-    // Identified as a raster format but not readable (a truncated GeoTIFF): still a raster, so
-    // that the error is about the raster, not about a CSV header made of binary bytes.
+    std::string problem;
+    if (openRaster(path, problem)) return true;
+    // A VRT relief refuses, or a file identified as a raster format but not
+    // readable (a truncated GeoTIFF): still a raster, so that the error is about
+    // the raster, not about a CSV header made of binary bytes.
+    if (!problem.empty()) return problem.starts_with("it is a VRT");
     CPLPushErrorHandler(CPLQuietErrorHandler);
     GDALDriverH driver = GDALIdentifyDriverEx(path.c_str(), GDAL_OF_RASTER, nullptr, nullptr);
     CPLPopErrorHandler();
-    if (!driver) return false;
-    const std::string_view name = GDALGetDriverShortName(driver);
-    return name != "XYZ" && name != "CSV";
+    return driver != nullptr;
 }
 
 namespace {
@@ -209,10 +275,25 @@ namespace {
 std::optional<ControlNet> warpedNet(const Dataset& src, const scene::SamplesSpec& samples,
                                     const scene::FrameSpec& frameSpec, const scene::NetSpec& netSpec,
                                     std::optional<PixelBox> footprint, Diagnostics& diags,
-                                    const GridProgressFn& progress) {
+                                    const GridProgressFn& progress, const NetBudget& budget) {
     const std::string& name = samples.pathAsWritten;
     const SourceLoc fileLoc{name, 0, 0};
     const int width = GDALGetRasterXSize(src.get()), height = GDALGetRasterYSize(src.get());
+    const double cells = double(width) * double(height);
+    // From the header, before a cell is read: a net at the raster's own cell
+    // size (the default) must fit the budget.
+    const bool netGiven = netSpec.spacingM > 0 || netSpec.locs.has("net.rows") || netSpec.locs.has("net.cols");
+    if (std::string problem = headerProblem(src.get(), cells); !problem.empty()) {
+        diags.error(fileLoc, problem);
+        return std::nullopt;
+    }
+    if (!netGiven && cells > budget.maxNodes) {
+        diags.error(fileLoc, fmt::format("the raster is {} x {} cells ({:.3g}); a net at its own cell size would "
+                                         "have more nodes than the {:.3g} allowed by {}: give net.spacing_m "
+                                         "(a coarser net) or net.extent_lonlat (a window)",
+                                         width, height, cells, budget.maxNodes, budget.why));
+        return std::nullopt;
+    }
     const int bands = GDALGetRasterCount(src.get());
     if (samples.band > bands) {
         diags.error(samples.locs.at("samples.band"),
@@ -263,10 +344,9 @@ std::optional<ControlNet> warpedNet(const Dataset& src, const scene::SamplesSpec
     Srs rasterSrs(OSRNewSpatialReference(nullptr));
     OSRSetAxisMappingStrategy(rasterSrs.get(), OAMS_TRADITIONAL_GIS_ORDER);
     if (!samples.crs.empty()) {
-        if (OSRSetFromUserInput(rasterSrs.get(), samples.crs.c_str()) != OGRERR_NONE) {
+        if (std::string problem; !crsFromText(rasterSrs.get(), samples.crs, problem)) {
             diags.error(samples.locs.at("samples.crs"),
-                        fmt::format("samples.crs = \"{}\" is not a CRS GDAL knows; write e.g. \"EPSG:2193\"",
-                                    samples.crs));
+                        fmt::format("samples.crs = \"{}\" {}", printableExcerpt(samples.crs, 80), problem));
             return std::nullopt;
         }
     } else {
@@ -293,7 +373,7 @@ std::optional<ControlNet> warpedNet(const Dataset& src, const scene::SamplesSpec
     const double srcNoData = hasNoData ? declaredNoData : std::nan("");
     const bool window = netSpec.extentM || netSpec.extentLonLat;
     PixelBox box = footprint ? *footprint : PixelBox{0, 0, double(width), double(height)};
-    if (!window && !footprint) {
+    if (!window && !footprint && dataBoxAffordable(band, cells)) {
         const auto data = dataBox(band, width, height, srcNoData);
         if (!data) {
             diags.error(fileLoc, fmt::format("every cell of band {} is nodata ({}): check the band and the "
@@ -394,17 +474,25 @@ std::optional<ControlNet> warpedNet(const Dataset& src, const scene::SamplesSpec
     net.attribution = rasterCredit(src.get());
     net.raster = fmt::format("{} x {} cells, band {}, {}, {}", width, height, samples.band,
                              crsName ? crsName : "unnamed CRS", kResampling[static_cast<int>(samples.resample)]);
-    if (!layoutNet(netSpec, {west, south, east, north}, cell, net, diags)) return std::nullopt;
+    if (!layoutNet(netSpec, {west, south, east, north}, cell, net, diags, budget)) return std::nullopt;
     const int rows = net.rows(), cols = net.cols();
 
     // The net as a raster of its own (pixel centres = nodes, row 0 north), warped into.
     constexpr double kNoData = -1.0e30;
     Dataset dst(GDALCreate(GDALGetDriverByName("MEM"), "", cols, rows, 1, GDT_Float64, nullptr));
+    if (!dst) {
+        diags.error(fileLoc, fmt::format("there is no memory for a net of {} x {} nodes: give net.spacing_m (a "
+                                         "coarser net), or lower limits.max_memory_mb to what this machine has",
+                                         rows, cols));
+        return std::nullopt;
+    }
     GDALRasterBandH out = GDALGetRasterBand(dst.get(), 1);
     GDALSetRasterNoDataValue(out, kNoData);
     NetToRaster chain{net.frame, net.x0, net.y0, net.dx, net.dy, rows, toRaster.get(), toWgs84.get(), {}, {}};
     std::copy(geo, geo + 6, chain.geo);
     std::copy(inverse, inverse + 6, chain.inverse);
+    chain.wrapPixels = wrapPixelsOf(rasterSrs.get(), geo);
+    chain.width = width;
 
     GDALWarpOptions* wo = GDALCreateWarpOptions();
     wo->hSrcDS = src.get();
@@ -453,10 +541,13 @@ std::optional<ControlNet> warpedNet(const Dataset& src, const scene::SamplesSpec
     // Elevations beyond the Earth's are a unit or a file error, named at the
     // first such cell (the raster's column and row, counted from 0 at its
     // north-west corner).
-    if (samples.earthElevations) {
+    // Elevations = "any" still end at kAnyElevationLimitM.
+    const double lowest = samples.earthElevations ? scene::kLowestElevationM : -scene::kAnyElevationLimitM;
+    const double highest = samples.earthElevations ? scene::kHighestElevationM : scene::kAnyElevationLimitM;
+    {
         for (size_t i = 0; i < z.size(); ++i) {
             const double h = scale * z[i];
-            if (!(z[i] > kNoData * 0.5) || (h >= scene::kLowestElevationM && h <= scene::kHighestElevationM)) continue;
+            if (!(z[i] > kNoData * 0.5) || (h >= lowest && h <= highest)) continue;
             const size_t r = rows - 1 - i / cols, c = i % cols;
             double lat = 0, lon = 0, ignored = 0, px = -1, py = -1;
             frameToGeodetic(net.frame, {net.x0 + c * net.dx, net.y0 + r * net.dy, 0}, lat, lon, ignored);
@@ -473,17 +564,22 @@ std::optional<ControlNet> warpedNet(const Dataset& src, const scene::SamplesSpec
                 if (GDALRasterIO(band, GF_Read, static_cast<int>(tx), static_cast<int>(ty), 1, 1, &v, 1, 1, GDT_Float64, 0,
                                  0) != CE_None || std::isnan(v) || v == srcNoData)
                     continue;
-                if (scale * v < scene::kLowestElevationM || scale * v > scene::kHighestElevationM) {
+                if (scale * v < lowest || scale * v > highest) {
                     cellX = tx, cellY = ty, held = scale * v;
                     break;
                 }
             }
-            diags.error(fileLoc, fmt::format("the cell at column {}, row {} (near lat {:.6f} lon {:.6f}) holds {} m, "
-                                             "beyond the Earth's ({} to {} m): check the band, its unit and its "
-                                             "nodata value, or set elevations = \"any\" in [samples] for data that "
-                                             "are not terrain in metres",
-                                             cellX, cellY, lat, lon, formatShortest(held), scene::kLowestElevationM,
-                                             scene::kHighestElevationM));
+            if (samples.earthElevations)
+                diags.error(fileLoc, fmt::format("the cell at column {}, row {} (near lat {:.6f} lon {:.6f}) holds {} m, "
+                                                 "beyond the Earth's ({} to {} m): check the band, its unit and its "
+                                                 "nodata value, or set elevations = \"any\" in [samples] for data that "
+                                                 "are not terrain in metres",
+                                                 cellX, cellY, lat, lon, formatShortest(held), lowest, highest));
+            else
+                diags.error(fileLoc, fmt::format("the cell at column {}, row {} (near lat {:.6f} lon {:.6f}) holds {} "
+                                                 "m, beyond the {:.0e} m any elevation may be (the surface's vertices "
+                                                 "are single-precision): check the band, its unit and its nodata value",
+                                                 cellX, cellY, lat, lon, formatShortest(held), highest));
             return std::nullopt;
         }
     }
@@ -576,13 +672,19 @@ std::optional<ControlNet> warpedNet(const Dataset& src, const scene::SamplesSpec
 
 std::optional<ControlNet> rasterNet(const scene::SamplesSpec& samples, const scene::FrameSpec& frameSpec,
                                     const scene::NetSpec& netSpec, Diagnostics& diags,
-                                    const GridProgressFn& progress) {
-    const Dataset src = openRaster(samples.path);
+                                    const GridProgressFn& progress, const NetBudget& budget) {
+    std::string problem;
+    const Dataset src = openRaster(samples.path, problem);
     if (!src) {
-        diags.error({samples.pathAsWritten, 0, 0}, "GDAL cannot read this raster (a truncated or damaged file?)");
+        diags.error({samples.pathAsWritten, 0, 0},
+                    problem.empty() ? std::string("GDAL cannot read this raster (a truncated or damaged file?)")
+                                    : fmt::format("samples.path: relief does not read this file: {}; a scene's VRT may "
+                                                  "name only files in its own folder, with no raw or derived bands "
+                                                  "(docs/security.md)",
+                                                  problem));
         return std::nullopt;
     }
-    return warpedNet(src, samples, frameSpec, netSpec, std::nullopt, diags, progress);
+    return warpedNet(src, samples, frameSpec, netSpec, std::nullopt, diags, progress, budget);
 }
 
 namespace {
@@ -625,7 +727,7 @@ std::optional<Axis> latticeAxis(std::vector<double> v) {
 std::optional<SampleLattice> findLattice(const std::vector<GeoSample>& samples, const std::string& crs) {
     if (samples.size() < 4) return std::nullopt;
     Srs target(OSRNewSpatialReference(nullptr));
-    if (OSRSetFromUserInput(target.get(), crs.c_str()) != OGRERR_NONE) return std::nullopt;
+    if (std::string problem; !crsFromText(target.get(), crs, problem)) return std::nullopt;
     OSRSetAxisMappingStrategy(target.get(), OAMS_TRADITIONAL_GIS_ORDER);
     Transform toTarget = wgs84Transforms(target.get()).first;
     if (!toTarget) return std::nullopt;
@@ -660,12 +762,13 @@ std::optional<SampleLattice> findLattice(const std::vector<GeoSample>& samples, 
 
 std::optional<ControlNet> latticeNet(const SampleLattice& lattice, const scene::SamplesSpec& samples,
                                      const scene::FrameSpec& frameSpec, const scene::NetSpec& netSpec,
-                                     Diagnostics& diags, const GridProgressFn& progress) {
-    registerGdalDrivers();
+                                     Diagnostics& diags, const GridProgressFn& progress, const NetBudget& budget) {
+    setUpGdal();
     Dataset mem(GDALCreate(GDALGetDriverByName("MEM"), "", lattice.cols, lattice.rows, 1, GDT_Float64, nullptr));
     Srs srs(OSRNewSpatialReference(nullptr));
     char* wkt = nullptr;
-    if (!mem || OSRSetFromUserInput(srs.get(), lattice.crs.c_str()) != OGRERR_NONE ||
+    std::string problem;
+    if (!mem || !crsFromText(srs.get(), lattice.crs, problem) ||
         OSRExportToWkt(srs.get(), &wkt) != OGRERR_NONE) {
         CPLFree(wkt);
         diags.error({samples.pathAsWritten, 0, 0}, "GDAL cannot hold the lattice of samples as a raster");
@@ -688,7 +791,7 @@ std::optional<ControlNet> latticeNet(const SampleLattice& lattice, const scene::
     asRaster.crs.clear();  // the raster's own, just set
     // The default extent: the box of the samples (the cells' centres), as for scattered samples.
     const PixelBox centres{0.5, 0.5, lattice.cols - 0.5, lattice.rows - 0.5};
-    auto net = warpedNet(mem, asRaster, frameSpec, netSpec, centres, diags, progress);
+    auto net = warpedNet(mem, asRaster, frameSpec, netSpec, centres, diags, progress, budget);
     if (net)
         net->raster = fmt::format("lattice of {} x {} samples in {}, {:.7g} x {:.7g} apart, bilinear", lattice.cols,
                                   lattice.rows, lattice.crs, lattice.dx, lattice.dy);
@@ -702,10 +805,13 @@ namespace relief::geo {
 std::optional<ImageOnGrid> imageOnGrid(const std::filesystem::path& path, const std::string& pathAsWritten,
                                        const GeoGrid& grid, Diagnostics& diags) {
     const SourceLoc fileLoc{pathAsWritten, 0, 0};
-    Dataset src = openRaster(path);
+    std::string problem;
+    Dataset src = openRaster(path, problem);
     if (!src) {
-        diags.error(fileLoc, "texture.image: GDAL cannot read it as a raster image (a GeoTIFF, PNG with a world "
-                             "file, JPEG 2000, ...)");
+        diags.error(fileLoc, !problem.empty()
+                                 ? fmt::format("texture.image: relief does not read this image: {}", problem)
+                                 : std::string("texture.image: GDAL cannot read it as a raster image (a GeoTIFF, "
+                                               "PNG with a world file, JPEG 2000, ...)"));
         return std::nullopt;
     }
     const int bands = GDALGetRasterCount(src.get());
@@ -749,6 +855,8 @@ std::optional<ImageOnGrid> imageOnGrid(const std::filesystem::path& path, const 
     NetToRaster chain{grid.frame, grid.x0, grid.y0, grid.dx, grid.dy, rows, toImage.get(), toWgs84.get(), {}, {}};
     std::copy(geoTransform, geoTransform + 6, chain.geo);
     std::copy(inverse, inverse + 6, chain.inverse);
+    chain.wrapPixels = wrapPixelsOf(imageSrs.get(), geoTransform);
+    chain.width = GDALGetRasterXSize(src.get());
     GDALWarpOptions* wo = GDALCreateWarpOptions();
     wo->hSrcDS = src.get();
     wo->hDstDS = dst.get();

@@ -32,7 +32,7 @@ bool isRasterDem(const std::filesystem::path& path);
 /// are converted to metres; an unknown unit is taken as metres, with a warning.
 std::optional<ControlNet> rasterNet(const scene::SamplesSpec& samples, const scene::FrameSpec& frame,
                                     const scene::NetSpec& net, Diagnostics& diags,
-                                    const GridProgressFn& progress = {});
+                                    const GridProgressFn& progress = {}, const NetBudget& budget = {});
 
 /// An image draped on the surface ([texture] image): a georeferenced raster
 /// in any CRS GDAL reads (RGB in bands 1-3, or one grey band) resampled
@@ -68,6 +68,7 @@ std::optional<SampleLattice> findLattice(const std::vector<GeoSample>& samples, 
 /// rasterNet; the default extent is the samples' box.
 std::optional<ControlNet> latticeNet(const SampleLattice& lattice, const scene::SamplesSpec& samples,
                                      const scene::FrameSpec& frame, const scene::NetSpec& net,
-                                     Diagnostics& diags, const GridProgressFn& progress = {});
+                                     Diagnostics& diags, const GridProgressFn& progress = {},
+                                     const NetBudget& budget = {});
 
 }  // namespace relief::geo

@@ -7,7 +7,7 @@
 
 #include <fmt/format.h>
 
-#include "core/atomic_file.h"
+#include "core/input_file.h"
 #include "core/text_escape.h"
 
 namespace relief::geo {
@@ -41,6 +41,15 @@ std::vector<Field> splitFields(std::string_view line) {
     return out;
 }
 
+// Printable text: UTF-8 without control characters (tabs and a CR at the end aside).
+bool isText(std::string_view line) {
+    for (const char ch : trim(line)) {
+        const auto c = static_cast<unsigned char>(ch);
+        if ((c < 0x20 && c != '\t') || c == 0x7f) return false;
+    }
+    return isUtf8(line);
+}
+
 // True when every sample lies within a relative 1e-9 of the line through the
 // first sample and the one farthest from it, in lon/lat scaled to equal
 // ground distances (the space the user wrote them in).
@@ -63,17 +72,22 @@ bool allCollinear(const std::vector<GeoSample>& s, size_t& farIndex) {
 }  // namespace
 
 std::vector<GeoSample> readSamples(const std::filesystem::path& path, const std::string& displayPath,
-                                   Diagnostics& diags, bool earthElevations) {
-    std::string text;
-    try {
-        text = readFile(path);
-    } catch (const std::exception&) {
-        diags.error({displayPath, 0, 0}, "cannot read the samples file");
+                                   Diagnostics& diags, bool earthElevations, std::uintmax_t maxBytes) {
+    std::string problem;
+    auto read = readInputFile(path, maxBytes, problem);
+    if (!read) {
+        diags.error({displayPath, 0, 0}, "cannot read the samples file: " + problem);
         return {};
     }
+    std::string& text = *read;
     if (text.size() >= 3 && static_cast<unsigned char>(text[0]) == 0xEF)  // UTF-8 BOM
         text.erase(0, 3);
 
+    if (text.empty()) {
+        diags.error({displayPath, 0, 0}, "the samples file is empty: give a CSV with the header lon,lat,elev and a "
+                                         "sample a line, or a raster GDAL reads");
+        return {};
+    }
     std::vector<GeoSample> samples;
     int lineNo = 0;
     int badLines = 0;
@@ -99,10 +113,17 @@ std::vector<GeoSample> readSamples(const std::filesystem::path& path, const std:
                 else if (fields[i].text == "elev") colElev = static_cast<int>(i);
             }
             if (colLon < 0 || colLat < 0 || colElev < 0 || nColumns != 3) {
-                diags.error({displayPath, lineNo, 1},
-                            fmt::format("header must name the columns lon,lat,elev (WGS84 "
-                                        "degrees, metres); found \"{}\"",
-                                        printableExcerpt(trim(line))));
+                // Quoted only when it is a CSV's header: any other file's first
+                // line (a key file, /etc/shadow) is nobody's business in a message.
+                if (fields.size() > 1 && isText(line))
+                    diags.error({displayPath, lineNo, 1},
+                                fmt::format("header must name the columns lon,lat,elev (WGS84 "
+                                            "degrees, metres); found \"{}\"",
+                                            printableExcerpt(trim(line))));
+                else
+                    diags.error({displayPath, 0, 0},
+                                "neither a raster GDAL reads nor a CSV of samples (a header naming the columns "
+                                "lon,lat,elev, then a sample a line)");
                 return {};
             }
             continue;
@@ -146,6 +167,11 @@ std::vector<GeoSample> readSamples(const std::filesystem::path& path, const std:
                                           "elevations = \"any\" in [samples] for data that are not terrain in "
                                           "metres",
                                           f.text, scene::kLowestElevationM, scene::kHighestElevationM));
+                ok = false;
+            } else if (k == 2 && std::fabs(v) > scene::kAnyElevationLimitM) {
+                bad(f.column, fmt::format("elev = {} m is beyond the {:.0e} m any elevation may be (the surface's "
+                                          "vertices are single-precision): fix the value or its unit",
+                                          f.text, scene::kAnyElevationLimitM));
                 ok = false;
             }
             values[k] = v;

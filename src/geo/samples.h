@@ -1,5 +1,6 @@
 #pragma once
 // Reading georeferenced samples (part of stage 2, geo).
+#include <cstdint>
 #include <filesystem>
 #include <vector>
 
@@ -23,13 +24,16 @@ struct GeoSample {
 /// same lon/lat twice with different elevations, with `earthElevations` an
 /// elevation beyond the Earth's) with its line and column. Exact duplicates
 /// are merged. Fewer than 4 distinct points, or all of them on one line, is
-/// an error too. `displayPath` is the path used in messages.
+/// an error too. `displayPath` is the path used in messages. A file that is
+/// not a regular file, or longer than `maxBytes` (0: any length), is an error
+/// before anything is read.
 std::vector<GeoSample> readSamples(const std::filesystem::path& path, const std::string& displayPath,
-                                   Diagnostics& diags, bool earthElevations = true);
+                                   Diagnostics& diags, bool earthElevations = true, std::uintmax_t maxBytes = 0);
 
 /// The samples a scene's [samples] names.
-inline std::vector<GeoSample> readSamples(const scene::SamplesSpec& spec, Diagnostics& diags) {
-    return readSamples(spec.path, spec.pathAsWritten, diags, spec.earthElevations);
+inline std::vector<GeoSample> readSamples(const scene::SamplesSpec& spec, Diagnostics& diags,
+                                          std::uintmax_t maxBytes = 0) {
+    return readSamples(spec.path, spec.pathAsWritten, diags, spec.earthElevations, maxBytes);
 }
 
 }  // namespace relief::geo

@@ -9,7 +9,7 @@
 #include <gdal_alg.h>
 #include <ogr_api.h>
 
-#include "geo/gdal_drivers.h"
+#include "geo/gdal_setup.h"
 
 namespace relief::measure {
 
@@ -26,7 +26,7 @@ std::vector<curves::CurveSet> contourLines(const geo::GeoGrid& lat, const std::v
                                            std::string& error) {
     std::vector<curves::CurveSet> out(levels.size());
     if (levels.empty()) return out;
-    geo::registerGdalDrivers();
+    geo::setUpGdal();
     const Grid& g = lat.grid;
     // The raster: GDAL's row 0 is north, so rows are flipped; the pixel
     // centres are the nodes.

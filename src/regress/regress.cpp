@@ -12,6 +12,7 @@
 #include <toml++/toml.h>
 
 #include "core/atomic_file.h"
+#include "core/input_file.h"
 #include "core/text_escape.h"
 #include "core/text_distance.h"
 #include "pipeline.h"
@@ -88,18 +89,32 @@ bool isCaseName(const std::string& name) {
     return true;
 }
 
+// Whether `path` lies in `folder` or below, links resolved (what exists of it).
+bool insideFolder(const fs::path& path, const fs::path& folder) {
+    std::error_code ec;
+    const fs::path p = fs::weakly_canonical(fs::absolute(path, ec), ec);
+    const fs::path f = fs::weakly_canonical(fs::absolute(folder.empty() ? fs::path(".") : folder, ec), ec);
+    auto pi = p.begin();
+    for (auto fi = f.begin(); fi != f.end(); ++fi, ++pi)
+        if (pi == p.end() || *fi != *pi) return false;
+    return true;
+}
+
 }  // namespace
 
 std::optional<Manifest> readManifest(const fs::path& path, Diagnostics& diags) {
     const std::string file = path.string();
+    std::string problem;
+    const auto text = readInputFile(path, kMaxManifestBytes, problem);
+    if (!text) {
+        diags.error({file, 0, 0}, "cannot read the manifest: " + problem);
+        return std::nullopt;
+    }
     toml::table root;
     try {
-        root = toml::parse(readFile(path), file);
+        root = toml::parse(*text, file);
     } catch (const toml::parse_error& e) {
         diags.error(locOf(file, e.source()), fmt::format("invalid TOML: {}", e.description()));
-        return std::nullopt;
-    } catch (const std::exception& e) {
-        diags.error({file, 0, 0}, "cannot read the manifest");
         return std::nullopt;
     }
     Manifest m;
@@ -146,6 +161,7 @@ std::optional<Manifest> readManifest(const fs::path& path, Diagnostics& diags) {
         c.name = *name;
         c.scene = (base / *scene).lexically_normal();
         c.referenceDir = (base / *refs).lexically_normal();
+        c.referencesLoc = locOf(file, t->get("references")->source());
         // The non-throwing test: a path the system refuses (too long, say) is a
         // missing scene, not an exception out of the reader.
         std::error_code ec;
@@ -186,6 +202,7 @@ CaseResult runCase(const TestCase& c, const RunOptions& o, int povThreads) {
     job.templatesDir = o.templatesDir;
     job.threads = povThreads;
     job.sandbox = o.sandbox;
+    job.stillOnly = true;  // the .pov and sidecar of a test render are not part of the report
     Diagnostics diags;
     const JobOutcome outcome = runSceneJob(job, diags, nullptr);
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -196,11 +213,7 @@ CaseResult runCase(const TestCase& c, const RunOptions& o, int povThreads) {
         if (outcome.status == JobStatus::ToolFailed) r.message = "POV-Ray failed: " + outcome.render.error;
         return r;
     }
-    // The .pov and sidecar of a test render are not part of the report.
     std::error_code ec;
-    fs::remove(outcome.paths.pov, ec);
-    fs::remove(outcome.paths.sidecar, ec);
-
     const auto refs = referencesOf(c);
     if (refs.empty()) {
         r.status = CaseStatus::New;
@@ -229,7 +242,13 @@ CaseResult runCase(const TestCase& c, const RunOptions& o, int povThreads) {
                     : fmt::format("{}: max error {:.4f} at ({}, {}), {} pixels ({:.3f} %) over {}",
                                   r.referenceName, d.maxError, d.maxX, d.maxY, d.failingPixels,
                                   d.failingPercent, c.thresholds.fail);
-    // Copies for the self-contained report, and the difference image.
+    // Copies for the self-contained report, and the difference image; a
+    // reference that is not an image (someone's text file named ref.png) is
+    // not copied into a report that travels.
+    if (d.verdict == compare::Verdict::FileError) {
+        r.referenceImage.clear();
+        return r;
+    }
     const fs::path refCopy = images / (c.name + ".ref.png");
     fs::copy_file(r.referenceImage, refCopy, fs::copy_options::overwrite_existing, ec);
     r.referenceImage = refCopy;
@@ -241,6 +260,22 @@ CaseResult runCase(const TestCase& c, const RunOptions& o, int povThreads) {
 }
 
 }  // namespace
+
+bool checkUpdatable(const Manifest& m, Diagnostics& diags) {
+    // --update replaces the PNGs it finds in a case's references: only a
+    // folder of the manifest's own tree may be blessed (not ~/Pictures, not a
+    // link out of it); references elsewhere are read, never written.
+    const fs::path base = m.file.parent_path();
+    for (const auto& c : m.cases)
+        if (!insideFolder(c.referenceDir, base))
+            diags.error(c.referencesLoc,
+                        fmt::format("--update: the references of case \"{}\", {}, are not in the manifest's folder "
+                                    "({}); relief test --update replaces the PNGs of a folder only there: run it on "
+                                    "the manifest beside them",
+                                    c.name, printableExcerpt(c.referenceDir.string(), 200),
+                                    printableExcerpt(base.empty() ? "." : base.string(), 200)));
+    return !diags.hasErrors();
+}
 
 std::vector<CaseResult> runCases(const Manifest& m, const RunOptions& o, const CaseDoneFn& done) {
     fs::create_directories(o.reportDir / "images");

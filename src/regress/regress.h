@@ -18,6 +18,7 @@ struct TestCase {
     std::string name;
     std::filesystem::path scene;                    ///< resolved against the manifest's folder
     std::filesystem::path referenceDir;             ///< every *.png in it is an accepted reference
+    SourceLoc referencesLoc;                        ///< where the manifest names it
     compare::Thresholds thresholds;
     int width = 160, height = 120;                  ///< the test resolution
 };
@@ -30,6 +31,11 @@ struct Manifest {
 /// Reads a manifest; reports every problem (unknown keys, missing scenes,
 /// duplicate names) with file:line:col.
 std::optional<Manifest> readManifest(const std::filesystem::path& path, Diagnostics& diags);
+
+/// For --update, which replaces the PNGs of a case's references folder: false,
+/// with an error at each, when a case's folder is outside the manifest's
+/// folder (links resolved). References elsewhere can be read, never blessed.
+bool checkUpdatable(const Manifest& manifest, Diagnostics& diags);
 
 enum class CaseStatus { Pass, Warning, Fail, New, Error };
 const char* statusName(CaseStatus s);

@@ -45,7 +45,7 @@ void writeReport(const Manifest& m, const std::vector<CaseResult>& results, cons
     });
     size_t nFailed = 0;
     for (const auto& r : results) nFailed += failed(r.status);
-    const std::string bless = fmt::format("relief test {} --update", o.manifestArgument);
+    const std::string bless = fmt::format("relief test {} --update", shellQuoted(o.manifestArgument));
 
     std::string h;
     h += "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n";

@@ -3,7 +3,7 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
-#include <spawn.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -17,6 +17,7 @@
 #include <fmt/format.h>
 
 #include "core/atomic_file.h"
+#include "core/output_set.h"
 #include "render/png.h"
 
 extern char** environ;
@@ -25,41 +26,37 @@ namespace relief::render {
 
 namespace {
 
-// A private HOME and POVINI, removed when done: POV-Ray then reads no user
-// or system configuration, and the I/O-restriction config we give it keeps it
-// from warning.
+// A private folder for POV-Ray, removed when done: its HOME and POVINI (so it
+// reads no user or system configuration, and the I/O-restriction config we
+// give it keeps it from warning), its output, and links to what it reads
+// under fixed names: no user path ever reaches POV-Ray's option parser,
+// which splits at spaces and takes "+UA" in a folder name for a switch.
 class PovrayHome {
 public:
-    PovrayHome() {
-        removeStale();
-        std::string pattern = fmt::format("{}/{}{}-XXXXXX", kParent, kPrefix, ::getpid());
-        if (!::mkdtemp(pattern.data())) throw std::runtime_error("cannot create a temporary folder in /tmp");
-        dir_ = pattern;
-        std::filesystem::create_directories(dir_ / ".povray" / "3.7");
-        writeFileAtomically(dir_ / ".povray" / "3.7" / "povray.conf",
-                            "[File I/O Security]\nnone\n");
-        writeFileAtomically(dir_ / "povray.ini", "");
+    explicit PovrayHome(const RenderRequest& req) : folder_(makeFolder()) {
+        namespace fs = std::filesystem;
+        const fs::path& dir = folder_.path();
+        fs::create_directories(dir / ".povray" / "3.7");
+        writeFileAtomically(dir / ".povray" / "3.7" / "povray.conf", "[File I/O Security]\nnone\n");
+        writeFileAtomically(dir / "povray.ini", "");
+        fs::create_directory(dir / "inputs");
+        fs::create_symlink(fs::absolute(req.pov), scene());
+        if (!req.templatesDir.empty()) fs::create_directory_symlink(fs::absolute(req.templatesDir), templates());
+        for (const auto& f : req.inputFiles) fs::create_symlink(fs::absolute(f), inputs() / f.filename());
     }
-    ~PovrayHome() {
-        std::error_code ec;
-        std::filesystem::remove_all(dir_, ec);
-    }
-    const std::filesystem::path& dir() const { return dir_; }
+    const std::filesystem::path& dir() const { return folder_.path(); }
+    std::filesystem::path scene() const { return dir() / "scene.pov"; }
+    std::filesystem::path templates() const { return dir() / "templates"; }
+    std::filesystem::path inputs() const { return dir() / "inputs"; }
+    std::filesystem::path output() const { return dir() / "render.png"; }
 
 private:
-    static constexpr const char* kParent = "/tmp";
-    static constexpr const char* kPrefix = "relief-povray-";
-    // The folders of runs that were killed (their process is gone).
-    static void removeStale() {
-        std::error_code ec;
-        for (const auto& entry : std::filesystem::directory_iterator(kParent, ec)) {
-            const std::string name = entry.path().filename().string();
-            if (name.rfind(kPrefix, 0) != 0) continue;
-            const long pid = std::atol(name.c_str() + std::strlen(kPrefix));
-            if (pid > 0 && !processRunning(pid)) std::filesystem::remove_all(entry.path(), ec);
-        }
+    static PrivateFolder makeFolder() {
+        removeAbandonedFolders(kParent);  // the folders of runs that were killed
+        return PrivateFolder(kParent, "povray");
     }
-    std::filesystem::path dir_;
+    static constexpr const char* kParent = "/tmp";
+    PrivateFolder folder_;
 };
 
 // "Rendered 5120 of 480000 pixels (1%)" -> 1; -1 without a percentage.
@@ -145,6 +142,49 @@ std::vector<std::string> sandboxed(const std::string& bwrap, const std::filesyst
     return a;
 }
 
+// Starts argv[0] with `envp`, stdin from /dev/null, stdout and stderr into
+// `outFd`. The child is killed when the thread that started it ends (relief
+// killed, even with SIGKILL): POV-Ray never outlives the run, sandboxed or
+// not. Returns 0 or the errno of what failed (exec's, through a pipe).
+int spawnChild(char* const* argv, char* const* envp, int outFd, pid_t& pid) {
+    int status[2];
+    if (::pipe2(status, O_CLOEXEC) != 0) return errno;
+    const pid_t parent = ::getpid();
+    pid = ::fork();
+    if (pid < 0) {
+        const int err = errno;
+        ::close(status[0]), ::close(status[1]);
+        return err;
+    }
+    if (pid == 0) {  // only async-signal-safe calls until exec
+        ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+        if (::getppid() != parent) ::_exit(127);  // the parent died before prctl took hold
+        const int in = ::open("/dev/null", O_RDONLY);
+        if (in < 0 || ::dup2(in, STDIN_FILENO) < 0 || ::dup2(outFd, STDOUT_FILENO) < 0 ||
+            ::dup2(outFd, STDERR_FILENO) < 0) {
+            const int err = errno;
+            (void)!::write(status[1], &err, sizeof err);
+            ::_exit(127);
+        }
+        ::execve(argv[0], argv, envp);
+        const int err = errno;
+        (void)!::write(status[1], &err, sizeof err);
+        ::_exit(127);
+    }
+    ::close(status[1]);
+    int err = 0;
+    ssize_t n;
+    while ((n = ::read(status[0], &err, sizeof err)) < 0 && errno == EINTR) {
+    }
+    ::close(status[0]);
+    if (n == static_cast<ssize_t>(sizeof err)) {  // exec failed: the child is gone
+        while (::waitpid(pid, nullptr, 0) < 0 && errno == EINTR) {
+        }
+        return err;
+    }
+    return 0;
+}
+
 }  // namespace
 
 std::string findOnPath(const std::string& name) {
@@ -179,13 +219,13 @@ RenderResult renderPov(const RenderRequest& req, const ProgressFn& progress) {
             return result;
         }
     }
-    PovrayHome home;
+    PovrayHome home(req);
     // POV-Ray writes into its private folder; the canonical PNG is then
-    // written atomically at its final path.
-    const std::filesystem::path rawPng = home.dir() / "render.png";
+    // written atomically where the request says.
+    const std::filesystem::path rawPng = home.output();
 
     std::vector<std::string> args{povray,
-                                  "+I" + std::filesystem::absolute(req.pov).string(),
+                                  "+I" + home.scene().string(),
                                   "+O" + rawPng.string(),
                                   fmt::format("+W{}", req.width),
                                   fmt::format("+H{}", req.height),
@@ -197,7 +237,8 @@ RenderResult renderPov(const RenderRequest& req, const ProgressFn& progress) {
     else args.push_back("-A");
     if (req.alpha) args.push_back("+UA");
     if (req.threads > 0) args.push_back(fmt::format("+WT{}", req.threads));
-    for (const auto& dir : req.includeDirs) args.push_back("+L" + dir.string());
+    if (!req.templatesDir.empty()) args.push_back("+L" + home.templates().string());
+    args.push_back("+L" + home.inputs().string());
     result.command = args;
 
     std::vector<std::string> envStrings;
@@ -212,8 +253,9 @@ RenderResult renderPov(const RenderRequest& req, const ProgressFn& progress) {
     envStrings.push_back("HOME=" + home.dir().string());
     envStrings.push_back("POVINI=" + (home.dir() / "povray.ini").string());
     if (req.sandbox) {
+        // The files themselves, at their own paths (the links lead there), never their folders.
         std::vector<std::filesystem::path> readOnly{req.pov};
-        readOnly.insert(readOnly.end(), req.includeDirs.begin(), req.includeDirs.end());
+        if (!req.templatesDir.empty()) readOnly.push_back(req.templatesDir);
         readOnly.insert(readOnly.end(), req.inputFiles.begin(), req.inputFiles.end());
         if (!povray.starts_with("/usr/")) readOnly.push_back(povray);
         args = sandboxed(bwrap, home.dir(), readOnly, envStrings, args);
@@ -229,14 +271,8 @@ RenderResult renderPov(const RenderRequest& req, const ProgressFn& progress) {
         result.error = "cannot create a pipe";
         return result;
     }
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_adddup2(&actions, pipeFd[1], STDOUT_FILENO);
-    posix_spawn_file_actions_adddup2(&actions, pipeFd[1], STDERR_FILENO);
-    posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
     pid_t pid = 0;
-    const int spawnErr = ::posix_spawn(&pid, args[0].c_str(), &actions, nullptr, argv.data(), envp.data());
-    posix_spawn_file_actions_destroy(&actions);
+    const int spawnErr = spawnChild(argv.data(), envp.data(), pipeFd[1], pid);
     ::close(pipeFd[1]);
     if (spawnErr != 0) {
         ::close(pipeFd[0]);
@@ -318,6 +354,10 @@ RenderResult renderPov(const RenderRequest& req, const ProgressFn& progress) {
             return result;
         }
         result.error = errorText(lastLines);
+        // POV-Ray names its input by the private folder's link: "File 'scene.pov' line 12" says enough.
+        const std::string privatePrefix = home.dir().string() + "/";
+        for (size_t at; (at = result.error.find(privatePrefix)) != std::string::npos;)
+            result.error.erase(at, privatePrefix.size());
         if (result.error.empty())
             result.error = WIFEXITED(status)
                                ? fmt::format("povray exited with status {}", WEXITSTATUS(status))

@@ -12,23 +12,27 @@ namespace relief::render {
 
 struct RenderRequest {
     std::filesystem::path pov;
-    std::filesystem::path png;  ///< final path; written atomically
+    std::filesystem::path png;  ///< where the canonical PNG goes (written atomically)
     int width = 800;
     int height = 600;
     bool antialias = true;
     bool alpha = false;  ///< an RGBA PNG: what the rays miss is transparent (+UA)
-    std::vector<std::filesystem::path> includeDirs;  ///< passed as +L
+    /// The folder of the template, which a template's own #include files
+    /// come from; may be empty.
+    std::filesystem::path templatesDir;
     int threads = 0;  ///< 0: POV-Ray's default (all cores)
     /// POV-Ray's scene language can open, read and write files (#fopen,
     /// #read, #write) and POV-Ray 3.7's own I/O restrictions are not enforced
     /// in Debian's build, so a .pov from elsewhere could read or overwrite the
     /// user's files. In the sandbox (bubblewrap) it sees the system read-only,
-    /// the .pov, its include folders and `inputFiles` read-only, and one
-    /// private temporary folder it may write (its output); no network, no
-    /// other process, no home folder.
+    /// the .pov, the templates folder and `inputFiles` read-only (those files
+    /// only, not the folders they are in), and one private temporary folder it
+    /// may write (its output); no network, no other process, no home folder.
     bool sandbox = true;
     double timeoutSeconds = 0;  ///< POV-Ray is stopped after this long; 0: no limit
-    std::vector<std::filesystem::path> inputFiles;  ///< images the .pov reads (drapes), for the sandbox
+    /// Files the .pov reads by their file name (a height field's and a drape's
+    /// PNGs): POV-Ray finds them on its library path.
+    std::vector<std::filesystem::path> inputFiles;
 };
 
 struct RenderResult {

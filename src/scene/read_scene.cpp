@@ -13,6 +13,7 @@
 #include <toml++/toml.h>
 
 #include "core/atomic_file.h"
+#include "core/input_file.h"
 #include "core/number_format.h"
 #include "core/text_distance.h"
 #include "core/text_escape.h"
@@ -118,6 +119,12 @@ public:
         if (!n) return std::nullopt;
         auto i = n->value_exact<int64_t>();
         if (!i) {
+            // A whole number too large for 64 bits (from --set) is out of range, not a non-integer.
+            if (const auto d = n->value_exact<double>(); d && std::isfinite(*d) && *d == std::floor(*d)) {
+                error(key, fmt::format("{} = {} is outside [{}, {}]{}{}", qualified(key), formatShortest(*d), lo, hi,
+                                       unit.empty() ? "" : " ", unit));
+                return std::nullopt;
+            }
             error(key, fmt::format("{} must be an integer{}{}", qualified(key),
                                    unit.empty() ? "" : " number of ", unit));
             return std::nullopt;
@@ -148,6 +155,19 @@ public:
         return s;
     }
 
+    // A text drawn on the still or written in the .pov header and sidecar (a
+    // title, a credit line): at most kMaxTextBytes, since laying out megabytes
+    // of text costs minutes and gigabytes, and shows nothing a still can hold.
+    std::optional<std::string> text(const std::string& key) {
+        auto s = string(key);
+        if (s && s->size() > kMaxTextBytes) {
+            error(key, fmt::format("{} is {} bytes long, more than the {} a text of the still may be", qualified(key),
+                                   s->size(), kMaxTextBytes));
+            return std::nullopt;
+        }
+        return s;
+    }
+
     // A string that must be one of `choices`.
     std::optional<std::string> choice(const std::string& key,
                                       const std::vector<std::string>& choices) {
@@ -155,8 +175,8 @@ public:
         if (!s) return std::nullopt;
         for (const auto& c : choices)
             if (c == *s) return s;
-        error(key, fmt::format("{} = \"{}\" is not one of {}{}", qualified(key), *s,
-                               joinQuoted(choices), didYouMean(*s, choices)));
+        error(key, fmt::format("{} = \"{}\" is not one of {}{}", qualified(key), terminalText(*s, 100),
+                               joinQuoted(choices), s->size() > 100 ? std::string() : didYouMean(*s, choices)));
         return std::nullopt;
     }
 
@@ -293,8 +313,10 @@ bool applyOverrides(toml::table& root, const SceneOverrides& overrides, Diagnost
             continue;
         }
         char* end = nullptr;
+        errno = 0;
         const long long i = std::strtoll(text.c_str(), &end, 10);
-        if (!text.empty() && *end == '\0') {
+        // An integer past 64 bits stays the number it is (strtoll would clamp it), and the key's range says so.
+        if (!text.empty() && *end == '\0' && errno != ERANGE) {
             t->insert_or_assign(key, static_cast<int64_t>(i));
             continue;
         }
@@ -324,14 +346,13 @@ bool applyOverrides(toml::table& root, const SceneOverrides& overrides, Diagnost
 std::optional<SceneSpec> readScene(const std::filesystem::path& path, Diagnostics& diags,
                                    const SceneOverrides& overrides) {
     const std::string file = path.string();
-    std::string text;
-    try {
-        text = readFile(path);
-    } catch (const std::exception& e) {
-        diags.error({file, 0, 0}, fmt::format("cannot read the scene file ({})",
-                                              std::strerror(errno)));
+    std::string problem;
+    const auto read = readInputFile(path, kMaxSceneBytes, problem);
+    if (!read) {
+        diags.error({file, 0, 0}, fmt::format("cannot read the scene file: {}", problem));
         return std::nullopt;
     }
+    const std::string& text = *read;
 
     toml::table root;
     try {
@@ -383,14 +404,15 @@ std::optional<SceneSpec> readScene(const std::filesystem::path& path, Diagnostic
             if (auto p = s.string("path")) {
                 scene.samples.pathAsWritten = *p;
                 scene.samples.path = path.parent_path() / *p;
-                std::error_code ec;
-                if (!std::filesystem::is_regular_file(scene.samples.path, ec))
+                if (const std::string problem = inputFileProblem(scene.samples.path); problem == "no such file")
                     s.error("path", fmt::format("samples.path: file \"{}\" not found (looked "
                                                 "for {}; the path is relative to the scene file)",
-                                                *p, scene.samples.path.string()));
+                                                printableExcerpt(*p, 200), printableExcerpt(scene.samples.path.string(), 200)));
+                else if (!problem.empty())
+                    s.error("path", fmt::format("samples.path = \"{}\": {}", printableExcerpt(*p, 200), problem));
             }
         }
-        if (auto a = s.string("attribution")) scene.samples.attribution = *a;
+        if (auto a = s.text("attribution")) scene.samples.attribution = *a;
         if (auto e = s.choice("elevations", {"earth", "any"})) scene.samples.earthElevations = *e == "earth";
         if (auto b = s.integer("band", 1, 65535, "(1 = the first band)")) scene.samples.band = *b;
         if (auto c = s.string("crs")) scene.samples.crs = *c;
@@ -507,7 +529,8 @@ std::optional<SceneSpec> readScene(const std::filesystem::path& path, Diagnostic
         if (const toml::node* m = s.find("mask")) {
             const toml::array* a = m->as_array();
             bool ok = a && !a->empty();
-            for (size_t i = 0; ok && i < a->size(); ++i) {
+            const bool tooLong = ok && a->size() > kMaxMaskCoefficients;  // kept out of the scheme's analysis
+            for (size_t i = 0; ok && !tooLong && i < a->size(); ++i) {
                 std::optional<double> v = (*a)[i].value<double>();
                 if (!v) {
                     if (auto str = (*a)[i].value_exact<std::string>()) v = parseFraction(*str);
@@ -518,6 +541,10 @@ std::optional<SceneSpec> readScene(const std::filesystem::path& path, Diagnostic
             if (!ok)
                 s.error("mask", "subdivision.mask must be a list of numbers or fractions (the "
                                 "coefficients a_k of the scheme's symbol)");
+            else if (tooLong)
+                s.error("mask", fmt::format("subdivision.mask has {} coefficients, more than the {} a scheme's mask "
+                                            "may have (its smoothness analysis grows as the cube of the length)",
+                                            a->size(), kMaxMaskCoefficients));
         }
         const bool isMask = scheme.name == "mask";  // a mask's own keys: subdiv::resolveScheme
         if (!isMask && (s.find("mask") || s.find("arity") || s.find("mask_first")))
@@ -571,16 +598,15 @@ std::optional<SceneSpec> readScene(const std::filesystem::path& path, Diagnostic
         if (auto r = s.choice("ramp", ramps)) ramp.preset = *r;
         if (auto c = s.string("cpt")) {  // a GMT palette file, beside the scene
             const std::filesystem::path cptPath = path.parent_path() / *c;
-            std::error_code ec;
+            std::optional<std::string> cptText;
             if (s.find("ramp"))
                 s.error("cpt", "give either texture.ramp or texture.cpt, not both");
-            else if (!std::filesystem::is_regular_file(cptPath, ec))
-                s.error("cpt", fmt::format("texture.cpt: file \"{}\" not found (looked for {})", printableExcerpt(*c),
-                                           printableExcerpt(cptPath.string(), 200)));
-            else if (std::filesystem::file_size(cptPath, ec) > (1u << 20))
-                s.error("cpt", fmt::format("texture.cpt: {} is over 1 MB; a colour palette is a few lines",
-                                           printableExcerpt(*c)));
-            else if (auto stops = parseCpt(readFile(cptPath), cptPath.string(), diags)) {
+            else if (std::string problem; !(cptText = readInputFile(cptPath, kMaxPaletteBytes, problem)))
+                s.error("cpt", problem == "no such file"
+                                   ? fmt::format("texture.cpt: file \"{}\" not found (looked for {})",
+                                                 printableExcerpt(*c), printableExcerpt(cptPath.string(), 200))
+                                   : fmt::format("texture.cpt = \"{}\": {}", printableExcerpt(*c), problem));
+            else if (auto stops = parseCpt(*cptText, cptPath.string(), diags)) {
                 ramp.preset = "custom";
                 ramp.stops = std::move(*stops);
                 ramp.cptPath = *c;
@@ -599,15 +625,17 @@ std::optional<SceneSpec> readScene(const std::filesystem::path& path, Diagnostic
             s.error(s.find("rock_to_deg") ? "rock_to_deg" : "rock_from_deg",
                     fmt::format("texture.rock_to_deg ({}) must be above texture.rock_from_deg ({})",
                                 formatShortest(scene.look.rockToDeg), formatShortest(scene.look.rockFromDeg)));
-        if (auto v = s.string("image_attribution")) scene.look.drapeImageAttribution = *v;
+        if (auto v = s.text("image_attribution")) scene.look.drapeImageAttribution = *v;
         if (auto v = s.string("image")) {
             const std::filesystem::path image = path.parent_path() / *v;
-            std::error_code ec;
+            const std::string problem = inputFileProblem(image);
             if (s.find("mode") && scene.look.colouring != LookSpec::Colouring::Elevation)
                 s.error("image", "texture.image colours the surface by itself: leave out texture.mode");
-            else if (!std::filesystem::is_regular_file(image, ec))
+            else if (problem == "no such file")
                 s.error("image", fmt::format("texture.image: file \"{}\" not found (looked for {})",
                                              printableExcerpt(*v), printableExcerpt(image.string(), 200)));
+            else if (!problem.empty())
+                s.error("image", fmt::format("texture.image = \"{}\": {}", printableExcerpt(*v), problem));
             else {
                 scene.look.colouring = LookSpec::Colouring::Image;
                 scene.look.drapeImage = image;
@@ -746,8 +774,15 @@ std::optional<SceneSpec> readScene(const std::filesystem::path& path, Diagnostic
                                                   printableExcerpt(*v)));
         }
         if (auto v = s.string("output")) {
+            const std::filesystem::path out(*v);
+            const bool climbs = std::any_of(out.begin(), out.end(), [](const auto& part) { return part == ".."; });
             if (v->size() < 5 || v->substr(v->size() - 4) != ".png")
-                s.error("output", fmt::format("render.output = \"{}\" must name a .png file", *v));
+                s.error("output", fmt::format("render.output = \"{}\" must name a .png file", printableExcerpt(*v, 200)));
+            else if (out.is_absolute() || climbs)
+                // A scene from elsewhere must not choose where on the disk it writes; -o can.
+                s.error("output", fmt::format("render.output = \"{}\" must stay inside the current folder (no "
+                                              "leading /, no ..); give -o to write anywhere else",
+                                              printableExcerpt(*v, 200)));
             else
                 scene.render.output = *v;
         }
@@ -793,9 +828,9 @@ std::optional<SceneSpec> readScene(const std::filesystem::path& path, Diagnostic
         Section s = sectionInto("overlay", scene.overlay.locs);
         if (auto v = s.boolean("enabled"))
             scene.overlay.enabled = *v ? OverlaySpec::Enabled::On : OverlaySpec::Enabled::Off;
-        if (auto v = s.string("title")) scene.overlay.title = *v;
-        if (auto v = s.string("subtitle")) scene.overlay.subtitle = *v;
-        if (auto v = s.string("credits")) scene.overlay.credits = *v;
+        if (auto v = s.text("title")) scene.overlay.title = *v;
+        if (auto v = s.text("subtitle")) scene.overlay.subtitle = *v;
+        if (auto v = s.text("credits")) scene.overlay.credits = *v;
         if (auto v = s.boolean("legend")) scene.overlay.legend = *v;
         if (auto v = s.boolean("scale_bar")) scene.overlay.scaleBar = *v;
         if (auto v = s.boolean("north_arrow")) scene.overlay.northArrow = *v;

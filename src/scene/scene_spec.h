@@ -27,6 +27,11 @@ namespace relief::scene {
 
 /// The deepest subdivision a scene may ask for (and depth = "auto" may choose).
 inline constexpr int kMaxDepth = 8;
+/// The most coefficients subdivision.mask may have (the papers' masks have at
+/// most a dozen; the analysis grows as the cube of the length).
+inline constexpr size_t kMaxMaskCoefficients = 64;
+/// The longest text a scene may put on the still (title, credits, attributions).
+inline constexpr size_t kMaxTextBytes = 1000;
 
 /// Where the keys of a spec were written: `section.key` -> location. A key
 /// the file does not give falls back to its section's header, then the file.
@@ -69,6 +74,10 @@ enum class NodataPolicy { Mask, Fill, Error };
 /// The Earth's elevations, with a margin: the Challenger Deep (-10,935 m) and
 /// Everest (8,849 m). A value outside is a unit or a file error.
 inline constexpr double kLowestElevationM = -11100, kHighestElevationM = 8900;
+/// elevations = "any" have a bound too: heights become single-precision
+/// vertices in scene units, and beyond 1e7 m (a thousand times any planet's
+/// relief) they are a unit or a file error, not terrain.
+inline constexpr double kAnyElevationLimitM = 1e7;
 
 /// [samples]: where the elevation data are: a `lon,lat,elev` CSV of scattered
 /// samples, or any raster DEM GDAL opens (recognised by GDAL, not by name).

@@ -141,7 +141,9 @@ std::optional<ResolvedScheme> resolveScheme(const scene::SchemeSpec& spec, Diagn
         if (!params.empty())
             diags.error(spec.locs.at("subdivision." + params.begin()->first),
                         fmt::format("scheme = \"mask\" takes no parameter \"{}\"", params.begin()->first));
-        else if (spec.mask.empty() || spec.maskArity == 0)
+        else if (spec.mask.empty() && spec.locs.has("subdivision.mask")) {
+            // written, but refused by the scene reader, which said why at the key
+        } else if (spec.mask.empty() || spec.maskArity == 0)
             diags.error(nameLoc, "scheme = \"mask\" needs subdivision.arity (2 or 3) and "
                                  "subdivision.mask = [a_k, ...]");
         else

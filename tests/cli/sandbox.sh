@@ -44,5 +44,40 @@ got=$?
 grep -q "bwrap is not installed: apt-get install bubblewrap, or render without the sandbox (--no-sandbox)" stderr.txt ||
   { echo "FAIL: without bwrap:"; cat stderr.txt; status=1; }
 [ -e out/nobwrap.png ] && { echo "FAIL: rendered without bwrap"; status=1; }
+# A height field's scene reads its PNGs beside the .pov: the sandbox holds those files, not the
+# folder they are in, so a template cannot read another file of the output folder.
+mkdir -p beside && cp "$src/templates/scene.pov.in" beside/ && mkdir -p "$work/out"
+echo '"out-s3cret",' > "$work/out/secret.txt"
+printf '#fopen In "%s/out/secret.txt" read\n#read(In, Secret)\n#fclose In\n' "$work" >> beside/scene.pov.in
+run 3 beside --set geometry.kind=height_field
+grep -q "Parse Error: Cannot open user file $work/out/secret.txt (read)" stderr.txt ||
+  { echo "FAIL: a file beside the outputs was readable:"; cat stderr.txt; status=1; }
+# User paths never reach POV-Ray's option parser: a templates folder named like a switch and an
+# output folder with spaces render as any other (no +UA alpha channel from the folder's name).
+mkdir -p "tpl +UA" && cp "$src/templates/scene.pov.in" "tpl +UA/"
+for sandbox in "" --no-sandbox; do
+  rm -rf "$work/out dir"
+  "$relief" render -q "$scene" --templates "tpl +UA" --set render.width=48 --set render.height=32 \
+    -o "$work/out dir/a still.png" $sandbox 2> stderr.txt
+  got=$?
+  [ "$got" = 0 ] || { echo "FAIL: paths with spaces $sandbox: exit $got"; cat stderr.txt; status=1; }
+  # The PNG's colour type (byte 25): 2 is RGB, 6 would be RGBA (+UA).
+  [ "$(od -An -tu1 -j25 -N1 "$work/out dir/a still.png" 2>/dev/null | tr -d ' ')" = 2 ] ||
+    { echo "FAIL: $sandbox the still is not RGB: a folder's name became POV-Ray's +UA"; status=1; }
+  [ -f "$work/out dir/a still.pov" ] && [ -f "$work/out dir/a still.json" ] || { echo "FAIL: $sandbox set incomplete"; status=1; }
+done
+# POV-Ray never outlives relief, sandboxed or not: killed (SIGKILL) mid-render, no POV-Ray is left.
+for sandbox in "" --no-sandbox; do
+  "$relief" render -q "$src/scenes/mountain-sharp.toml" -o "$work/out/killed.png" $sandbox 2>/dev/null &
+  pid=$!
+  for _ in $(seq 100); do pgrep -f "relief-povray-.*-$pid-" >/dev/null && break; sleep 0.1; done
+  pgrep -f "relief-povray-.*-$pid-" >/dev/null || { echo "FAIL: $sandbox POV-Ray never started"; status=1; }
+  sleep 0.5
+  kill -9 "$pid"; wait "$pid" 2>/dev/null
+  for _ in $(seq 20); do pgrep -f "relief-povray-.*-$pid-" >/dev/null || break; sleep 0.1; done
+  if pgrep -f "relief-povray-.*-$pid-" >/dev/null; then
+    echo "FAIL: $sandbox POV-Ray still runs 2 s after relief was killed"; pkill -9 -f "relief-povray-.*-$pid-"; status=1
+  fi
+done
 [ "$status" = 0 ] && echo "in the sandbox: the write outside and the read outside failed (exit 3); without it both ran"
 exit $status

@@ -14,7 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.h"
-#include "geo/gdal_drivers.h"
+#include "geo/gdal_setup.h"
 
 namespace relief {
 namespace {
@@ -165,7 +165,7 @@ TEST(Pipeline, TheSunFromADateLightsAlongTheGridBearing) {
 // scene gives none; a draped image's credit joins it.
 TEST(Pipeline, ARastersOwnCreditIsTheDefaultAttribution) {
     const fs::path dir = freshDir("credit");
-    geo::registerGdalDrivers();
+    geo::setUpGdal();
     const auto copyWithCredit = [&](const fs::path& from, const fs::path& to, const char* credit) {
         GDALDatasetH src = GDALOpen(from.c_str(), GA_ReadOnly);
         ASSERT_NE(src, nullptr);

@@ -1,0 +1,42 @@
+#pragma once
+// Every file relief reads is untrusted: it may be a FIFO that never ends, a
+// device (/dev/zero), a folder, or far larger than its kind of file can be.
+// One reader for all of them: it opens without blocking, refuses what is not
+// a regular file, and reads no more than the kind's cap.
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+namespace relief {
+
+/// The most bytes a reader takes of each kind of text file (they are all a
+/// few kB in use; the caps keep a wrong file from filling memory).
+inline constexpr std::uintmax_t kMaxSceneBytes = 4u << 20;
+inline constexpr std::uintmax_t kMaxTemplateBytes = 1u << 20;
+inline constexpr std::uintmax_t kMaxPaletteBytes = 1u << 20;
+inline constexpr std::uintmax_t kMaxManifestBytes = 4u << 20;
+inline constexpr std::uintmax_t kMaxCurveBytes = 64u << 20;
+
+/// Why `path` cannot be read as an input file, as the end of a sentence
+/// ("it is a FIFO (a named pipe), not a file"), or "" when it is a regular
+/// file that can be opened and is at most `maxBytes` long (0: any size).
+/// For files another library opens (GDAL, OpenImageIO, libpng): they would
+/// block on a FIFO or read a device for ever.
+std::string inputFileProblem(const std::filesystem::path& path, std::uintmax_t maxBytes = 0);
+
+/// Reads a whole regular file of at most `maxBytes`, without blocking on a
+/// FIFO and without following it to a device; nullopt with `problem` set
+/// (as inputFileProblem words it) otherwise.
+std::optional<std::string> readInputFile(const std::filesystem::path& path, std::uintmax_t maxBytes,
+                                         std::string& problem);
+
+/// The first `maxBytes` of a regular file (less when it is shorter), as
+/// readInputFile reads whole files: to tell what a file is.
+std::optional<std::string> readInputHead(const std::filesystem::path& path, std::uintmax_t maxBytes,
+                                         std::string& problem);
+
+/// "1.5 MB", "12 kB", "300 bytes": a size for a message.
+std::string byteSize(std::uintmax_t bytes);
+
+}  // namespace relief

@@ -1,0 +1,94 @@
+#pragma once
+// A run's outputs appear together or not at all. Each is written in a
+// private folder beside its final name; when the run has made all of them,
+// they are moved into place at once (under a lock of their folder, so two
+// runs onto one name never leave a mixed set), the sidecar last.
+//
+// What "nothing written" then means: no file under any output's final name
+// was created, replaced or removed. A run killed at any moment leaves at most
+// its private folder (hidden: .relief-...), which the next run into that
+// folder removes, or, if the kill came in the middle of moving a set into
+// place, finishes moving.
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace relief {
+
+/// A folder only this run writes in: `<parent>/.relief-<what>-<host>-<pid>-XXXXXX`
+/// (mode 0700, a name no other process can take), holding an `owner` file
+/// this process keeps locked while it lives. The kernel drops a dead
+/// process's locks, so a later run that can lock the owner file knows the
+/// folder was abandoned. Removed (with what is in it) by the destructor.
+class PrivateFolder {
+public:
+    /// Throws std::runtime_error naming `parent` and the system's reason.
+    PrivateFolder(const std::filesystem::path& parent, std::string_view what);
+    ~PrivateFolder();
+    PrivateFolder(PrivateFolder&& other) noexcept;
+    PrivateFolder& operator=(PrivateFolder&&) = delete;
+    PrivateFolder(const PrivateFolder&) = delete;
+
+    const std::filesystem::path& path() const { return dir_; }
+
+private:
+    std::filesystem::path dir_;
+    int ownerFd_ = -1;
+};
+
+/// Removes the private folders in `parent` whose run is gone, and only those:
+/// hidden folders named .relief-... holding relief's locked `owner` file (a
+/// user's own files are never touched). A set that was being moved into
+/// place when its run died is moved the rest of the way first. Returns how
+/// many folders were removed.
+int removeAbandonedFolders(const std::filesystem::path& parent);
+
+/// The name a user knows a file by: for a path in a set's private folder
+/// (<folder>/.relief-.../new/<name>), its final path <folder>/<name>;
+/// any other path as it is. For messages.
+std::filesystem::path shownPath(const std::filesystem::path& path);
+
+/// The outputs of one run.
+class OutputSet {
+public:
+    OutputSet() = default;
+    ~OutputSet();  ///< drops whatever was not committed
+    OutputSet(const OutputSet&) = delete;
+    OutputSet& operator=(const OutputSet&) = delete;
+
+    /// Declares an output and returns where to write it (a path in the
+    /// private folder beside `finalPath`, with the same file name). Creates
+    /// the folder `finalPath` goes in. Throws std::runtime_error when it is
+    /// the same file as an output declared before (naming both `role`s: "-o",
+    /// "--dump-net", "the sidecar"), its name holds a control character, or
+    /// the folder cannot be made. The `seal` (the sidecar) is moved into
+    /// place after all the others, and its old file taken away before them.
+    std::filesystem::path add(const std::filesystem::path& finalPath, std::string_view role, bool seal = false);
+    /// Takes back an output declared before: it is not moved into place.
+    void drop(const std::filesystem::path& finalPath);
+    /// Where the output declared as `finalPath` is written.
+    std::filesystem::path staged(const std::filesystem::path& finalPath) const;
+    /// Refuses an input (the scene, the samples) that is also an output, naming both.
+    void checkNotAnOutput(const std::filesystem::path& input, std::string_view role) const;
+
+    /// Moves every output into place, in the order declared, the seal last
+    /// (a set with its sidecar is whole). Throws
+    /// std::runtime_error naming the file when one cannot be moved, after
+    /// putting back the files it had replaced.
+    void commit();
+
+private:
+    struct Entry {
+        std::filesystem::path finalPath, key;  ///< key: the final path made absolute and normal
+        std::string role;
+        size_t folder;
+    };
+    std::vector<PrivateFolder> folders_;
+    std::vector<std::filesystem::path> folderDirs_;  ///< the destination folder of each
+    std::vector<Entry> entries_;
+    std::filesystem::path seal_;
+    bool committed_ = false;
+};
+
+}  // namespace relief

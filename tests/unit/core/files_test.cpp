@@ -1,0 +1,195 @@
+// Reading untrusted files and writing outputs whole, as sets.
+#include <gtest/gtest.h>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <fstream>
+#include <stdexcept>
+#include <string>
+
+#include "core/atomic_file.h"
+#include "core/input_file.h"
+#include "core/output_set.h"
+#include "unit/test_dirs.h"
+
+namespace relief {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::freshTestDir;
+
+void write(const fs::path& p, const std::string& text) { std::ofstream(p, std::ios::binary) << text; }
+std::string read(const fs::path& p) { return readFile(p); }
+
+// The names in a folder (hidden ones too), sorted.
+std::vector<std::string> names(const fs::path& dir) {
+    std::vector<std::string> out;
+    for (const auto& e : fs::directory_iterator(dir)) out.push_back(e.path().filename().string());
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+TEST(InputFile, ReadsRegularFilesAndSaysWhatTheOthersAre) {
+    const fs::path dir = freshTestDir("input-file");
+    write(dir / "a.txt", "hello\n");
+    std::string problem;
+    EXPECT_EQ(readInputFile(dir / "a.txt", 100, problem).value_or("?"), "hello\n");
+    EXPECT_EQ(problem, "");
+    EXPECT_FALSE(readInputFile(dir / "none.txt", 100, problem));
+    EXPECT_EQ(problem, "no such file");
+    EXPECT_FALSE(readInputFile(dir, 100, problem));
+    EXPECT_EQ(problem, "it is a folder, not a file");
+    // A FIFO with no writer: refused at once, never opened to wait for one.
+    ASSERT_EQ(::mkfifo((dir / "fifo").c_str(), 0600), 0);
+    EXPECT_FALSE(readInputFile(dir / "fifo", 100, problem));
+    EXPECT_EQ(problem, "it is a FIFO (a named pipe), not a file");
+    EXPECT_FALSE(readInputFile("/dev/zero", 100, problem));
+    EXPECT_EQ(problem, "it is a device, not a file");
+    fs::create_symlink("/dev/zero", dir / "zero.toml");  // a link to a device is the device
+    EXPECT_EQ(inputFileProblem(dir / "zero.toml"), "it is a device, not a file");
+    write(dir / "big.txt", std::string(2500, 'x'));
+    EXPECT_FALSE(readInputFile(dir / "big.txt", 2000, problem));
+    EXPECT_EQ(problem, "it is 2.5 kB, more than the 2 kB such a file may be");
+    EXPECT_EQ(readInputHead(dir / "big.txt", 10, problem).value_or("?"), std::string(10, 'x'));
+    EXPECT_EQ(readInputFile(dir / "big.txt", 0, problem).value_or("?").size(), 2500u);
+}
+
+TEST(AtomicFile, NeverWritesThroughALinkPlantedAtTheOutput) {
+    const fs::path dir = freshTestDir("atomic-link");
+    write(dir / "victim", "precious");
+    fs::create_symlink(dir / "victim", dir / "out.pov");
+    writeFileAtomically(dir / "out.pov", "scene");
+    EXPECT_EQ(read(dir / "victim"), "precious");
+    EXPECT_FALSE(fs::is_symlink(dir / "out.pov"));
+    EXPECT_EQ(read(dir / "out.pov"), "scene");
+    // A new file is created exclusively: a name taken (by a link or a file) is refused.
+    fs::create_symlink(dir / "victim", dir / "planted");
+    EXPECT_THROW(createNewFile(dir / "planted", "planted"), std::runtime_error);
+    EXPECT_EQ(read(dir / "victim"), "precious");
+    EXPECT_EQ(names(dir), (std::vector<std::string>{"out.pov", "planted", "victim"}));  // nothing else left
+}
+
+TEST(AtomicFile, AFileNotCommittedLeavesNothing) {
+    const fs::path dir = freshTestDir("atomic-drop");
+    write(dir / "x.json", "old");
+    {
+        AtomicFile f(dir / "x.json");
+        f.write("half of a new");
+    }
+    EXPECT_EQ(read(dir / "x.json"), "old");
+    EXPECT_EQ(names(dir), (std::vector<std::string>{"x.json"}));
+}
+
+TEST(OutputSet, RefusesTwoOutputsOfOneNameAndAnInputAsAnOutput) {
+    const fs::path dir = freshTestDir("set-names");
+    OutputSet set;
+    set.add(dir / "x.pov", "-o");
+    try {
+        set.add(dir / "sub" / ".." / "x.pov", "--dump-net");
+        FAIL() << "a second output of the same name";
+    } catch (const std::runtime_error& e) {
+        EXPECT_EQ(std::string(e.what()), "-o and --dump-net are the same file, " + (dir / "sub/../x.pov").string() +
+                                             ": give them different names");
+    }
+    try {
+        set.checkNotAnOutput(dir / "x.pov", "samples.path");
+        FAIL() << "an input as an output";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("samples.path and -o are the same file"), std::string::npos) << e.what();
+    }
+    EXPECT_THROW(set.add(dir / "a\nb.png", "-o"), std::runtime_error);  // a line break in a name
+}
+
+TEST(OutputSet, MovesTheSetTogetherAndPutsItBackWhenAMoveFails) {
+    const fs::path dir = freshTestDir("set-commit");
+    write(dir / "s.png", "old png");
+    write(dir / "s.json", "old sidecar");
+    {
+        OutputSet set;
+        write(set.add(dir / "s.png", "the still"), "new png");
+        write(set.add(dir / "s.json", "the sidecar", true), "new sidecar");
+        // Staged, nothing has moved.
+        EXPECT_EQ(read(dir / "s.png"), "old png");
+        set.commit();
+    }
+    EXPECT_EQ(read(dir / "s.png"), "new png");
+    EXPECT_EQ(read(dir / "s.json"), "new sidecar");
+    EXPECT_EQ(names(dir), (std::vector<std::string>{"s.json", "s.png"}));
+    // The third output's name is a folder, so its move fails: the first two
+    // come back as they were, the sidecar too, and the error names the file.
+    fs::create_directories(dir / "s.pov" / "in-the-way");
+    OutputSet set;
+    write(set.add(dir / "s.png", "the still"), "newer png");
+    write(set.add(dir / "s.json", "the sidecar", true), "newer sidecar");
+    write(set.add(dir / "s.pov", "the .pov"), "newer pov");
+    try {
+        set.commit();
+        FAIL() << "a move onto a folder";
+    } catch (const std::runtime_error& e) {
+        EXPECT_EQ(std::string(e.what()).rfind("cannot write " + (dir / "s.pov").string() + ": ", 0), 0u) << e.what();
+    }
+    EXPECT_EQ(read(dir / "s.png"), "new png");
+    EXPECT_EQ(read(dir / "s.json"), "new sidecar");
+}
+
+// A run killed while it had a private folder leaves it; the next run removes
+// it, and nothing else: not a live run's folder, not a user's files.
+TEST(OutputSet, RemovesOnlyFoldersOfRunsThatAreGone) {
+    const fs::path dir = freshTestDir("set-sweep");
+    const pid_t child = ::fork();
+    if (child == 0) {  // a run killed with its folder made: _exit runs no destructor
+        PrivateFolder killed(dir, "out");
+        write(killed.path() / "half.png", "half");
+        ::_exit(0);
+    }
+    int status = 0;
+    ASSERT_EQ(::waitpid(child, &status, 0), child);
+    PrivateFolder live(dir, "out");
+    fs::create_directories(dir / ".relief-mine");  // a user's folder with relief's prefix but no owner file
+    write(dir / "notes.tmp-123", "a user's file");
+    write(dir / "data.tmp-999999.csv", "another");
+    EXPECT_EQ(names(dir).size(), 5u);
+    EXPECT_EQ(removeAbandonedFolders(dir), 1);
+    const auto left = names(dir);
+    EXPECT_EQ(left.size(), 4u);
+    EXPECT_TRUE(fs::exists(live.path()));
+    EXPECT_TRUE(fs::exists(dir / ".relief-mine"));
+    EXPECT_EQ(read(dir / "notes.tmp-123"), "a user's file");
+    EXPECT_EQ(read(dir / "data.tmp-999999.csv"), "another");
+}
+
+// Killed in the middle of moving a set into place: the journal lists the
+// set, and the next run moves the rest of it; a journal cut short (written
+// when the kill came) moves nothing.
+TEST(OutputSet, FinishesASetWhoseMoveWasCutShort) {
+    const fs::path dir = freshTestDir("set-journal");
+    auto abandonedSet = [&](const std::string& folder, const std::string& journal) {
+        const fs::path f = dir / folder;
+        fs::create_directories(f / "new");
+        write(f / "owner", "relief private folder 999999 elsewhere\n");
+        write(f / "journal", journal);
+        write(f / "new" / "b.json", "new sidecar");
+        return f;
+    };
+    write(dir / "a.png", "new png");  // moved before the kill
+    abandonedSet(".relief-out-elsewhere-999999-AAAAAA", "a.png\nb.json\n.\n");
+    EXPECT_EQ(removeAbandonedFolders(dir), 1);
+    EXPECT_EQ(read(dir / "b.json"), "new sidecar");
+    EXPECT_EQ(names(dir), (std::vector<std::string>{"a.png", "b.json"}));
+    abandonedSet(".relief-out-elsewhere-999999-BBBBBB", "c.png\nd.js");
+    fs::rename(dir / ".relief-out-elsewhere-999999-BBBBBB/new/b.json", dir / ".relief-out-elsewhere-999999-BBBBBB/new/d.js");
+    EXPECT_EQ(removeAbandonedFolders(dir), 1);
+    EXPECT_EQ(names(dir), (std::vector<std::string>{"a.png", "b.json"}));
+}
+
+TEST(OutputSet, MessagesNameTheFinalPath) {
+    EXPECT_EQ(shownPath("out/.relief-out-h-1-AbCdEf/new/x.pov"), "out/x.pov");
+    EXPECT_EQ(shownPath("out/.relief-out-h-1-AbCdEf/new/.relief-out-h-1-XyZ123/new/x.png"), "out/x.png");
+    EXPECT_EQ(shownPath("out/new/x.pov"), "out/new/x.pov");
+}
+
+}  // namespace
+}  // namespace relief
