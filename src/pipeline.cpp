@@ -709,9 +709,10 @@ void declareOutputs(const SceneJob& job, const LoadedScene& loaded, const Output
     if (!job.dumpNetPath.empty()) outputs.add(job.dumpNetPath, "--dump-net");
     outputs.add(paths.sidecar, "the sidecar", true);
     const scene::SceneSpec& s = loaded.scene;
-    outputs.checkNotAnOutput(job.scenePath, "the scene file");
-    outputs.checkNotAnOutput(s.samples.path, "samples.path");
-    if (!s.look.drapeImage.empty()) outputs.checkNotAnOutput(s.look.drapeImage, "texture.image");
+    outputs.addInput(job.scenePath, "the scene file");
+    outputs.addInput(s.samples.path, "samples.path");
+    if (!s.look.drapeImage.empty()) outputs.addInput(s.look.drapeImage, "texture.image");
+    if (!s.look.ramp.cptPath.empty()) outputs.addInput(job.scenePath.parent_path() / s.look.ramp.cptPath, "texture.cpt");
 }
 
 // POV-Ray renders the staged .pov into the staged still; the overlays are
@@ -780,6 +781,15 @@ JobOutcome runStagedJob(const SceneJob& job, Diagnostics& diags, const ProgressF
     auto loaded = loadScene(job.scenePath, diags, job.overrides);
     if (!loaded) return outcome;
     outcome.paths = jobPaths(job, *loaded);
+    // The scene's own output name stays in the current folder, links resolved too.
+    if (job.output.empty() && !loaded->scene.render.output.empty() && job.until == SceneJob::Until::Png &&
+        !pathInside(loaded->scene.render.output, ".")) {
+        diags.error(loaded->scene.render.locs.at("render.output"),
+                    fmt::format("render.output = \"{}\" leads out of the current folder through a link; give -o "
+                                "to write there",
+                                printableExcerpt(loaded->scene.render.output, 200)));
+        return outcome;
+    }
     declareOutputs(job, *loaded, outcome.paths, outputs);
     CompileOptions copts;
     copts.povPath = outcome.paths.pov;

@@ -49,6 +49,19 @@ std::string byteSize(std::uintmax_t bytes) {
     return fmt::format("{} bytes", bytes);
 }
 
+bool pathInside(const std::filesystem::path& path, const std::filesystem::path& folder) {
+    std::error_code ec;
+    const auto p = std::filesystem::weakly_canonical(std::filesystem::absolute(path, ec), ec);
+    const auto f = std::filesystem::weakly_canonical(
+        std::filesystem::absolute(folder.empty() ? std::filesystem::path(".") : folder, ec), ec);
+    auto pi = p.begin();
+    for (auto fi = f.begin(); fi != f.end(); ++fi, ++pi) {
+        if (fi->empty() && std::next(fi) == f.end()) break;  // a folder written with a trailing slash
+        if (pi == p.end() || *fi != *pi) return false;
+    }
+    return true;
+}
+
 std::string inputFileProblem(const std::filesystem::path& path, std::uintmax_t maxBytes) {
     // stat() first: it tells a FIFO or a device without opening it (an open
     // could block, or start a device).
@@ -76,11 +89,13 @@ std::optional<std::string> readRegular(const std::filesystem::path& path, std::u
         return std::nullopt;
     }
     struct stat st {};
-    if (::fstat(f.fd, &st) != 0 || !(problem = kindProblem(st.st_mode)).empty() ||
-        !(problem = sizeProblem(static_cast<std::uintmax_t>(st.st_size), maxBytes)).empty()) {
-        if (problem.empty()) problem = openProblem(errno);
+    if (::fstat(f.fd, &st) != 0) {
+        problem = openProblem(errno);
         return std::nullopt;
     }
+    problem = kindProblem(st.st_mode);
+    if (problem.empty()) problem = sizeProblem(static_cast<std::uintmax_t>(st.st_size), maxBytes);
+    if (!problem.empty()) return std::nullopt;
     const std::uintmax_t limit = cap > 0 ? cap + (wholeOrRefuse ? 1 : 0) : 0;  // one byte over tells "too long"
     std::string text(static_cast<size_t>(limit > 0 ? std::min<std::uintmax_t>(st.st_size, limit) : st.st_size), '\0');
     size_t got = 0;

@@ -12,11 +12,11 @@ namespace relief {
 
 /// The most bytes a reader takes of each kind of text file (they are all a
 /// few kB in use; the caps keep a wrong file from filling memory).
-inline constexpr std::uintmax_t kMaxSceneBytes = 4u << 20;
-inline constexpr std::uintmax_t kMaxTemplateBytes = 1u << 20;
-inline constexpr std::uintmax_t kMaxPaletteBytes = 1u << 20;
-inline constexpr std::uintmax_t kMaxManifestBytes = 4u << 20;
-inline constexpr std::uintmax_t kMaxCurveBytes = 64u << 20;
+inline constexpr std::uintmax_t kMaxSceneBytes = 4'000'000;
+inline constexpr std::uintmax_t kMaxTemplateBytes = 1'000'000;
+inline constexpr std::uintmax_t kMaxPaletteBytes = 1'000'000;
+inline constexpr std::uintmax_t kMaxManifestBytes = 4'000'000;
+inline constexpr std::uintmax_t kMaxCurveBytes = 64'000'000;
 
 /// Why `path` cannot be read as an input file, as the end of a sentence
 /// ("it is a FIFO (a named pipe), not a file"), or "" when it is a regular
@@ -35,6 +35,10 @@ std::optional<std::string> readInputFile(const std::filesystem::path& path, std:
 /// readInputFile reads whole files: to tell what a file is.
 std::optional<std::string> readInputHead(const std::filesystem::path& path, std::uintmax_t maxBytes,
                                          std::string& problem);
+
+/// Whether `path` lies in `folder` or below it, links resolved as far as
+/// the path exists (a link out of the folder is outside it).
+bool pathInside(const std::filesystem::path& path, const std::filesystem::path& folder);
 
 /// "1.5 MB", "12 kB", "300 bytes": a size for a message.
 std::string byteSize(std::uintmax_t bytes);

@@ -31,17 +31,22 @@ public:
     PrivateFolder(const PrivateFolder&) = delete;
 
     const std::filesystem::path& path() const { return dir_; }
+    /// Leaves the folder when this run ends (its lock then free): it holds
+    /// what a later run must put back.
+    void keep() { keep_ = true; }
 
 private:
     std::filesystem::path dir_;
     int ownerFd_ = -1;
+    bool keep_ = false;
 };
 
 /// Removes the private folders in `parent` whose run is gone, and only those:
-/// hidden folders named .relief-... holding relief's locked `owner` file (a
-/// user's own files are never touched). A set that was being moved into
-/// place when its run died is moved the rest of the way first. Returns how
-/// many folders were removed.
+/// this user's hidden folders named .relief-... holding relief's `owner` file,
+/// which no live run holds locked (a user's own files are never touched). A
+/// set that was being moved into place when its run died is moved the rest of
+/// the way first (or, if it was being put back, put back). Returns how many
+/// folders were removed.
 int removeAbandonedFolders(const std::filesystem::path& parent);
 
 /// The name a user knows a file by: for a path in a set's private folder
@@ -69,21 +74,27 @@ public:
     void drop(const std::filesystem::path& finalPath);
     /// Where the output declared as `finalPath` is written.
     std::filesystem::path staged(const std::filesystem::path& finalPath) const;
-    /// Refuses an input (the scene, the samples) that is also an output, naming both.
-    void checkNotAnOutput(const std::filesystem::path& input, std::string_view role) const;
+    /// Declares an input (the scene, the samples, a drape): an output declared
+    /// before or after with its name is refused, naming both.
+    void addInput(const std::filesystem::path& input, std::string_view role);
 
     /// Moves every output into place, in the order declared, the seal last
-    /// (a set with its sidecar is whole). Throws
-    /// std::runtime_error naming the file when one cannot be moved, after
-    /// putting back the files it had replaced.
+    /// (a set with its sidecar is whole), the files it replaces kept until all
+    /// are in place. Throws std::runtime_error naming the file when one cannot
+    /// be moved, after putting back the files it had replaced (or, when even
+    /// that fails, saying where they are kept).
     void commit();
 
 private:
     struct Entry {
-        std::filesystem::path finalPath, key;  ///< key: the final path made absolute and normal
+        std::filesystem::path finalPath, key;  ///< key: the final path's folder resolved, and its name
         std::string role;
         size_t folder;
     };
+    std::vector<std::string> namesIn(size_t folder) const;
+    void keepPrevious();
+    [[noreturn]] void moveBack(const Entry& failed, const std::string& reason);
+    std::vector<std::pair<std::filesystem::path, std::string>> inputs_;
     std::vector<PrivateFolder> folders_;
     std::vector<std::filesystem::path> folderDirs_;  ///< the destination folder of each
     std::vector<Entry> entries_;

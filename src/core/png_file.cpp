@@ -120,7 +120,7 @@ bool decodeRows(std::FILE* file, std::vector<png_byte>& row, std::string& error)
 }  // namespace
 
 std::string checkPng(const std::filesystem::path& path) {
-    std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), std::fclose);
+    std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rbe"), std::fclose);
     if (!file) return "it cannot be opened";
     std::vector<png_byte> row;
     std::string error;
@@ -148,7 +148,7 @@ std::string writePngAtomically(const std::filesystem::path& path, const PngPixel
 }
 
 std::string readPng8(const std::filesystem::path& path, PngImage8& image) {
-    std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), std::fclose);
+    std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rbe"), std::fclose);
     if (!file) return fmt::format("cannot read {}: cannot open it", path.string());
     png_byte signature[8] = {};
     if (std::fread(signature, 1, 8, file.get()) != 8 || png_sig_cmp(signature, 0, 8) != 0)

@@ -29,6 +29,21 @@ size_t utf8Length(std::string_view text, size_t i) {
     return n;
 }
 
+char32_t codePoint(std::string_view s) {  // of one well-formed UTF-8 sequence
+    const auto b = [&](size_t k) { return static_cast<char32_t>(static_cast<unsigned char>(s[k])); };
+    if (s.size() == 2) return ((b(0) & 0x1F) << 6) | (b(1) & 0x3F);
+    if (s.size() == 3) return ((b(0) & 0x0F) << 12) | ((b(1) & 0x3F) << 6) | (b(2) & 0x3F);
+    return ((b(0) & 0x07) << 18) | ((b(1) & 0x3F) << 12) | ((b(2) & 0x3F) << 6) | (b(3) & 0x3F);
+}
+
+// Characters a terminal acts on or that reorder what it shows: the C1
+// controls (U+009B is an 8-bit CSI), line and paragraph separators, and the
+// bidirectional marks and overrides (a path that reads backwards).
+bool invisibleControl(char32_t cp) {
+    return (cp >= 0x80 && cp <= 0x9F) || cp == 0x200E || cp == 0x200F || (cp >= 0x2028 && cp <= 0x202E) ||
+           (cp >= 0x2066 && cp <= 0x2069);
+}
+
 }  // namespace
 
 std::string terminalText(std::string_view text, std::size_t maxBytes, bool keepLines) {
@@ -38,8 +53,13 @@ std::string terminalText(std::string_view text, std::size_t maxBytes, bool keepL
         const auto c = static_cast<unsigned char>(text[i]);
         if (c >= 0x80) {
             const size_t n = utf8Length(text, i);
-            if (n == 0) out += fmt::format("\\x{:02x}", c), ++i;
-            else out.append(text.substr(i, n)), i += n;
+            if (n == 0) {
+                out += fmt::format("\\x{:02x}", c), ++i;
+            } else if (const char32_t cp = codePoint(text.substr(i, n)); invisibleControl(cp)) {
+                out += fmt::format("\\u{{{:04x}}}", static_cast<unsigned>(cp)), i += n;
+            } else {
+                out.append(text.substr(i, n)), i += n;
+            }
         } else if ((c < 0x20 && !(keepLines && c == '\n') && c != '\t') || c == 0x7f) {
             out += fmt::format("\\x{:02x}", c), ++i;
         } else {

@@ -15,6 +15,7 @@
 #include <ogr_srs_api.h>
 #include <fmt/format.h>
 
+#include "core/input_file.h"
 #include "core/number_format.h"
 #include "core/text_escape.h"
 #include "geo/gdal_crs.h"
@@ -197,10 +198,15 @@ struct PixelBox {
 // longer than any still is worth, and a header that claims more cells than
 // its file can hold (an ASCII grid: two bytes a cell at least) is damaged or
 // hostile; both are refused from the header, before anything is read.
-constexpr double kMaxReadCells = 4e9;
+constexpr double kMaxReadCells = 2e9;
+constexpr std::string_view kAsciiDrivers[] = {"AAIGrid", "GRASSASCIIGrid", "GSAG", "USGSDEM"};
+// Uncompressed: every cell takes its type's bytes in the file.
+constexpr std::string_view kRawDrivers[] = {"EHdr", "ENVI", "BT", "GS7BG", "GSBG", "RST", "SRTMHGT",
+                                            "Terragen", "Leveller", "DTED", "SAGA"};
 std::string headerProblem(GDALDatasetH ds, double cells) {
     const std::string_view driver = GDALGetDriverShortName(GDALGetDatasetDriver(ds));
-    const bool ascii = driver == "AAIGrid" || driver == "GRASSASCIIGrid" || driver == "GSAG" || driver == "USGSDEM";
+    const auto among = [&](const auto& list) { return std::find(std::begin(list), std::end(list), driver) != std::end(list); };
+    const bool ascii = among(kAsciiDrivers);
     char** files = GDALGetFileList(ds);
     std::uintmax_t bytes = 0;
     std::error_code ec;
@@ -211,6 +217,11 @@ std::string headerProblem(GDALDatasetH ds, double cells) {
                            "takes two bytes a cell at least): the file is damaged or truncated",
                            GDALGetRasterXSize(ds), GDALGetRasterYSize(ds), bytes, driver);
     GDALRasterBandH band = GDALGetRasterBand(ds, 1);
+    const double cellBytes = band ? GDALGetDataTypeSizeBytes(GDALGetRasterDataType(band)) : 1;
+    if (among(kRawDrivers) && bytes > 0 && cells * cellBytes > double(bytes) + 65536)
+        return fmt::format("the raster's header says {} x {} cells of {} bytes, more than its {} bytes hold: the "
+                           "file is damaged or truncated",
+                           GDALGetRasterXSize(ds), GDALGetRasterYSize(ds), cellBytes, bytes);
     if (cells > kMaxReadCells && band && GDALGetOverviewCount(band) == 0)
         return fmt::format("the raster is {} x {} cells ({:.3g}), more than the {:.3g} relief reads from a raster "
                            "without overviews: add overviews (gdaladdo) or cut a window (gdal_translate -projwin)",
@@ -260,7 +271,7 @@ bool isRasterDem(const std::filesystem::path& path) {
     // A VRT relief refuses, or a file identified as a raster format but not
     // readable (a truncated GeoTIFF): still a raster, so that the error is about
     // the raster, not about a CSV header made of binary bytes.
-    if (!problem.empty()) return problem.starts_with("it is a VRT");
+    if (!problem.empty()) return inputFileProblem(path).empty();  // refused for what it brings with it
     CPLPushErrorHandler(CPLQuietErrorHandler);
     GDALDriverH driver = GDALIdentifyDriverEx(path.c_str(), GDAL_OF_RASTER, nullptr, nullptr);
     CPLPopErrorHandler();
@@ -678,9 +689,8 @@ std::optional<ControlNet> rasterNet(const scene::SamplesSpec& samples, const sce
     if (!src) {
         diags.error({samples.pathAsWritten, 0, 0},
                     problem.empty() ? std::string("GDAL cannot read this raster (a truncated or damaged file?)")
-                                    : fmt::format("samples.path: relief does not read this file: {}; a scene's VRT may "
-                                                  "name only files in its own folder, with no raw or derived bands "
-                                                  "(docs/security.md)",
+                                    : fmt::format("samples.path: relief does not read this raster: {} (what a scene's "
+                                                  "raster may bring with it: docs/security.md)",
                                                   problem));
         return std::nullopt;
     }

@@ -1,5 +1,7 @@
 #include "geo/samples.h"
 
+#include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <map>
@@ -39,6 +41,20 @@ std::vector<Field> splitFields(std::string_view line) {
         start = comma + 1;
     }
     return out;
+}
+
+// A CSV's header: two to eight column names, each a short word (letters,
+// digits, _ ( ) -, a space): what a table of samples would begin with, and
+// not a line of someone's data (a key, a password hash) that no message should quote.
+bool looksLikeAHeader(const std::vector<Field>& fields) {
+    if (fields.size() < 2 || fields.size() > 8) return false;
+    return std::all_of(fields.begin(), fields.end(), [](const Field& f) {
+        return !f.text.empty() && f.text.size() <= 32 && std::isalpha(static_cast<unsigned char>(f.text[0])) &&
+               std::all_of(f.text.begin(), f.text.end(), [](char ch) {
+                   const auto c = static_cast<unsigned char>(ch);
+                   return std::isalnum(c) || c == '_' || c == '(' || c == ')' || c == '-' || c == ' ';
+               });
+    });
 }
 
 // Printable text: UTF-8 without control characters (tabs and a CR at the end aside).
@@ -115,7 +131,7 @@ std::vector<GeoSample> readSamples(const std::filesystem::path& path, const std:
             if (colLon < 0 || colLat < 0 || colElev < 0 || nColumns != 3) {
                 // Quoted only when it is a CSV's header: any other file's first
                 // line (a key file, /etc/shadow) is nobody's business in a message.
-                if (fields.size() > 1 && isText(line))
+                if (looksLikeAHeader(fields) && isText(line))
                     diags.error({displayPath, lineNo, 1},
                                 fmt::format("header must name the columns lon,lat,elev (WGS84 "
                                             "degrees, metres); found \"{}\"",

@@ -89,17 +89,6 @@ bool isCaseName(const std::string& name) {
     return true;
 }
 
-// Whether `path` lies in `folder` or below, links resolved (what exists of it).
-bool insideFolder(const fs::path& path, const fs::path& folder) {
-    std::error_code ec;
-    const fs::path p = fs::weakly_canonical(fs::absolute(path, ec), ec);
-    const fs::path f = fs::weakly_canonical(fs::absolute(folder.empty() ? fs::path(".") : folder, ec), ec);
-    auto pi = p.begin();
-    for (auto fi = f.begin(); fi != f.end(); ++fi, ++pi)
-        if (pi == p.end() || *fi != *pi) return false;
-    return true;
-}
-
 }  // namespace
 
 std::optional<Manifest> readManifest(const fs::path& path, Diagnostics& diags) {
@@ -267,7 +256,7 @@ bool checkUpdatable(const Manifest& m, Diagnostics& diags) {
     // link out of it); references elsewhere are read, never written.
     const fs::path base = m.file.parent_path();
     for (const auto& c : m.cases)
-        if (!insideFolder(c.referenceDir, base))
+        if (!pathInside(c.referenceDir, base))
             diags.error(c.referencesLoc,
                         fmt::format("--update: the references of case \"{}\", {}, are not in the manifest's folder "
                                     "({}); relief test --update replaces the PNGs of a folder only there: run it on "
@@ -324,12 +313,22 @@ std::vector<CaseResult> runCases(const Manifest& m, const RunOptions& o, const C
     if (o.update)
         for (auto& r : results) {
             if (r.status != CaseStatus::Fail && r.status != CaseStatus::New) continue;
-            // Bless: the new image replaces the case's references (git shows the change).
-            const fs::path dir = r.testCase->referenceDir;
-            fs::create_directories(dir);
-            for (const auto& old : referencesOf(*r.testCase)) fs::remove(old);
-            fs::copy_file(r.newImage, dir / "ref.png", fs::copy_options::overwrite_existing);
-            r.message += fmt::format("; blessed as {}", (dir / "ref.png").string());
+            // Bless: the new image becomes the case's reference (git shows the change): ref.png
+            // written whole first, the other references removed only then.
+            const fs::path ref = r.testCase->referenceDir / "ref.png";
+            const std::string error = writeThroughTemporary(ref, [&](const fs::path& staged) {
+                std::error_code ec;
+                fs::copy_file(r.newImage, staged, ec);
+                return ec ? ec.message() : std::string();
+            });
+            if (!error.empty()) {
+                r.message += "; not blessed: " + error;
+                continue;
+            }
+            std::error_code ec;
+            for (const auto& old : referencesOf(*r.testCase))
+                if (old.filename() != "ref.png") fs::remove(old, ec);
+            r.message += fmt::format("; blessed as {}", ref.string());
         }
     return results;
 }

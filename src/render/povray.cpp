@@ -12,6 +12,7 @@
 #include <cstring>
 #include <cstdio>
 #include <deque>
+#include <optional>
 #include <regex>
 
 #include <fmt/format.h>
@@ -143,9 +144,11 @@ std::vector<std::string> sandboxed(const std::string& bwrap, const std::filesyst
 }
 
 // Starts argv[0] with `envp`, stdin from /dev/null, stdout and stderr into
-// `outFd`. The child is killed when the thread that started it ends (relief
-// killed, even with SIGKILL): POV-Ray never outlives the run, sandboxed or
-// not. Returns 0 or the errno of what failed (exec's, through a pipe).
+// `outFd`, no other file open. The child is killed when the thread that
+// started it ends (PR_SET_PDEATHSIG; relief killed, even with SIGKILL):
+// POV-Ray never outlives the run, sandboxed or not, as long as the thread
+// that starts it waits for it (renderPov does). Returns 0 or the errno of what
+// failed (exec's, through a pipe).
 int spawnChild(char* const* argv, char* const* envp, int outFd, pid_t& pid) {
     int status[2];
     if (::pipe2(status, O_CLOEXEC) != 0) return errno;
@@ -159,16 +162,15 @@ int spawnChild(char* const* argv, char* const* envp, int outFd, pid_t& pid) {
     if (pid == 0) {  // only async-signal-safe calls until exec
         ::prctl(PR_SET_PDEATHSIG, SIGKILL);
         if (::getppid() != parent) ::_exit(127);  // the parent died before prctl took hold
+        // stdin, stdout, stderr, the status pipe as fd 3 (closed by exec), and no other file
+        // of relief's (a GDAL dataset, another case's PNG): POV-Ray could read it through /proc.
         const int in = ::open("/dev/null", O_RDONLY);
-        if (in < 0 || ::dup2(in, STDIN_FILENO) < 0 || ::dup2(outFd, STDOUT_FILENO) < 0 ||
-            ::dup2(outFd, STDERR_FILENO) < 0) {
-            const int err = errno;
-            (void)!::write(status[1], &err, sizeof err);
-            ::_exit(127);
-        }
-        ::execve(argv[0], argv, envp);
+        const bool ready = in >= 0 && ::dup2(in, STDIN_FILENO) >= 0 && ::dup2(outFd, STDOUT_FILENO) >= 0 &&
+                           ::dup2(outFd, STDERR_FILENO) >= 0 && ::dup2(status[1], 3) >= 0 &&
+                           ::fcntl(3, F_SETFD, FD_CLOEXEC) == 0 && ::close_range(4, ~0U, 0) == 0;
+        if (ready) ::execve(argv[0], argv, envp);
         const int err = errno;
-        (void)!::write(status[1], &err, sizeof err);
+        (void)!::write(ready ? 3 : status[1], &err, sizeof err);
         ::_exit(127);
     }
     ::close(status[1]);
@@ -219,7 +221,15 @@ RenderResult renderPov(const RenderRequest& req, const ProgressFn& progress) {
             return result;
         }
     }
-    PovrayHome home(req);
+    std::optional<PovrayHome> made;
+    try {
+        made.emplace(req);
+    } catch (const std::exception& e) {  // /tmp full or not writable: not POV-Ray's failure
+        result.error = fmt::format("cannot prepare POV-Ray's private folder in /tmp: {}", e.what());
+        result.cannotWriteOutput = true;
+        return result;
+    }
+    const PovrayHome& home = *made;
     // POV-Ray writes into its private folder; the canonical PNG is then
     // written atomically where the request says.
     const std::filesystem::path rawPng = home.output();

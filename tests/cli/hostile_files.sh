@@ -38,7 +38,7 @@ expect scene-device 2 "/dev/zero: error: cannot read the scene file: it is a dev
 $nothing" "$relief" compile -q /dev/zero -o out/x.pov
 expect scene-folder 2 "folder: error: cannot read the scene file: it is a folder, not a file
 $nothing" "$relief" compile -q folder -o out/x.pov
-expect scene-too-big 2 "big.toml: error: cannot read the scene file: it is 5.24 MB, more than the 4.19 MB such a file may be
+expect scene-too-big 2 "big.toml: error: cannot read the scene file: it is 5.24 MB, more than the 4 MB such a file may be
 $nothing" "$relief" compile -q big.toml -o out/x.pov
 scene samples.csv "" ok.toml
 expect template-fifo 2 "templates/scene.pov.in: error: cannot read the scene template: it is a FIFO (a named pipe), not a file; give the folder with --templates or set RELIEF_TEMPLATES
@@ -75,6 +75,15 @@ expect diff-huge-header 4 "relief: error: $src/tests/data/images/huge-header.png
 # A truncated PNG: one line of relief's, none of libpng's.
 expect diff-truncated 4 "relief: error: $src/tests/data/images/truncated.png: it is a damaged or truncated PNG (Read Error)" \
   "$relief" diff "$src/tests/data/images/truncated.png" "$src/tests/data/images/a.png"
+
+# A scene's [render] output through a link out of the current folder: refused before any work.
+rm -rf "$work.elsewhere" && mkdir -p "$work.elsewhere" && ln -s "$work.elsewhere" linkout
+scene samples.csv '[render]
+output = "linkout/x.png"' linked-output.toml
+expect output-through-link 2 "linked-output.toml:4:10: error: render.output = \"linkout/x.png\" leads out of the current folder through a link; give -o to write there
+$nothing" "$relief" render -q linked-output.toml
+[ -n "$(ls -A "$work.elsewhere")" ] && fail "output-through-link: written through the link: $(ls -A "$work.elsewhere")"
+rm -rf "$work.elsewhere"
 
 # A test case whose reference "image" is a FIFO: that case fails with the reason, the run goes on.
 if command -v povray >/dev/null; then

@@ -95,11 +95,14 @@ TEST(OutputSet, RefusesTwoOutputsOfOneNameAndAnInputAsAnOutput) {
                                              ": give them different names");
     }
     try {
-        set.checkNotAnOutput(dir / "x.pov", "samples.path");
+        set.addInput(dir / "x.pov", "samples.path");
         FAIL() << "an input as an output";
     } catch (const std::runtime_error& e) {
         EXPECT_NE(std::string(e.what()).find("samples.path and -o are the same file"), std::string::npos) << e.what();
     }
+    // An input declared first refuses an output declared later (a drape PNG named like the samples).
+    set.addInput(dir / "dem.drape.png", "texture.image");
+    EXPECT_THROW(set.add(dir / "dem.drape.png", "the drape PNG"), std::runtime_error);
     EXPECT_THROW(set.add(dir / "a\nb.png", "-o"), std::runtime_error);  // a line break in a name
 }
 
@@ -162,27 +165,49 @@ TEST(OutputSet, RemovesOnlyFoldersOfRunsThatAreGone) {
 }
 
 // Killed in the middle of moving a set into place: the journal lists the
-// set, and the next run moves the rest of it; a journal cut short (written
-// when the kill came) moves nothing.
+// set, and the next run moves the rest of it (or, if it was being put back,
+// puts the rest back); a journal cut short (written when the kill came) moves
+// nothing; a planted journal moves nothing out of its folder.
 TEST(OutputSet, FinishesASetWhoseMoveWasCutShort) {
     const fs::path dir = freshTestDir("set-journal");
     auto abandonedSet = [&](const std::string& folder, const std::string& journal) {
         const fs::path f = dir / folder;
         fs::create_directories(f / "new");
+        fs::create_directories(f / "old");
         write(f / "owner", "relief private folder 999999 elsewhere\n");
         write(f / "journal", journal);
-        write(f / "new" / "b.json", "new sidecar");
         return f;
     };
     write(dir / "a.png", "new png");  // moved before the kill
-    abandonedSet(".relief-out-elsewhere-999999-AAAAAA", "a.png\nb.json\n.\n");
+    write(abandonedSet(".relief-out-elsewhere-999999-AAAAAA", "forward\na.png\nb.json\n.\n") / "new" / "b.json",
+          "new sidecar");
     EXPECT_EQ(removeAbandonedFolders(dir), 1);
     EXPECT_EQ(read(dir / "b.json"), "new sidecar");
     EXPECT_EQ(names(dir), (std::vector<std::string>{"a.png", "b.json"}));
-    abandonedSet(".relief-out-elsewhere-999999-BBBBBB", "c.png\nd.js");
-    fs::rename(dir / ".relief-out-elsewhere-999999-BBBBBB/new/b.json", dir / ".relief-out-elsewhere-999999-BBBBBB/new/d.js");
+    // Cut short: nothing moves, the folder goes.
+    write(abandonedSet(".relief-out-elsewhere-999999-BBBBBB", "forward\nc.png\nd.js") / "new" / "d.js", "x");
     EXPECT_EQ(removeAbandonedFolders(dir), 1);
     EXPECT_EQ(names(dir), (std::vector<std::string>{"a.png", "b.json"}));
+    // Being put back: a.png had replaced a file kept in old/, b.json was new: a.png comes back, b.json goes.
+    const fs::path back = abandonedSet(".relief-out-elsewhere-999999-CCCCCC", "back\na.png\nb.json\n.\n");
+    write(back / "old" / "a.png", "old png");
+    EXPECT_EQ(removeAbandonedFolders(dir), 1);
+    EXPECT_EQ(read(dir / "a.png"), "old png");
+    EXPECT_EQ(names(dir), (std::vector<std::string>{"a.png"}));
+    // A planted journal naming a path outside: nothing is moved there.
+    fs::create_directories(dir / "elsewhere");
+    write(dir / "elsewhere" / "victim", "precious");
+    write(abandonedSet(".relief-out-elsewhere-999999-DDDDDD", "forward\n../elsewhere/victim\n.\n") / "new" / "x",
+          "evil");
+    removeAbandonedFolders(dir);
+    EXPECT_EQ(read(dir / "elsewhere" / "victim"), "precious");
+    // Another user's folder is not this user's to sweep.
+    if (::geteuid() == 0) {
+        const fs::path theirs = abandonedSet(".relief-out-elsewhere-999999-EEEEEE", "forward\n.\n");
+        ASSERT_EQ(::chown(theirs.c_str(), 65534, 65534), 0);
+        EXPECT_EQ(removeAbandonedFolders(dir), 0);
+        EXPECT_TRUE(fs::exists(theirs));
+    }
 }
 
 TEST(OutputSet, MessagesNameTheFinalPath) {

@@ -157,3 +157,25 @@ TEST(TextEscape, TestReportTextStaysText) {
 
 }  // namespace
 }  // namespace relief
+
+namespace relief {
+namespace {
+
+TEST(TextEscape, TerminalTextShowsControlsAsText) {
+    EXPECT_EQ(terminalText(std::string("a\x1b[2Jb\nc\0d", 10), 100), "a\\x1b[2Jb\\x0ac\\x00d");
+    EXPECT_EQ(terminalText("keep\nlines", 100, true), "keep\nlines");
+    // C1 controls (an 8-bit CSI) and a right-to-left override, as valid UTF-8.
+    EXPECT_EQ(terminalText("x\xc2\x9b" "2Jy", 100), "x\\u{009b}2Jy");
+    EXPECT_EQ(terminalText("gnp.\xe2\x80\xae" "exe", 100), "gnp.\\u{202e}exe");
+    EXPECT_EQ(terminalText("caf\xc3\xa9 \xff", 100), "caf\xc3\xa9 \\xff");
+    EXPECT_EQ(terminalText(std::string(50, 'z'), 10), "zzzzzzzzzz... (40 more bytes)");
+}
+
+TEST(TextEscape, ShellQuotedForCopying) {
+    EXPECT_EQ(shellQuoted("tests/golden/manifest.toml"), "tests/golden/manifest.toml");
+    EXPECT_EQ(shellQuoted("it's $(here)"), "'it'\\''s $(here)'");
+    EXPECT_EQ(shellQuoted(""), "''");
+}
+
+}  // namespace
+}  // namespace relief

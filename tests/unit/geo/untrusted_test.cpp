@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <arpa/inet.h>
+#include <sys/stat.h>
 #include <netinet/in.h>
 #include <poll.h>
 #include <sys/socket.h>
@@ -14,6 +15,8 @@
 #include <thread>
 
 #include <cpl_conv.h>
+#include <cpl_http.h>
+#include <cpl_vsi.h>
 #include <fmt/format.h>
 #include <gdal.h>
 #include <ogr_srs_api.h>
@@ -109,23 +112,33 @@ fs::path writeTiff(const fs::path& path, const char* srs, double x0, double dx, 
 }
 
 // GDAL's network paths and web drivers, asked for directly or through a VRT
-// or a CRS, make no connection: a listener on loopback counts none.
+// or a CRS, make no connection: a listener on loopback, set as GDAL's HTTP
+// proxy (so that relief's dead proxy is not what stops them), counts none;
+// GDAL's own HTTP call through the same proxy reaches it (the test can see a
+// connection).
 TEST(UntrustedGdal, ReachesNoNetwork) {
     setUpGdal();
+    EXPECT_STREQ(CPLGetConfigOption("GDAL_HTTP_PROXY", ""), "127.0.0.1:9");
+    EXPECT_FALSE(OSRGetPROJEnableNetwork());
     Listener server;
+    const std::string proxy = fmt::format("127.0.0.1:{}", server.port());
     const std::string url = fmt::format("http://127.0.0.1:{}/dem.tif", server.port());
-    CPLSetConfigOption("AWS_S3_ENDPOINT", fmt::format("127.0.0.1:{}", server.port()).c_str());
+    CPLSetConfigOption("GDAL_HTTP_PROXY", proxy.c_str());
+    CPLSetConfigOption("AWS_S3_ENDPOINT", proxy.c_str());
     CPLSetConfigOption("AWS_HTTPS", "NO");
-    for (const std::string& name : {"/vsicurl/" + url, url, "/vsicurl_streaming/" + url, std::string("/vsis3/b/dem.tif"),
-                                    "WMS:" + url, "/vsizip//vsicurl/" + url + "/x.tif"}) {
+    for (const std::string& name :
+         {"/vsicurl/" + url, url, "/vsicurl_streaming/" + url, std::string("/vsis3/b/dem.tif"),
+          std::string("/vsis3_streaming/b/dem.tif"), std::string("/vsigs/b/dem.tif"), "WMS:" + url,
+          "/vsizip//vsicurl/" + url + "/x.tif"}) {
         CPLPushErrorHandler(CPLQuietErrorHandler);
         GDALDatasetH ds = GDALOpenEx(name.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr);
+        VSIStatBufL st;
+        const int found = VSIStatL(name.c_str(), &st);
         CPLPopErrorHandler();
         EXPECT_EQ(ds, nullptr) << name;
+        EXPECT_NE(found, 0) << name;
         if (ds) GDALClose(ds);
     }
-    CPLSetConfigOption("AWS_S3_ENDPOINT", nullptr);
-    CPLSetConfigOption("AWS_HTTPS", nullptr);
     // A VRT with a network source, opened by GDAL itself (relief refuses it first, below).
     const fs::path dir = freshTestDir("no-network");
     write(dir / "net.vrt", vrtWith(simpleSource("/vsicurl/" + url, false)));
@@ -145,9 +158,17 @@ TEST(UntrustedGdal, ReachesNoNetwork) {
     EXPECT_EQ(problem, "holds \"://\", which would make relief read a file or the network; give an EPSG code or WKT");
     EXPECT_TRUE(crsFromText(srs, "EPSG:2193", problem));
     OSRDestroySpatialReference(srs);
-    EXPECT_FALSE(OSRGetPROJEnableNetwork());
     std::this_thread::sleep_for(std::chrono::milliseconds(300));
     EXPECT_EQ(server.connections(), 0);
+    // The control: GDAL's HTTP call through the same proxy does arrive.
+    CPLPushErrorHandler(CPLQuietErrorHandler);
+    CPLHTTPDestroyResult(CPLHTTPFetch(url.c_str(), nullptr));
+    CPLPopErrorHandler();
+    for (int i = 0; i < 40 && server.connections() == 0; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    EXPECT_GT(server.connections(), 0) << "the listener saw no connection even from GDAL's own HTTP call";
+    CPLSetConfigOption("GDAL_HTTP_PROXY", "127.0.0.1:9");
+    CPLSetConfigOption("AWS_S3_ENDPOINT", nullptr);
+    CPLSetConfigOption("AWS_HTTPS", nullptr);
 }
 
 // A VRT reads only plain files in its own folder: each way it could name
@@ -201,6 +222,38 @@ TEST(UntrustedGdal, VrtsNameOnlyFilesBesideThem) {
     EXPECT_EQ(problem("outer.vrt", vrtWith(simpleSource("inner.vrt", true))),
               plain + "the source \"inner.vrt\", a VRT: it holds a VRTRawRasterBand, which reads the raw bytes of any "
                       "file");
+    // GDAL reads element names in any case: so does relief.
+    EXPECT_EQ(problem("lower.vrt", "<vrtdataset rasterXSize=\"4\" rasterYSize=\"4\"><vrtrasterband dataType=\"Byte\" "
+                                   "band=\"1\" subclass=\"vrtrawrasterband\"><sourcefilename>" +
+                                       (dir / "secret.txt").string() + "</sourcefilename></vrtrasterband></vrtdataset>"),
+              plain + "a VRTRawRasterBand, which reads the raw bytes of any file");
+    EXPECT_EQ(problem("lower-source.vrt", vrtWith("<VRTRasterBand dataType=\"Float32\" band=\"1\"><simplesource>"
+                                                  "<SOURCEFILENAME>../secret.tif</SOURCEFILENAME></simplesource>"
+                                                  "</VRTRasterBand>")),
+              plain + "the source \"../secret.tif\", a file outside the VRT's folder");
+    // Elements that name other datasets, or move where sources resolve, are not a plain VRT's.
+    EXPECT_EQ(problem("overview.vrt", vrtWith("<VRTRasterBand dataType=\"Float32\" band=\"1\"><Overview>"
+                                              "<SourceFilename relativeToVRT=\"1\">a.tif</SourceFilename></Overview>"
+                                              "</VRTRasterBand>")),
+              plain + "a <Overview> element, which relief does not read in a scene's VRT");
+    EXPECT_EQ(problem("ovmeta.vrt", "<VRTDataset rasterXSize=\"4\" rasterYSize=\"4\"><Metadata domain=\"OVERVIEWS\">"
+                                    "<MDI key=\"OVERVIEW_FILE\">../secret.tif</MDI></Metadata></VRTDataset>"),
+              plain + "overviews in another file (metadata domain OVERVIEWS)");
+    EXPECT_EQ(problem("ovmdi.vrt", "<VRTDataset rasterXSize=\"4\" rasterYSize=\"4\"><Metadata>"
+                                   "<MDI key=\"overview_file\">../secret.tif</MDI></Metadata></VRTDataset>"),
+              plain + "an OVERVIEW_FILE, which names another dataset");
+    EXPECT_EQ(problem("options.vrt", vrtWith("<VRTRasterBand dataType=\"Float32\" band=\"1\"><SimpleSource>"
+                                             "<SourceFilename relativeToVRT=\"1\">a.tif</SourceFilename><OpenOptions>"
+                                             "<OOI key=\"ROOT_PATH\">/etc</OOI></OpenOptions></SimpleSource>"
+                                             "</VRTRasterBand>")),
+              plain + "a <OpenOptions> element, which relief does not read in a scene's VRT");
+    EXPECT_EQ(problem("atoi.vrt", vrtWith("<VRTRasterBand dataType=\"Float32\" band=\"1\"><SimpleSource><SourceFilename "
+                                          "relativeToVRT=\"01\">a.tif</SourceFilename></SimpleSource></VRTRasterBand>")),
+              plain + "the source \"a.tif\" with relativeToVRT=\"01\" (write 0 or 1)");
+    EXPECT_EQ(problem("split.vrt", vrtWith("<VRTRasterBand dataType=\"Float32\" band=\"1\"><SimpleSource><SourceFilename "
+                                           "relativeToVRT=\"1\">a.tif<!-- x -->../secret.tif</SourceFilename>"
+                                           "</SimpleSource></VRTRasterBand>")),
+              plain + "a source whose file name is not one plain text");
     // A VRT that names itself, however deep, ends.
     EXPECT_EQ(problem("self.vrt", vrtWith(simpleSource("self.vrt", true) + simpleSource("self.vrt", true))),
               plain + "the source \"self.vrt\", a VRT that leads back to itself");
@@ -213,6 +266,26 @@ TEST(UntrustedGdal, VrtsNameOnlyFilesBesideThem) {
     const auto net = rasterNet(spec, {}, {}, diags);
     ASSERT_TRUE(net) << (diags.all().empty() ? "" : formatDiagnostic(diags.all()[0]));
     EXPECT_NEAR(net->grid.points[net->grid.points.size() / 2].z, 7.0, 1e-6);
+}
+
+// GDAL reads files beside a raster by its name: each is checked as the raster is.
+TEST(UntrustedGdal, FilesBesideARasterAreCheckedToo) {
+    const fs::path dir = freshTestDir("sidecars");
+    const fs::path dem = writeTiff(dir / "dem.tif", "EPSG:2193", 1757000, 10, 5917000, -10, 4, 4,
+                                   [](double, double) { return 5.f; });
+    EXPECT_EQ(gdalInputProblem(dem), "");
+    ASSERT_EQ(::mkfifo((dir / "dem.tif.ovr").c_str(), 0600), 0);
+    EXPECT_EQ(gdalInputProblem(dem), "the file beside it that GDAL would read with it, dem.tif.ovr, is not a plain "
+                                     "file (it is a FIFO (a named pipe), not a file)");
+    fs::remove(dir / "dem.tif.ovr");
+    write(dir / "dem.tif.ovr", vrtWith("<VRTRasterBand dataType=\"Byte\" band=\"1\" subClass=\"VRTRawRasterBand\">"
+                                      "<SourceFilename>/etc/passwd</SourceFilename></VRTRasterBand>"));
+    EXPECT_EQ(gdalInputProblem(dem), "the file beside it that GDAL would read with it, dem.tif.ovr, is a VRT, and it "
+                                     "holds a VRTRawRasterBand, which reads the raw bytes of any file");
+    fs::remove(dir / "dem.tif.ovr");
+    fs::create_symlink("/dev/zero", dir / "dem.prj");
+    EXPECT_EQ(gdalInputProblem(dem), "the file beside it that GDAL would read with it, dem.prj, is not a plain file "
+                                     "(it is a device, not a file)");
 }
 
 TEST(Frames, TheCentreOfLongitudesIsOnTheCircle) {

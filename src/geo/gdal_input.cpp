@@ -1,0 +1,207 @@
+// What GDAL may open for a scene (gdal_setup.h): the named file, checked, and
+// the files beside it, checked; a VRT only if it is made of elements that
+// name nothing but plain files in its own folder.
+#include "geo/gdal_setup.h"
+
+#include <algorithm>
+#include <cctype>
+#include <memory>
+#include <set>
+#include <string_view>
+#include <vector>
+
+#include <cpl_error.h>
+#include <cpl_minixml.h>
+#include <gdal.h>
+#include <fmt/format.h>
+
+#include "core/input_file.h"
+#include "core/text_escape.h"
+
+namespace relief::geo {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+bool sameWord(std::string_view a, std::string_view b) {  // as GDAL's EQUAL: letters in any case
+    return a.size() == b.size() &&
+           std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) { return std::tolower(x) == std::tolower(y); });
+}
+
+// The elements of a VRT of sources, and nothing else: GDAL reads element names
+// in any case, so they are compared so too. Not here, hence refused: Overview
+// and MaskBand (datasets of their own), OpenOptions (ROOT_PATH moves where a
+// nested VRT's sources resolve), KernelFilteredSource, GDALWarpOptions,
+// pansharpening, pixel functions.
+constexpr std::string_view kVrtElements[] = {
+    "VRTDataset", "SRS", "GeoTransform", "GCPList", "GCP", "Metadata", "MDI", "VRTRasterBand", "ColorInterp",
+    "NoDataValue", "HideNoDataValue", "ColorTable", "Entry", "Description", "UnitType", "Offset", "Scale",
+    "CategoryNames", "Category", "OverviewList", "SimpleSource", "ComplexSource", "AveragedSource",
+    "SourceFilename", "SourceBand", "SourceProperties", "SrcRect", "DstRect", "NODATA", "ScaleOffset", "ScaleRatio",
+    "LUT", "UseMaskBand", "ColorTableComponent", "Exponent", "SrcMin", "SrcMax", "DstMin", "DstMax",
+};
+
+struct XmlDeleter {
+    void operator()(CPLXMLNode* n) const { CPLDestroyXMLNode(n); }
+};
+
+// An attribute's value, and whether the element has it.
+std::optional<std::string> attribute(const CPLXMLNode* element, std::string_view name) {
+    for (const CPLXMLNode* c = element->psChild; c; c = c->psNext)
+        if (c->eType == CXT_Attribute && c->pszValue && sameWord(c->pszValue, name))
+            return c->psChild && c->psChild->pszValue ? c->psChild->pszValue : "";
+    return std::nullopt;
+}
+
+std::vector<std::string> texts(const CPLXMLNode* element) {
+    std::vector<std::string> out;
+    for (const CPLXMLNode* c = element->psChild; c; c = c->psNext)
+        if (c->eType == CXT_Text && c->pszValue) out.emplace_back(c->pszValue);
+    return out;
+}
+
+// GDAL's own test for a VRT, a little wider: "<VRTDataset" in the first
+// bytes, in any case.
+bool looksLikeVrt(const fs::path& path) {
+    std::string problem;
+    auto head = readInputHead(path, 1024, problem);
+    if (!head) return false;
+    std::transform(head->begin(), head->end(), head->begin(), [](unsigned char c) { return std::tolower(c); });
+    return head->find("<vrtdataset") != std::string::npos;
+}
+
+// The VRTs being checked (the chain from the scene's down) and those found
+// good: each file is read once, however many sources name it, and a VRT that
+// names itself is refused.
+struct VrtWalk {
+    std::vector<fs::path> chain;
+    std::set<fs::path> good;
+};
+constexpr size_t kMaxVrtDepth = 4;
+constexpr std::uintmax_t kMaxVrtBytes = 16'000'000;
+
+std::string vrtProblem(const fs::path& vrt, VrtWalk& walk);
+
+// A source a VRT names: a plain file in the VRT's folder (or below), which may be a VRT itself.
+std::string sourceProblem(const CPLXMLNode* element, const fs::path& vrt, VrtWalk& walk) {
+    const auto parts = texts(element);
+    if (parts.size() != 1 || parts[0].empty()) return "a source whose file name is not one plain text";
+    const std::string& name = parts[0];
+    const std::string shown = printableExcerpt(name, 80);
+    if (name.starts_with("/vsi") || name.find("://") != std::string::npos || name.find(':') != std::string::npos ||
+        name.find('<') != std::string::npos)
+        return fmt::format("the source \"{}\", which is not a plain file name (no virtual, network or driver paths)",
+                           shown);
+    // GDAL reads relativeToVRT with atoi: only the plain 0 and 1 mean the same to both.
+    const auto relativeTo = attribute(element, "relativeToVRT").value_or("0");
+    if (relativeTo != "0" && relativeTo != "1")
+        return fmt::format("the source \"{}\" with relativeToVRT=\"{}\" (write 0 or 1)", shown,
+                           printableExcerpt(relativeTo, 20));
+    std::error_code ec;
+    const fs::path folder = fs::absolute(vrt, ec).parent_path();
+    const fs::path resolved = fs::weakly_canonical(relativeTo == "1" ? folder / name : fs::absolute(name, ec), ec);
+    if (!pathInside(resolved, folder)) return fmt::format("the source \"{}\", a file outside the VRT's folder", shown);
+    if (std::string problem = inputFileProblem(resolved); !problem.empty())
+        return fmt::format("the source \"{}\" ({})", shown, problem);
+    if (walk.good.count(resolved) || !looksLikeVrt(resolved)) return "";
+    if (std::find(walk.chain.begin(), walk.chain.end(), resolved) != walk.chain.end())
+        return fmt::format("the source \"{}\", a VRT that leads back to itself", shown);
+    if (walk.chain.size() >= kMaxVrtDepth) return fmt::format("VRTs nested more than {} deep", kMaxVrtDepth);
+    if (std::string problem = vrtProblem(resolved, walk); !problem.empty())
+        return fmt::format("the source \"{}\", a VRT: {}", shown, problem);
+    return "";
+}
+
+// Why an element is not one of a plain VRT's, or "".
+std::string elementProblem(const CPLXMLNode* e, const fs::path& vrt, VrtWalk& walk) {
+    const std::string name = e->pszValue ? e->pszValue : "";
+    if (std::none_of(std::begin(kVrtElements), std::end(kVrtElements), [&](auto k) { return sameWord(k, name); }))
+        return fmt::format("a <{}> element, which relief does not read in a scene's VRT", printableExcerpt(name, 40));
+    const std::string subClass = attribute(e, "subClass").value_or("");
+    if (sameWord(name, "VRTDataset") && !subClass.empty())
+        return fmt::format("a {} (relief reads plain VRTs of sources only)", printableExcerpt(subClass, 40));
+    if (sameWord(name, "VRTRasterBand") && sameWord(subClass, "VRTRawRasterBand"))
+        return "a VRTRawRasterBand, which reads the raw bytes of any file";
+    if (sameWord(name, "VRTRasterBand") && !subClass.empty() && !sameWord(subClass, "VRTSourcedRasterBand"))
+        return fmt::format("a {} (relief reads bands of sources only)", printableExcerpt(subClass, 40));
+    if (sameWord(name, "Metadata") && sameWord(attribute(e, "domain").value_or(""), "OVERVIEWS"))
+        return "overviews in another file (metadata domain OVERVIEWS)";
+    if (sameWord(name, "MDI") && sameWord(attribute(e, "key").value_or(""), "OVERVIEW_FILE"))
+        return "an OVERVIEW_FILE, which names another dataset";
+    if (sameWord(name, "SourceFilename")) return sourceProblem(e, vrt, walk);
+    if (sameWord(name, "SRS")) {
+        std::string crs;
+        for (const auto& t : texts(e)) crs += t;
+        for (std::string_view word : {"+init", "nadgrids", "geoidgrids", "+grids"})
+            if (crs.find(word) != std::string::npos) return fmt::format("an SRS with {}, which makes PROJ read a file", word);
+    }
+    return "";
+}
+
+std::string treeProblem(const CPLXMLNode* node, const fs::path& vrt, VrtWalk& walk) {
+    for (; node; node = node->psNext) {
+        if (node->eType != CXT_Element) continue;
+        if (std::string problem = elementProblem(node, vrt, walk); !problem.empty()) return problem;
+        if (std::string problem = treeProblem(node->psChild, vrt, walk); !problem.empty()) return problem;
+    }
+    return "";
+}
+
+std::string vrtProblem(const fs::path& vrt, VrtWalk& walk) {
+    std::string problem;
+    const auto xml = readInputFile(vrt, kMaxVrtBytes, problem);
+    if (!xml) return problem;
+    CPLPushErrorHandler(CPLQuietErrorHandler);
+    std::unique_ptr<CPLXMLNode, XmlDeleter> root(CPLParseXMLString(xml->c_str()));
+    CPLPopErrorHandler();
+    if (!root) return "it is not well-formed XML";
+    std::error_code ec;
+    walk.chain.push_back(fs::weakly_canonical(fs::absolute(vrt, ec), ec));
+    std::string p = treeProblem(root.get(), vrt, walk);
+    if (p.empty()) walk.good.insert(walk.chain.back());
+    walk.chain.pop_back();
+    return p.empty() ? "" : "it holds " + p;
+}
+
+// GDAL opens files beside a raster by the raster's name (dem.tif.ovr,
+// dem.tif.msk, dem.prj, dem.tfw, ...): each must be a regular file too (a FIFO
+// would block GDAL, a link to /dev/zero fill memory), and one that is a VRT is
+// checked as one.
+std::string sidecarProblem(const fs::path& path) {
+    std::error_code ec;
+    const fs::path folder = fs::absolute(path, ec).parent_path();
+    const std::string name = path.filename().string(), stem = name.substr(0, name.find('.'));
+    for (auto it = fs::directory_iterator(folder, ec); !ec && it != fs::directory_iterator(); it.increment(ec)) {
+        const std::string other = it->path().filename().string();
+        if (other == name || !other.starts_with(stem + ".")) continue;
+        if (fs::is_directory(it->path(), ec)) continue;
+        const std::string shown = printableExcerpt(other, 80);
+        if (std::string problem = inputFileProblem(it->path()); !problem.empty())
+            return fmt::format("the file beside it that GDAL would read with it, {}, is not a plain file ({})", shown,
+                               problem);
+        VrtWalk walk;
+        if (looksLikeVrt(it->path()))
+            if (std::string problem = vrtProblem(it->path(), walk); !problem.empty())
+                return fmt::format("the file beside it that GDAL would read with it, {}, is a VRT, and {}", shown,
+                                   problem);
+    }
+    return "";
+}
+
+}  // namespace
+
+std::string gdalInputProblem(const fs::path& path) {
+    if (std::string problem = inputFileProblem(path); !problem.empty()) return problem;
+    setUpGdal();
+    CPLPushErrorHandler(CPLQuietErrorHandler);
+    GDALDriverH driver = GDALIdentifyDriverEx(path.c_str(), GDAL_OF_RASTER, nullptr, nullptr);
+    CPLPopErrorHandler();
+    if ((driver && std::string_view(GDALGetDriverShortName(driver)) == "VRT") || looksLikeVrt(path)) {
+        VrtWalk walk;
+        if (const std::string problem = vrtProblem(path, walk); !problem.empty()) return "it is a VRT, and " + problem;
+    }
+    return driver ? sidecarProblem(path) : "";  // a file GDAL does not take for a raster brings no sidecars
+}
+
+}  // namespace relief::geo
