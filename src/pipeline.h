@@ -15,18 +15,25 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <memory>
+#include <string_view>
+#include <vector>
 #include <optional>
 #include <string>
 
 #include "annotate/overlay.h"
 #include "core/diagnostics.h"
 #include "core/output_set.h"
+#include "execute/execute.h"
+#include "plan/plan.h"
 #include "emit/geometry_kind.h"
 #include "emit/surface_contours.h"
 #include "emit/write_scene.h"
 #include "geo/normalize.h"
 #include "measure/auto_depth.h"
 #include "render/povray.h"
+
+#include <nlohmann/json.hpp>
 #include "scene/scene_spec.h"
 #include "subdiv/budget.h"
 #include "subdiv/resolve.h"
@@ -59,7 +66,7 @@ geo::NetBudget netBudgetOf(const scene::LimitsSpec& limits);
 
 /// What a job is doing, for the command line to show.
 struct ProgressEvent {
-    enum class Stage { Reading, Compiling, Rendering } stage = Stage::Reading;
+    enum class Stage { Reading, Compiling, Rendering, Tiles, Finishing } stage = Stage::Reading;
     std::string text;  ///< e.g. "reading scenes/default.toml", "gridding 458845 samples",
                        ///< POV-Ray's "Rendered 5120 of 480000 pixels (1%)"
     int percent = -1;  ///< of the task `text` names, 0..100; -1 when it has none
@@ -83,11 +90,11 @@ std::optional<Surface> buildSurface(const LoadedScene& loaded, Diagnostics& diag
                                     const ProgressFn& progress = {});
 
 struct CompileOptions {
-    std::filesystem::path povPath;       ///< where the .pov goes (declared in `outputs`)
-    /// The run's outputs: the .pov and the dump are declared there by the
-    /// caller, the height field's and drape's PNGs by compileScene, and all
-    /// are written where the set stages them.
-    OutputSet* outputs = nullptr;
+    std::filesystem::path povPath;       ///< the .pov's final name (its PNGs are named after it)
+    /// Where to write a file compiling makes, given its final name and role
+    /// ("the .pov", "the height field's PNG", "--dump-net"): a path in the
+    /// run's output set, or in a render plan's folder.
+    std::function<std::filesystem::path(const std::filesystem::path& finalPath, std::string_view role)> writeAt;
     std::filesystem::path templatesDir;
     std::filesystem::path dumpNetPath;   ///< optional: .csv (x,y,z) or .asc (ESRI ASCII grid)
     int threads = 0;                     ///< refiner threads; 0 = all cores
@@ -140,8 +147,10 @@ struct CompileResult {
     double cameraAzimuthDeg = 0, cameraElevationDeg = 0, cameraDistanceM = 0;
 };
 
-/// Runs stages 2-4 and writes the .pov (and the net dump, if asked).
-/// Nothing is written when any stage reports an error.
+/// Runs stages 2-4 and writes the .pov, the files it reads (and the net
+/// dump, if asked) where `options.writeAt` says: the surface, the view
+/// (placement, camera and sun, once), the terrain's geometry, the contours,
+/// the overlays' facts, the .pov. Nothing is written when a stage fails.
 std::optional<CompileResult> compileScene(const LoadedScene& loaded,
                                           const CompileOptions& options, Diagnostics& diags);
 
@@ -164,36 +173,75 @@ struct SceneJob {
     std::filesystem::path output;
     std::filesystem::path templatesDir;
     std::filesystem::path dumpNetPath;
-    int threads = 0;            ///< refiner and POV-Ray threads; 0 = all cores
+    int threads = 0;            ///< refiner threads; 0 = all cores
     bool sandbox = true;        ///< POV-Ray in bubblewrap (render/povray.h)
     bool stillOnly = false;     ///< keep the PNG alone (relief test): no .pov, PNGs or sidecar beside it
     /// Where the outputs are declared and staged. Null: a set of the job's
     /// own, committed when the job succeeds. Given (relief sweep): the caller
     /// commits it with its own outputs, so that the whole sweep appears at once.
     OutputSet* outputs = nullptr;
+    // Until::Png: the render plan and how its tiles are rendered.
+    int tiles = 1;                          ///< strips of the still, each rendered on its own
+    std::filesystem::path planDir;          ///< "" = <still>.plan beside the still
+    bool keepPlan = false;                  ///< leave the plan after a render that succeeded
+    execute::Options execution;             ///< here or on Slurm, how many at once
 };
 
-enum class JobStatus { Ok, BadInput, ToolFailed };
+enum class JobStatus { Ok, BadInput, ToolFailed, Cancelled };
 
 struct JobOutcome {
     JobStatus status = JobStatus::BadInput;
     OutputPaths paths;
     std::optional<CompileResult> compiled;
-    render::RenderResult render;     ///< POV-Ray's timings and error text (Until::Png)
+    render::RenderResult render;     ///< POV-Ray's timings (summed over the tiles) and error text (Until::Png)
     std::optional<annotate::OverlayRecord> overlays;  ///< what was drawn over the still
+    std::filesystem::path plan;      ///< a render's plan, kept when the render did not finish (--resume)
+    int tiles = 0;                   ///< the tiles rendered by this run
 };
 
 /// Loads, compiles and (Until::Png) renders; writes the .pov, the JSON sidecar
 /// and the PNG as one set (core/output_set.h: nothing when a stage fails),
 /// creating the output folders. Diagnostics go to `diags` (an output that
-/// cannot be written too), progress to `progress` (may be empty).
+/// cannot be written too), progress to `progress` (may be empty). A render
+/// compiles into a plan (planJob), renders its tiles (execute::run) and
+/// finishes it (finishJob).
 JobOutcome runSceneJob(const SceneJob& job, Diagnostics& diags, const ProgressFn& progress);
 
+/// A job compiled into its render plan, not yet rendered.
+struct PlannedJob {
+    SceneJob job;
+    JobOutcome outcome;                 ///< status Ok when planned; paths, compiled
+    std::optional<plan::RenderPlan> plan;
+    std::unique_ptr<OutputSet> ownOutputs;  ///< job.outputs, unless the caller gave a set
+    std::optional<plan::PlanLock> lock;     ///< the plan is this job's while it renders
+    OutputSet& outputs() { return job.outputs ? *job.outputs : *ownOutputs; }
+};
+
+/// Loads the scene, declares the outputs, compiles into the plan's folder
+/// (made whole, then named; a stale plan there is replaced) and writes its
+/// plan.json. outcome.status says how it went.
+PlannedJob planJob(const SceneJob& job, Diagnostics& diags, const ProgressFn& progress);
+
+/// The plan's tiles still to render, as tasks for execute::run.
+std::vector<execute::Task> tasksOf(const plan::RenderPlan& plan);
+
+/// A plan whose tiles are rendered, finished: the tiles stitched, the
+/// overlays drawn, the still, the .pov, its PNGs and the sidecar (with every
+/// tile's record) written into `outputs`; `commit`: and moved into place, the
+/// plan removed (unless `keepPlan`). False with the reason in `diags`.
+bool finishPlan(const plan::RenderPlan& plan, OutputSet& outputs, bool stillOnly, bool commit, bool keepPlan,
+                JobOutcome& outcome, Diagnostics& diags);
+
+/// `relief render --resume PLAN`: the plan's missing tiles rendered, then finished.
+JobOutcome resumePlan(const std::filesystem::path& planDir, const execute::Options& execution, bool keepPlan,
+                      Diagnostics& diags, const ProgressFn& progress);
+
 /// The JSON sidecar: inputs, parameters, net size, vertex and triangle
-/// counts, time per stage (and POV-Ray's, when `render` is given), and what
-/// the still's overlays show.
-std::string sidecarJson(const CompileResult& compiled, const OutputPaths& paths,
-                        const render::RenderResult* render,
-                        const std::optional<annotate::OverlayRecord>& overlays = std::nullopt);
+/// counts, time per stage, what the compile made; finishPlan adds the
+/// render's (POV-Ray's seconds, every tile's record, what the overlays show).
+nlohmann::ordered_json sidecarJson(const CompileResult& compiled, const OutputPaths& paths);
+
+/// The sidecar's text: the JSON, indented, a line feed at the end.
+std::string sidecarText(const nlohmann::ordered_json& sidecar);
 
 }  // namespace relief

@@ -462,4 +462,35 @@ std::string drawOverlays(PngImage8& image, const scene::OverlaySpec& spec, const
     return {};
 }
 
+OverlayFacts overlayFacts(const scene::LookSpec& look, const emit::ScenePlacement& where, const emit::CameraView& view,
+                          const scene::RenderSpec& render, double convergenceDeg) {
+    OverlayFacts f;
+    f.palette.assign(where.paletteColors.begin(),
+                     where.paletteColors.begin() + std::min<size_t>(emit::kPaletteSize, where.paletteColors.size()));
+    f.zMinM = where.zMinM;
+    f.zMaxM = where.zMaxM;
+    using Colouring = scene::LookSpec::Colouring;
+    if (look.colouring == Colouring::Image) {
+        f.palette.clear();  // an image's colours are its own: no elevation legend
+    } else if (look.colouring == Colouring::Slope) {
+        f.legendTitle = "Slope (\u00b0)";
+        f.zMinM = 0;
+        f.zMaxM = emit::kSlopePaletteMaxDeg;
+    } else if (look.colouring == Colouring::Blend) {
+        f.legendNote = fmt::format("rock on slopes over {}\u00b0", formatShortest(look.rockFromDeg));
+    }
+    f.exaggeration = where.exaggeration;
+    f.perspective = view.perspective;
+    f.metresPerPixel = metresPerPixelAtTarget(view, where.metresPerUnit, render.width);
+    f.northDeg = northOnImageDeg(view, convergenceDeg, render.width, render.height);
+    // Where the terrain lies on the still (points in front of the eye only).
+    std::vector<std::array<double, 2>> onImage;
+    const Vec3 forward = view.target - view.eye;
+    for (const Vec3& p : where.outline)
+        if (!view.perspective || dot(p - view.eye, forward) > 0)
+            onImage.push_back(emit::projectToImage(view, p, render.width, render.height));
+    f.terrain = TerrainOnImage::fromPoints(onImage, render.width);
+    return f;
+}
+
 }  // namespace relief::annotate

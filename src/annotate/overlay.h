@@ -51,6 +51,14 @@ struct OverlayFacts {
     TerrainOnImage terrain;
 };
 
+/// The facts of the overlays from the still's view: the legend (the ramp over
+/// elevation, a blend's first layer; the slope palette over degrees; none for
+/// a draped image), the scale, true north (`convergenceDeg`: grid north's
+/// bearing from true north at the terrain's centre), and where the terrain
+/// lies on the still. The credits are the caller's to say.
+OverlayFacts overlayFacts(const scene::LookSpec& look, const emit::ScenePlacement& where, const emit::CameraView& view,
+                          const scene::RenderSpec& render, double convergenceDeg);
+
 /// A scale bar: a round length (1, 2 or 5 x 10^k m) near a fifth of the
 /// still's width, its length in pixels and its label ("500 m", "2 km").
 struct ScaleBar {

@@ -322,17 +322,24 @@ void OutputSet::addInput(const fs::path& input, std::string_view role) {
 }
 
 void OutputSet::drop(const fs::path& finalPath) {
-    const auto it = std::find_if(entries_.begin(), entries_.end(), [&](const Entry& e) { return e.finalPath == finalPath; });
+    const fs::path key = fileKey(finalPath);
+    const auto it = std::find_if(entries_.begin(), entries_.end(), [&](const Entry& e) { return e.key == key; });
     if (it == entries_.end()) return;
     std::error_code ec;
     fs::remove(staged(finalPath), ec);
+    if (fileKey(seal_) == key) seal_.clear();
     entries_.erase(it);
-    if (seal_ == finalPath) seal_.clear();
+}
+
+bool OutputSet::contains(const fs::path& finalPath) const {
+    const fs::path key = fileKey(finalPath);
+    return std::any_of(entries_.begin(), entries_.end(), [&](const Entry& e) { return e.key == key; });
 }
 
 fs::path OutputSet::staged(const fs::path& finalPath) const {
+    const fs::path key = fileKey(finalPath);
     for (const auto& e : entries_)
-        if (e.finalPath == finalPath) return folders_[e.folder].path() / "new" / finalPath.filename();
+        if (e.finalPath == finalPath || e.key == key) return folders_[e.folder].path() / "new" / finalPath.filename();
     throw std::logic_error("OutputSet::staged: " + finalPath.string() + " was not declared");
 }
 

@@ -70,6 +70,8 @@ public:
     /// the folder cannot be made. The `seal` (the sidecar) is moved into
     /// place after all the others, and its old file taken away before them.
     std::filesystem::path add(const std::filesystem::path& finalPath, std::string_view role, bool seal = false);
+    /// Whether `finalPath` is declared.
+    bool contains(const std::filesystem::path& finalPath) const;
     /// Takes back an output declared before: it is not moved into place.
     void drop(const std::filesystem::path& finalPath);
     /// Where the output declared as `finalPath` is written.

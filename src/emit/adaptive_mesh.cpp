@@ -127,10 +127,10 @@ private:
 
 }  // namespace
 
-Mesh buildAdaptiveMesh(const geo::GeoGrid& refined, const scene::LookSpec& look, double toleranceM) {
+Mesh buildAdaptiveMesh(const geo::GeoGrid& refined, const ScenePlacement& where, double toleranceM) {
     const Grid& g = refined.grid;
     Mesh mesh;
-    static_cast<ScenePlacement&>(mesh) = placeTerrain(refined, look);
+    static_cast<ScenePlacement&>(mesh) = where;
     mesh.grid = &refined;
     mesh.rows = g.rows;
     mesh.cols = g.cols;

@@ -26,7 +26,12 @@ namespace relief::emit {
 /// The adaptive mesh of the refined grid at `toleranceM` (true metres,
 /// vertical): vertices are refined nodes with the full surface's normals
 /// (central differences) and palette colours; `faces` lists the triangles.
-Mesh buildAdaptiveMesh(const geo::GeoGrid& refined, const scene::LookSpec& look, double toleranceM);
+Mesh buildAdaptiveMesh(const geo::GeoGrid& refined, const ScenePlacement& where, double toleranceM);
+Mesh buildAdaptiveMesh(geo::GeoGrid&& refined, const ScenePlacement& where, double toleranceM) = delete;
+/// The same, placed as placeTerrain places it.
+inline Mesh buildAdaptiveMesh(const geo::GeoGrid& refined, const scene::LookSpec& look, double toleranceM) {
+    return buildAdaptiveMesh(refined, placeTerrain(refined, look), toleranceM);
+}
 Mesh buildAdaptiveMesh(geo::GeoGrid&& refined, const scene::LookSpec& look, double toleranceM) = delete;
 
 }  // namespace relief::emit

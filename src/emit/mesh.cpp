@@ -125,10 +125,10 @@ Vec3 Mesh::normal(size_t node) const {
                          static_cast<int>(node % static_cast<size_t>(cols)));
 }
 
-Mesh buildMesh(const geo::GeoGrid& refined, const scene::LookSpec& look) {
+Mesh buildMesh(const geo::GeoGrid& refined, const ScenePlacement& where) {
     const Grid& g = refined.grid;
     Mesh mesh;
-    static_cast<ScenePlacement&>(mesh) = placeTerrain(refined, look);
+    static_cast<ScenePlacement&>(mesh) = where;
     mesh.grid = &refined;
     mesh.rows = g.rows;
     mesh.cols = g.cols;

@@ -170,7 +170,12 @@ struct Mesh : ScenePlacement {
 /// edges and next to masked nodes), each vertex's true elevation on the
 /// palette. Masked nodes are left out, with every triangle that touches one;
 /// bounds and the palette's range are those of the rest.
-Mesh buildMesh(const geo::GeoGrid& refined, const scene::LookSpec& look);
-Mesh buildMesh(geo::GeoGrid&& refined, const scene::LookSpec& look) = delete;  // the mesh refers to the grid
+Mesh buildMesh(const geo::GeoGrid& refined, const ScenePlacement& where);
+Mesh buildMesh(geo::GeoGrid&& refined, const ScenePlacement& where) = delete;  // the mesh refers to the grid
+/// The same, placed as placeTerrain places it.
+inline Mesh buildMesh(const geo::GeoGrid& refined, const scene::LookSpec& look) {
+    return buildMesh(refined, placeTerrain(refined, look));
+}
+Mesh buildMesh(geo::GeoGrid&& refined, const scene::LookSpec& look) = delete;
 
 }  // namespace relief::emit

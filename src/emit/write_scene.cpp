@@ -180,8 +180,8 @@ size_t writeMesh2(const Mesh& mesh, std::FILE* out, const WriteProgressFn& progr
     return w->total();
 }
 
-CameraView placeCamera(const ScenePlacement& where, const scene::LookSpec& look, const scene::RenderSpec& render) {
-    const scene::CameraSpec& camera = look.camera;
+CameraView placeCamera(const ScenePlacement& where, const scene::CameraSpec& camera, const CameraPoints& points,
+                       const scene::RenderSpec& render) {
     const Vec3 lo = where.boundsMin, hi = where.boundsMax;
     const Vec3 target{0.5 * (lo.x + hi.x), 0.5 * (lo.y + hi.y), 0.5 * (lo.z + hi.z)};
     const double radius = 0.5 * length(hi - lo);
@@ -211,7 +211,7 @@ CameraView placeCamera(const ScenePlacement& where, const scene::LookSpec& look,
     view.eye = target + distance * back;
     view.target = target;
     view.orthoHeight = 2.1 * radius;
-    if (camera.distanceM <= 0 && !camera.positionFrameM && !where.outline.empty()) {
+    if (camera.distanceM <= 0 && !points.eyeM && !where.outline.empty()) {
         // A tight fit: the terrain's own outline, not its bounding box, fills
         // the frame with a small margin, centred (the target moves across the
         // view, the eye back or forth); a few rounds settle a perspective view.
@@ -259,9 +259,9 @@ CameraView placeCamera(const ScenePlacement& where, const scene::LookSpec& look,
     }
     // The image's axes as plain numbers (r and u above for the orbit).
     Vec3 leftPlain = r, downPlain = u;
-    if (camera.positionFrameM) {  // placed by geography: the eye and the target as given
-        view.eye = where.scenePoint(*camera.positionFrameM);
-        if (camera.lookAtFrameM) view.target = where.scenePoint(*camera.lookAtFrameM);
+    if (points.eyeM) {  // placed by geography: the eye and the target as given
+        view.eye = where.scenePoint(*points.eyeM);
+        if (points.targetM) view.target = where.scenePoint(*points.targetM);
         const Vec3 toEye = view.eye - view.target;
         const double d = length(toEye);
         const Vec3 b = d > 0 ? (1.0 / d) * toEye : Vec3{0, 1, 0};
@@ -303,9 +303,9 @@ double finestMetresPerPixel(const CameraView& view, const ScenePlacement& where,
     return 2 * distance * view.tanHalfFov * where.metresPerUnit / widthPx;
 }
 
-Bindings sceneBindings(const ScenePlacement& where, GeometryWriter geometry, const scene::LookSpec& look,
-                       const scene::RenderSpec& render, const ParameterList& header, GeometryWriter base,
-                       GeometryWriter contours) {
+Bindings sceneBindings(const ScenePlacement& where, const CameraView& view, const SunDirection& sun,
+                       GeometryWriters writers, const scene::LookSpec& look, const scene::RenderSpec& render,
+                       const ParameterList& header) {
     const scene::CameraSpec& camera = look.camera;
     Bindings b;
     std::string head;
@@ -313,7 +313,6 @@ Bindings sceneBindings(const ScenePlacement& where, GeometryWriter geometry, con
         head += fmt::format("// {}: {}\n", oneLineText(key), oneLineText(value));
     b["header"].text = head;
 
-    const CameraView view = placeCamera(where, look, render);
     const Vec3 target = view.target;
     const double radius = view.radius;
     b["camera_location"].text = vec(view.eye);
@@ -329,7 +328,7 @@ Bindings sceneBindings(const ScenePlacement& where, GeometryWriter geometry, con
         b["camera_up"].text = fmt::format("y*{}", num(view.orthoHeight));
         b["camera_angle"].text = "";
     }
-    const Vec3 sunDir = direction(look.sunAzimuthDeg, look.sunAltitudeDeg);
+    const Vec3 sunDir = direction(sun.azimuthDeg, sun.altitudeDeg);
     b["sun_position"].text = vec(target + (100.0 * radius) * sunDir);
     b["scene_center"].text = vec(target);
     switch (render.background) {
@@ -380,10 +379,10 @@ Bindings sceneBindings(const ScenePlacement& where, GeometryWriter geometry, con
     if (look.haze > 0)
         b["atmosphere"].text = fmt::format("fog {{ fog_type 1 distance {} color rgb <0.78, 0.85, 0.93> }}",
                                            num(length(view.eye - view.target) / (0.3 * look.haze)));
-    b["terrain"].writer = std::move(geometry);
-    if (base) b["base"].writer = std::move(base);
+    b["terrain"].writer = std::move(writers.terrain);
+    if (writers.base) b["base"].writer = std::move(writers.base);
     else b["base"].text = "";
-    if (contours) b["contours"].writer = std::move(contours);
+    if (writers.contours) b["contours"].writer = std::move(writers.contours);
     else b["contours"].text = "";
     return b;
 }
@@ -404,10 +403,9 @@ std::optional<Template> loadSceneTemplate(const std::filesystem::path& templates
 }
 
 bool writeScene(const std::filesystem::path& out, const Template& tmpl, const ScenePlacement& where,
-                GeometryWriter geometry, GeometryWriter base, GeometryWriter contours, const scene::LookSpec& look,
+                const CameraView& view, const SunDirection& sun, GeometryWriters writers, const scene::LookSpec& look,
                 const scene::RenderSpec& render, const ParameterList& header, Diagnostics& diags) {
-    const Bindings bindings =
-        sceneBindings(where, std::move(geometry), look, render, header, std::move(base), std::move(contours));
+    const Bindings bindings = sceneBindings(where, view, sun, std::move(writers), look, render, header);
     if (!checkTemplate(tmpl, bindings, diags)) return false;
     AtomicFile file(out);
     renderTemplate(tmpl, bindings, file.stream());

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -41,7 +42,24 @@ struct CameraView {
     bool perspective = true;
     double orthoHeight = 0; ///< orthographic: the view's height
 };
-CameraView placeCamera(const ScenePlacement& where, const scene::LookSpec& look, const scene::RenderSpec& render);
+/// A camera placed by geography ([camera] position and look_at), in the
+/// frame's metres: the eye, and the point it looks at (unset: the terrain's
+/// centre). Both unset: on the orbit.
+struct CameraPoints {
+    std::optional<Vec3> eyeM, targetM;
+};
+CameraView placeCamera(const ScenePlacement& where, const scene::CameraSpec& camera, const CameraPoints& points,
+                       const scene::RenderSpec& render);
+/// The orbit camera of a look (no camera points): for tests and tools.
+inline CameraView placeCamera(const ScenePlacement& where, const scene::LookSpec& look, const scene::RenderSpec& render) {
+    return placeCamera(where, look.camera, {}, render);
+}
+
+/// Where the light comes from, as drawn: a bearing on the frame's grid
+/// (clockwise from the y axis) and an altitude, degrees.
+struct SunDirection {
+    double azimuthDeg = 315, altitudeDeg = 45;
+};
 
 /// Where a scene point lands in a still `widthPx` x `heightPx` as POV-Ray
 /// draws it: pixels, x to the right, y down, (0, 0) the top-left corner.
@@ -54,13 +72,19 @@ double finestMetresPerPixel(const CameraView& view, const ScenePlacement& where,
 /// Writes the terrain's geometry (a mesh2, a height_field) into the .pov.
 using GeometryWriter = std::function<void(std::FILE* out)>;
 
+/// What goes in the template's placeholders besides the camera and the sun:
+/// the terrain, the block model under it (empty: a floating surface) and the
+/// contour lines on it (empty: none).
+struct GeometryWriters {
+    GeometryWriter terrain, base, contours;
+};
+
 /// The template's bindings: header (every key and value through
-/// oneLineText in core/text_escape.h), camera and sun (from the terrain's placement), the
-/// geometry, the block model under it (`base`: empty for a floating surface)
-/// and the contour lines on it (`contours`: empty for none).
-Bindings sceneBindings(const ScenePlacement& where, GeometryWriter geometry, const scene::LookSpec& look,
-                       const scene::RenderSpec& render, const ParameterList& header, GeometryWriter base = {},
-                       GeometryWriter contours = {});
+/// oneLineText in core/text_escape.h), the camera `view` and the `sun`, the
+/// geometry and the rest of the look (background, water, haze).
+Bindings sceneBindings(const ScenePlacement& where, const CameraView& view, const SunDirection& sun,
+                       GeometryWriters writers, const scene::LookSpec& look, const scene::RenderSpec& render,
+                       const ParameterList& header);
 
 /// Loads `<templatesDir>/scene.pov.in`.
 std::optional<Template> loadSceneTemplate(const std::filesystem::path& templatesDir,
@@ -68,7 +92,7 @@ std::optional<Template> loadSceneTemplate(const std::filesystem::path& templates
 
 /// Checks bindings, then writes the .pov atomically (temp file + rename).
 bool writeScene(const std::filesystem::path& out, const Template& tmpl, const ScenePlacement& where,
-                GeometryWriter geometry, GeometryWriter base, GeometryWriter contours, const scene::LookSpec& look,
+                const CameraView& view, const SunDirection& sun, GeometryWriters writers, const scene::LookSpec& look,
                 const scene::RenderSpec& render, const ParameterList& header, Diagnostics& diags);
 
 }  // namespace relief::emit

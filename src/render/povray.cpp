@@ -204,118 +204,91 @@ std::string findOnPath(const std::string& name) {
     return "";
 }
 
-RenderResult renderPov(const RenderRequest& req, const ProgressFn& progress) {
-    RenderResult result;
-    const auto t0 = std::chrono::steady_clock::now();
-    const std::string povray = findOnPath("povray");
-    if (povray.empty()) {
-        result.error = "povray is not installed (on Debian: apt-get install povray)";
-        return result;
-    }
-    std::string bwrap;
-    if (req.sandbox) {
-        bwrap = findOnPath("bwrap");
-        if (bwrap.empty()) {
-            result.error = "POV-Ray runs in a bubblewrap sandbox, and bwrap is not installed: apt-get install "
-                           "bubblewrap, or render without the sandbox (--no-sandbox) only a scene you trust";
-            return result;
-        }
-    }
-    std::optional<PovrayHome> made;
-    try {
-        made.emplace(req);
-    } catch (const std::exception& e) {  // /tmp full or not writable: not POV-Ray's failure
-        result.error = fmt::format("cannot prepare POV-Ray's private folder in /tmp: {}", e.what());
-        result.cannotWriteOutput = true;
-        return result;
-    }
-    const PovrayHome& home = *made;
-    // POV-Ray writes into its private folder; the canonical PNG is then
-    // written atomically where the request says.
-    const std::filesystem::path rawPng = home.output();
+namespace {
 
+// POV-Ray's command line: only fixed names in its private folder, and the still's options.
+std::vector<std::string> povrayArguments(const RenderRequest& req, const PovrayHome& home, const std::string& povray) {
     std::vector<std::string> args{povray,
                                   "+I" + home.scene().string(),
-                                  "+O" + rawPng.string(),
+                                  "+O" + home.output().string(),
                                   fmt::format("+W{}", req.width),
                                   fmt::format("+H{}", req.height),
                                   "-D",
                                   "+FN8",
                                   "-P"};
-    // Adaptive anti-aliasing without jitter: pixels do not depend on the thread count.
+    // Adaptive anti-aliasing without jitter: pixels do not depend on the thread count,
+    // nor on the rows rendered with them (a tile's pixels are the whole still's).
     if (req.antialias) args.insert(args.end(), {"+A0.3", "+AM2", "+R3", "-J"});
     else args.push_back("-A");
     if (req.alpha) args.push_back("+UA");
     if (req.threads > 0) args.push_back(fmt::format("+WT{}", req.threads));
+    if (req.rows) args.insert(args.end(), {fmt::format("+SR{}", req.rows->first), fmt::format("+ER{}", req.rows->last)});
     if (!req.templatesDir.empty()) args.push_back("+L" + home.templates().string());
     args.push_back("+L" + home.inputs().string());
-    result.command = args;
+    return args;
+}
 
-    std::vector<std::string> envStrings;
+// The environment POV-Ray gets: its own HOME and POVINI; in the sandbox, only
+// PATH, LANG and LC_* of the user's.
+std::vector<std::string> povrayEnvironment(const RenderRequest& req, const PovrayHome& home) {
+    std::vector<std::string> env;
     for (char** e = environ; *e; ++e) {
         const std::string kv(*e);
         if (kv.rfind("HOME=", 0) == 0 || kv.rfind("POVINI=", 0) == 0) continue;
-        // In the sandbox POV-Ray gets only what it needs, not the user's environment.
         if (req.sandbox && kv.rfind("PATH=", 0) != 0 && kv.rfind("LANG=", 0) != 0 && kv.rfind("LC_", 0) != 0)
             continue;
-        envStrings.push_back(kv);
+        env.push_back(kv);
     }
-    envStrings.push_back("HOME=" + home.dir().string());
-    envStrings.push_back("POVINI=" + (home.dir() / "povray.ini").string());
-    if (req.sandbox) {
-        // The files themselves, at their own paths (the links lead there), never their folders.
-        std::vector<std::filesystem::path> readOnly{req.pov};
-        if (!req.templatesDir.empty()) readOnly.push_back(req.templatesDir);
-        readOnly.insert(readOnly.end(), req.inputFiles.begin(), req.inputFiles.end());
-        if (!povray.starts_with("/usr/")) readOnly.push_back(povray);
-        args = sandboxed(bwrap, home.dir(), readOnly, envStrings, args);
-    }
-    std::vector<char*> envp, argv;
-    for (auto& s : envStrings) envp.push_back(s.data());
-    envp.push_back(nullptr);
-    for (auto& s : args) argv.push_back(s.data());
-    argv.push_back(nullptr);
+    env.push_back("HOME=" + home.dir().string());
+    env.push_back("POVINI=" + (home.dir() / "povray.ini").string());
+    return env;
+}
 
-    int pipeFd[2];
-    if (::pipe2(pipeFd, O_CLOEXEC) != 0) {
-        result.error = "cannot create a pipe";
-        return result;
-    }
-    pid_t pid = 0;
-    const int spawnErr = spawnChild(argv.data(), envp.data(), pipeFd[1], pid);
-    ::close(pipeFd[1]);
-    if (spawnErr != 0) {
-        ::close(pipeFd[0]);
-        result.error = fmt::format("cannot run {}: {}", args[0], std::strerror(spawnErr));
-        return result;
-    }
-
-    // POV-Ray ends progress lines with '\r' and the rest with '\n'.
-    std::string log, current;
+// What watching POV-Ray saw: its lines (the last 200), its log, how it ended.
+struct Watched {
+    std::string log;
     std::deque<std::string> lastLines;
+    int status = 0;
+    bool timedOut = false, cancelled = false;
+};
+
+// Reads POV-Ray's output until it ends, telling `progress` what it does;
+// stops it (SIGKILL: the sandbox goes with it, --die-with-parent) past the
+// request's time limit or when the request is cancelled.
+Watched watch(pid_t pid, int fd, const RenderRequest& req, std::chrono::steady_clock::time_point t0,
+              const ProgressFn& progress) {
+    Watched w;
+    std::string current;
     char buf[4096];
-    const std::regex parsing(R"(^Parsing \d+K tokens)");
+    static const std::regex parsing(R"(^Parsing \d+K tokens)");
     const auto deadline = t0 + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                                    std::chrono::duration<double>(req.timeoutSeconds));
-    bool timedOut = false;
     while (true) {
+        int waitMs = 200;  // how often a cancellation is looked for
         if (req.timeoutSeconds > 0) {
-            const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
-                deadline - std::chrono::steady_clock::now());
-            pollfd pfd{pipeFd[0], POLLIN, 0};
-            const int ready = left.count() > 0 ? ::poll(&pfd, 1, static_cast<int>(left.count())) : 0;
-            if (ready < 0 && errno == EINTR) continue;
-            if (ready == 0) {
-                // Out of time: the sandbox goes with POV-Ray in it (--die-with-parent).
+            const auto left =
+                std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+            if (left.count() <= 0) {
                 ::kill(pid, SIGKILL);
-                timedOut = true;
+                w.timedOut = true;
                 break;
             }
+            waitMs = static_cast<int>(std::min<long long>(waitMs, left.count()));
         }
-        const ssize_t n = ::read(pipeFd[0], buf, sizeof buf);
+        if (req.cancelled && req.cancelled()) {
+            ::kill(pid, SIGKILL);
+            w.cancelled = true;
+            break;
+        }
+        pollfd pfd{fd, POLLIN, 0};
+        const int ready = ::poll(&pfd, 1, waitMs);
+        if (ready < 0 && errno == EINTR) continue;
+        if (ready == 0) continue;
+        const ssize_t n = ::read(fd, buf, sizeof buf);
         if (n < 0 && errno == EINTR) continue;
         if (n <= 0) break;
-        log.append(buf, static_cast<size_t>(n));
+        w.log.append(buf, static_cast<size_t>(n));
+        // POV-Ray ends progress lines with '\r' and the rest with '\n'.
         for (ssize_t i = 0; i < n; ++i) {
             const char ch = buf[i];
             if (ch != '\r' && ch != '\n') {
@@ -334,55 +307,126 @@ RenderResult renderPov(const RenderRequest& req, const ProgressFn& progress) {
                 else if (current.find("[Rendering...]") != std::string::npos)
                     progress({Phase::Tracing, "tracing", -1});
             }
-            lastLines.push_back(current);
-            if (lastLines.size() > 200) lastLines.pop_front();
+            w.lastLines.push_back(current);
+            if (w.lastLines.size() > 200) w.lastLines.pop_front();
             current.clear();
         }
     }
-    if (!current.empty()) lastLines.push_back(current);
-    ::close(pipeFd[0]);
-    int status = 0;
-    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    if (!current.empty()) w.lastLines.push_back(current);
+    while (::waitpid(pid, &w.status, 0) < 0 && errno == EINTR) {
     }
-    if (timedOut) {
+    return w;
+}
+
+// Why POV-Ray gave no image: bubblewrap's failure, or POV-Ray's own words.
+std::string failureText(const Watched& w, const RenderRequest& req, const PovrayHome& home) {
+    // bubblewrap's own failure (e.g. no user namespaces here) comes before POV-Ray's output.
+    if (req.sandbox && !w.lastLines.empty() && w.lastLines.front().rfind("bwrap: ", 0) == 0)
+        return fmt::format("the sandbox for POV-Ray cannot start here ({}); render without it (--no-sandbox) only "
+                           "a scene you trust",
+                           w.lastLines.front());
+    std::string error = errorText(w.lastLines);
+    // POV-Ray names its input by the private folder's link: "File 'scene.pov' line 12" says enough.
+    const std::string privatePrefix = home.dir().string() + "/";
+    for (size_t at; (at = error.find(privatePrefix)) != std::string::npos;) error.erase(at, privatePrefix.size());
+    if (!error.empty()) return error;
+    return WIFEXITED(w.status) ? fmt::format("povray exited with status {}", WEXITSTATUS(w.status))
+                               : "povray was killed by a signal";
+}
+
+// POV-Ray's image where the request wants it: re-encoded canonically, or
+// (a tile, stitched later) copied as POV-Ray wrote it.
+std::string deliver(const std::filesystem::path& raw, const RenderRequest& req) {
+    if (!req.rawOutput) return writeCanonicalPng(raw, req.png);
+    return writeThroughTemporary(req.png, [&](const std::filesystem::path& staged) {
+        std::error_code ec;
+        std::filesystem::copy_file(raw, staged, ec);
+        return ec ? ec.message() : std::string();
+    });
+}
+
+}  // namespace
+
+RenderResult renderPov(const RenderRequest& req, const ProgressFn& progress) {
+    RenderResult result;
+    const auto t0 = std::chrono::steady_clock::now();
+    const std::string povray = findOnPath("povray");
+    if (povray.empty()) {
+        result.error = "povray is not installed (on Debian: apt-get install povray)";
+        return result;
+    }
+    const std::string bwrap = req.sandbox ? findOnPath("bwrap") : std::string();
+    if (req.sandbox && bwrap.empty()) {
+        result.error = "POV-Ray runs in a bubblewrap sandbox, and bwrap is not installed: apt-get install "
+                       "bubblewrap, or render without the sandbox (--no-sandbox) only a scene you trust";
+        return result;
+    }
+    std::optional<PovrayHome> made;
+    try {
+        made.emplace(req);
+    } catch (const std::exception& e) {  // /tmp full or not writable: not POV-Ray's failure
+        result.error = fmt::format("cannot prepare POV-Ray's private folder in /tmp: {}", e.what());
+        result.cannotWriteOutput = true;
+        return result;
+    }
+    const PovrayHome& home = *made;
+    std::vector<std::string> args = povrayArguments(req, home, povray);
+    result.command = args;
+    std::vector<std::string> env = povrayEnvironment(req, home);
+    if (req.sandbox) {
+        // The files themselves, at their own paths (the links lead there), never their folders.
+        std::vector<std::filesystem::path> readOnly{req.pov};
+        if (!req.templatesDir.empty()) readOnly.push_back(req.templatesDir);
+        readOnly.insert(readOnly.end(), req.inputFiles.begin(), req.inputFiles.end());
+        if (!povray.starts_with("/usr/")) readOnly.push_back(povray);
+        args = sandboxed(bwrap, home.dir(), readOnly, env, args);
+    }
+    std::vector<char*> envp, argv;
+    for (auto& e : env) envp.push_back(e.data());
+    envp.push_back(nullptr);
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+
+    int pipeFd[2];
+    if (::pipe2(pipeFd, O_CLOEXEC) != 0) {
+        result.error = "cannot create a pipe";
+        return result;
+    }
+    pid_t pid = 0;
+    const int spawnErr = spawnChild(argv.data(), envp.data(), pipeFd[1], pid);
+    ::close(pipeFd[1]);
+    if (spawnErr != 0) {
+        ::close(pipeFd[0]);
+        result.error = fmt::format("cannot run {}: {}", args[0], std::strerror(spawnErr));
+        return result;
+    }
+    const Watched w = watch(pid, pipeFd[0], req, t0, progress);
+    ::close(pipeFd[0]);
+    if (w.cancelled) {
+        result.cancelled = true;
+        result.error = "stopped";
+        return result;
+    }
+    if (w.timedOut) {
         result.error = fmt::format("POV-Ray did not finish within render.timeout_s = {} s and was stopped; "
                                    "raise the limit, or lower the resolution or subdivision.depth",
                                    req.timeoutSeconds);
         return result;
     }
-    result.parseSeconds = parseSeconds(log, "Parse Time");
-    result.traceSeconds = parseSeconds(log, "Trace Time");
-
+    result.parseSeconds = parseSeconds(w.log, "Parse Time");
+    result.traceSeconds = parseSeconds(w.log, "Trace Time");
     std::error_code ec;
-    const bool exitedOk = WIFEXITED(status) && WEXITSTATUS(status) == 0;
-    if (!exitedOk || !std::filesystem::exists(rawPng, ec)) {
-        // bubblewrap's own failure (e.g. no user namespaces here) comes before POV-Ray's output.
-        if (req.sandbox && !lastLines.empty() && lastLines.front().rfind("bwrap: ", 0) == 0) {
-            result.error = fmt::format("the sandbox for POV-Ray cannot start here ({}); render without it "
-                                       "(--no-sandbox) only a scene you trust",
-                                       lastLines.front());
-            return result;
-        }
-        result.error = errorText(lastLines);
-        // POV-Ray names its input by the private folder's link: "File 'scene.pov' line 12" says enough.
-        const std::string privatePrefix = home.dir().string() + "/";
-        for (size_t at; (at = result.error.find(privatePrefix)) != std::string::npos;)
-            result.error.erase(at, privatePrefix.size());
-        if (result.error.empty())
-            result.error = WIFEXITED(status)
-                               ? fmt::format("povray exited with status {}", WEXITSTATUS(status))
-                               : "povray was killed by a signal";
+    if (!(WIFEXITED(w.status) && WEXITSTATUS(w.status) == 0) || !std::filesystem::exists(home.output(), ec)) {
+        result.error = failureText(w, req, home);
         return result;
     }
-    const std::string pngError = writeCanonicalPng(rawPng, req.png);
-    if (!pngError.empty()) {
+    if (const std::string pngError = deliver(home.output(), req); !pngError.empty()) {
         result.error = pngError;
         result.cannotWriteOutput = true;
         return result;
     }
     result.ok = true;
-    result.wallSeconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    result.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return result;
 }
 

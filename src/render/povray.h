@@ -5,10 +5,16 @@
 // progress reported from its stderr.
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
 namespace relief::render {
+
+/// Rows of a still, as POV-Ray counts them: 1 is the top, both included.
+struct RowRange {
+    int first = 1, last = 1;
+};
 
 struct RenderRequest {
     std::filesystem::path pov;
@@ -33,12 +39,20 @@ struct RenderRequest {
     /// Files the .pov reads by their file name (a height field's and a drape's
     /// PNGs): POV-Ray finds them on its library path.
     std::vector<std::filesystem::path> inputFiles;
+    /// Rows first..last only (1 = the top; POV-Ray's +SR and +ER): a tile of
+    /// the still, the rest of the image left black. Unset: every row.
+    std::optional<RowRange> rows;
+    /// The PNG as POV-Ray wrote it (a tile, to be stitched), not re-encoded.
+    bool rawOutput = false;
+    /// Asked every 200 ms; true stops POV-Ray (result.cancelled).
+    std::function<bool()> cancelled;
 };
 
 struct RenderResult {
     bool ok = false;
     std::string error;          ///< POV-Ray's own error text (or why it could not run)
     bool cannotWriteOutput = false;  ///< POV-Ray rendered, but the PNG could not be written (error says why)
+    bool cancelled = false;          ///< stopped because the request was cancelled
     double parseSeconds = 0;    ///< from POV-Ray's statistics
     double traceSeconds = 0;
     double wallSeconds = 0;

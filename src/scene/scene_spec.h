@@ -160,9 +160,6 @@ struct CameraSpec {
     /// Placed by geography instead: [lon, lat, height above sea level in m]
     /// for the eye and (optional; else the terrain's centre) the point looked at.
     std::optional<std::array<double, 3>> position, lookAt;
-    /// The same two in the frame's metres (x, y, z as the frame holds heights),
-    /// set by the pipeline once the frame is known (geo::geodeticToFrame).
-    std::optional<Vec3> positionFrameM, lookAtFrameM;
 };
 
 /// [base]: the terrain as a solid block, side walls down to a flat floor

@@ -90,7 +90,7 @@ TEST(AdaptiveMesh, APlaneIsTwoTrianglesUnlessItsColoursBend) {
     const Mesh m = buildAdaptiveMesh(g, grey(), 0.01);
     EXPECT_EQ(m.faces.size(), 2u);
     EXPECT_EQ(m.vertices, 4u);
-    EXPECT_GT(buildAdaptiveMesh(g, {}, 0.01).faces.size(), 2u);
+    EXPECT_GT(buildAdaptiveMesh(g, scene::LookSpec{}, 0.01).faces.size(), 2u);
 }
 
 // Hills on a lattice of no special size: the mesh covers every cell once, has no cracks or

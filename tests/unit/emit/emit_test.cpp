@@ -96,15 +96,16 @@ TEST(SceneHeader, UntrustedTextStaysInItsComment) {
     EXPECT_EQ(oneLineText("data/dem.tif"), "data/dem.tif");
     EXPECT_EQ(oneLineText("a\n#fopen F \"/tmp/x\" write\r\x7f"), "a\\x0a#fopen F \"/tmp/x\" write\\x0d\\x7f");
     const geo::GeoGrid grid{{}, tiltedPlane(), 300000, 5900000, 100, 100, {}};
-    const Mesh m = buildMesh(grid, {});
-    const Bindings b = sceneBindings(m, {}, {}, {}, {{"samples.path", "x.csv\n#declare Evil = 1;"}});
+    const Mesh m = buildMesh(grid, scene::LookSpec{});
+    const Bindings b = sceneBindings(m, placeCamera(m, scene::LookSpec{}, scene::RenderSpec{}), {}, {}, {}, {},
+                                     {{"samples.path", "x.csv\n#declare Evil = 1;"}});
     const std::string head = b.at("header").text;
     EXPECT_EQ(head, "// samples.path: x.csv\\x0a#declare Evil = 1;\n");
 }
 
 TEST(Mesh2, WriterOutputShape) {
     const geo::GeoGrid grid{{}, tiltedPlane(), 300000, 5900000, 100, 100, {}};
-    const Mesh m = buildMesh(grid, {});
+    const Mesh m = buildMesh(grid, scene::LookSpec{});
     char* data = nullptr;
     size_t size = 0;
     std::FILE* f = open_memstream(&data, &size);
@@ -126,7 +127,7 @@ TEST(Mesh2, MaskedNodesLeaveAHole) {
     grid.masked.assign(12, 0);
     grid.masked[0] = 1;                  // the south-west corner
     grid.grid.points[0].z = -1000;       // a filled height that nothing may show
-    const Mesh m = buildMesh(grid, {});
+    const Mesh m = buildMesh(grid, scene::LookSpec{});
     EXPECT_EQ(m.vertices, 11u);
     EXPECT_EQ(m.triangles, 12 - 1);      // the corner cell's south-west triangle
     EXPECT_EQ(m.zMinM, 50.0);

@@ -75,7 +75,7 @@ TEST(HeightField, PngRoundTripAndDeterminism) {
 // The drape gives each node the colour the mesh2 gives its vertex.
 TEST(HeightField, DrapeColoursAreTheMeshPalette) {
     const auto grid = tiltedPlane();
-    const Mesh mesh = buildMesh(grid, {});
+    const Mesh mesh = buildMesh(grid, scene::LookSpec{});
     const Drape drape = elevationDrape(grid, mesh);
     for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 4; ++c) {

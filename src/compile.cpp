@@ -1,0 +1,367 @@
+// compileScene: the stages from the surface to the .pov, each called once
+// and each handing the next a value: the view (placement, camera, sun), the
+// terrain's geometry, the contours, the overlays' facts, the .pov.
+#include <cmath>
+#include <numbers>
+
+#include <fmt/format.h>
+
+#include "core/atomic_file.h"
+#include "core/date_time.h"
+#include "core/number_format.h"
+#include "core/text_escape.h"
+#include "emit/adaptive_mesh.h"
+#include "emit/block_base.h"
+#include "emit/height_field.h"
+#include "emit/mesh.h"
+#include "emit/surface_contours.h"
+#include "geo/raster.h"
+#include "geo/sun_position.h"
+#include "pipeline.h"
+#include "scene_header.h"
+
+namespace relief {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// [camera] position and look_at, in the frame's metres.
+std::optional<emit::CameraPoints> cameraPoints(const scene::LookSpec& look, const geo::Frame& frame,
+                                               Diagnostics& diags) {
+    const auto toFrame = [&](const std::array<double, 3>& lonLatH, const char* key) -> std::optional<Vec3> {
+        Vec3 p;
+        if (geo::geodeticToFrame(frame, lonLatH[1], lonLatH[0], lonLatH[2], p)) return p;
+        diags.error(look.locs.at(key), fmt::format("{} = [{}, {}, {}] cannot be placed in the scene's frame ({}): "
+                                                   "put it nearer the terrain, or use frame.kind = \"local\"",
+                                                   key, formatShortest(lonLatH[0]), formatShortest(lonLatH[1]),
+                                                   formatShortest(lonLatH[2]), frame.describe()));
+        return std::nullopt;
+    };
+    emit::CameraPoints points;
+    const scene::CameraSpec& camera = look.camera;
+    if (camera.position && !(points.eyeM = toFrame(*camera.position, "camera.position"))) return std::nullopt;
+    if (camera.lookAt && !(points.targetM = toFrame(*camera.lookAt, "camera.look_at"))) return std::nullopt;
+    if (points.eyeM && points.targetM && length(*points.eyeM - *points.targetM) < 1e-3) {
+        diags.error(look.locs.at("camera.look_at"), "camera.look_at is where camera.position is: a camera must "
+                                                    "look at a point away from itself");
+        return std::nullopt;
+    }
+    return points;
+}
+
+// The sun: the scene's angles, or where it stood at [lighting] datetime over
+// the terrain's centre. The scene's axes are the frame's grid, whose north is
+// the meridian convergence away from true north.
+std::optional<std::pair<emit::SunDirection, CompileResult::Sun>> sunOf(const scene::LookSpec& look,
+                                                                        const geo::ControlNet& net, Diagnostics& diags) {
+    const emit::SunDirection given{look.sunAzimuthDeg, look.sunAltitudeDeg};
+    if (!look.sunTime) return std::pair{given, CompileResult::Sun{given.azimuthDeg, given.altitudeDeg, false, {}, 0, 0}};
+    const double cx = (net.x0 + net.xMax()) / 2, cy = (net.y0 + net.yMax()) / 2;
+    double lat = 0, lon = 0, h = 0;
+    if (!geo::frameToGeodetic(net.frame, Vec3{cx, cy, 0}, lat, lon, h)) {
+        diags.error(look.locs.at("lighting.datetime"), "lighting.datetime: the terrain's centre has no longitude and "
+                                                       "latitude in its frame; give sun_azimuth_deg and "
+                                                       "sun_altitude_deg instead");
+        return std::nullopt;
+    }
+    const geo::SunPosition sun = geo::sunPosition(lon, lat, look.sunTime->utcSeconds);
+    if (!(sun.altitudeDeg > 0)) {
+        diags.error(look.locs.at("lighting.datetime"),
+                    fmt::format("lighting.datetime = \"{}\"{}: the sun is {:.1f} degrees below the horizon at the "
+                                "terrain's centre (lon {:.4f}, lat {:.4f}); choose a time in daylight, or give "
+                                "sun_azimuth_deg and sun_altitude_deg",
+                                printableExcerpt(look.sunTimeText),
+                                look.sunTime->offsetMinutes != 0 ? " (" + formatUtc(look.sunTime->utcSeconds) + ")"
+                                                                 : std::string(),
+                                -sun.altitudeDeg, lon, lat));
+        return std::nullopt;
+    }
+    const double convergenceDeg = geo::gridConvergenceDeg(net.frame, cx, cy);
+    return std::pair{emit::SunDirection{std::fmod(sun.azimuthDeg - convergenceDeg + 360, 360), sun.altitudeDeg},
+                     CompileResult::Sun{sun.azimuthDeg, sun.altitudeDeg, true, look.sunTimeText, lon, lat}};
+}
+
+// Where the terrain sits in the scene, where the camera is and where the
+// light comes from: made once, read by everything after.
+struct View {
+    emit::ScenePlacement where;
+    emit::CameraView camera;
+    emit::SunDirection sun;
+    CompileResult::Sun sunRecord;
+};
+
+std::optional<View> resolveView(const scene::SceneSpec& spec, const Surface& surface, Diagnostics& diags) {
+    const auto points = cameraPoints(spec.look, surface.net.frame, diags);
+    if (!points) return std::nullopt;
+    auto sun = sunOf(spec.look, surface.net, diags);
+    if (!sun) return std::nullopt;
+    View v;
+    v.where = emit::placeTerrain(surface.refined, spec.look);
+    v.camera = emit::placeCamera(v.where, spec.look.camera, *points, spec.render);
+    v.sun = sun->first;
+    v.sunRecord = sun->second;
+    return v;
+}
+
+// The terrain's geometry: a mesh (a view of the refined grid), the adaptive
+// mesh, or a height field's 16-bit levels, and the image draped on it.
+struct Terrain {
+    std::optional<emit::Mesh> mesh;
+    std::optional<emit::HeightField> field;
+    std::optional<geo::ImageOnGrid> image;
+    std::filesystem::path heightPng, drapePng;  ///< final names ("" when none)
+    long long vertices = 0, triangles = 0;
+    double heightStepM = 0, adaptiveToleranceM = 0, adaptiveTolerancePx = 0;
+};
+
+bool buildMeshes(const LoadedScene& loaded, const Surface& surface, const View& view, Terrain& t, Diagnostics& diags) {
+    const scene::SceneSpec& spec = loaded.scene;
+    const geo::GeoGrid& refined = surface.refined;
+    if (surface.geometry.kind == scene::GeometryKind::HeightField) {
+        t.field = emit::quantizeHeights(refined, view.where);
+        t.heightStepM = t.field->stepM();
+        t.vertices = static_cast<long long>(refined.grid.points.size());
+        t.triangles = gridMeshSize(refined.rows(), refined.cols()).triangles;
+        return true;
+    }
+    if (surface.geometry.kind != scene::GeometryKind::Adaptive) {
+        t.mesh = emit::buildMesh(refined, view.where);
+    } else {
+        // The tolerance in metres: given, or half a pixel (by default) where the terrain is
+        // nearest the camera, in true (not exaggerated) metres.
+        const scene::GeometrySpec& g = spec.geometry;
+        const double pixelM = emit::finestMetresPerPixel(view.camera, view.where, spec.render.width);
+        const double exaggeration = spec.look.exaggeration;
+        t.adaptiveToleranceM = g.toleranceM > 0 ? g.toleranceM : g.tolerancePx * pixelM / exaggeration;
+        t.adaptiveTolerancePx = t.adaptiveToleranceM * exaggeration / pixelM;
+        t.mesh = emit::buildAdaptiveMesh(refined, view.where, t.adaptiveToleranceM);
+        const scene::SubdivisionSpec& sub = spec.subdivision;
+        if (!subdiv::checkBudget(subdiv::withBuiltMesh(surface.estimate, double(t.mesh->vertices), double(t.mesh->triangles)),
+                                 budgetOf(spec.limits), sub.locs.at(sub.depthAuto ? "subdivision.depth" : "subdivision.scheme"),
+                                 surface.depth, diags, true))
+            return false;
+    }
+    t.vertices = static_cast<long long>(t.mesh->vertices);
+    t.triangles = t.mesh->triangles;
+    return true;
+}
+
+// The PNGs the .pov reads: a height field's levels and drape, an image drape.
+bool writeTerrainPngs(const scene::SceneSpec& spec, const Surface& surface, const View& view,
+                      const CompileOptions& options, Terrain& t, Diagnostics& diags) {
+    const geo::GeoGrid& refined = surface.refined;
+    const std::filesystem::path& pov = options.povPath;
+    if (spec.look.colouring == scene::LookSpec::Colouring::Image) {
+        t.image = geo::imageOnGrid(spec.look.drapeImage, spec.look.drapeImageText, refined, diags);
+        if (!t.image) return false;
+    }
+    std::string error;
+    if (t.field) {
+        t.heightPng = pov.parent_path() / emit::siblingPngName(pov, "height");
+        error = emit::writeHeightFieldPng(*t.field, options.writeAt(t.heightPng, "the height field's PNG"));
+    }
+    if (error.empty() && (t.field || t.image)) {
+        t.drapePng = pov.parent_path() / emit::siblingPngName(pov, "drape");
+        const auto at = options.writeAt(t.drapePng, t.field ? "the height field's drape PNG" : "the drape PNG");
+        error = emit::writeDrapePng(t.image ? emit::imageDrape(refined, view.where, *t.image)
+                                            : emit::elevationDrape(refined, view.where),
+                                    at);
+    }
+    if (error.empty()) return true;
+    diags.error({}, error);
+    return false;
+}
+
+// [overlay] contours, built before anything is written, so that lines over
+// the output limits are refused with nothing left behind.
+std::optional<emit::ContourRibbons> buildContours(const scene::SceneSpec& spec, const Surface& surface,
+                                                  const View& view, double metresPerPixel, long long meshTriangles,
+                                                  Diagnostics& diags) {
+    if (!spec.overlay.contours) return emit::ContourRibbons{};
+    const SourceLoc at = spec.overlay.locs.at("overlay.contours");
+    constexpr int kMaxContourLevels = 1000;
+    if (const int n = emit::contourLevelCount(view.where, *spec.overlay.contours); n > kMaxContourLevels) {
+        diags.error(at, fmt::format("overlay.contours: interval_m = {} m gives {} lines over the surface's {:.0f} m "
+                                    "of relief, more than {} a still can show: choose a wider interval",
+                                    formatShortest(spec.overlay.contours->intervalM), n,
+                                    view.where.zMaxM - view.where.zMinM, kMaxContourLevels));
+        return std::nullopt;
+    }
+    if (spec.overlay.enabled == scene::OverlaySpec::Enabled::Off) return emit::ContourRibbons{};
+    // A line a pixel and a fifth wide at the centre of the view (index lines twice that).
+    std::string error;
+    emit::ContourRibbons ribbons =
+        emit::buildSurfaceContours(surface.refined, view.where, *spec.overlay.contours, 1.2 * metresPerPixel, error);
+    if (!error.empty()) {
+        diags.error(at, "overlay.contours: GDAL: " + error);
+        return std::nullopt;
+    }
+    const scene::LimitsSpec& limits = spec.limits;
+    const double triangles = double(ribbons.faces.size()), mb = ribbons.sdlBytes() / 1e6;
+    if (triangles + double(meshTriangles) > limits.maxTriangles || mb > limits.maxSdlMB) {
+        diags.error(at, fmt::format("overlay.contours: interval_m = {} m draws {} lines of {:.3g} triangles ({:.3g} MB "
+                                    "of SDL), past limits.max_triangles ({:.3g} with the surface's {:.3g}) or "
+                                    "limits.max_sdl_mb ({}): choose a wider interval",
+                                    formatShortest(spec.overlay.contours->intervalM), ribbons.made.lines, triangles,
+                                    mb, limits.maxTriangles, double(meshTriangles), formatShortest(limits.maxSdlMB)));
+        return std::nullopt;
+    }
+    return ribbons;
+}
+
+// What the overlays say, and the camera both ways, from the view.
+void describeView(const scene::SceneSpec& spec, const geo::ControlNet& net, const View& view, CompileResult& r) {
+    const emit::ScenePlacement& where = view.where;
+    const emit::CameraView& camera = view.camera;
+    annotate::OverlayFacts& f = r.overlayFacts;
+    // Whose data: the scene's credit line, else the one the raster's metadata carries.
+    r.dataAttribution = !spec.samples.attribution.empty() ? spec.samples.attribution : net.attribution;
+    f = annotate::overlayFacts(spec.look, where, camera, spec.render, geo::gridConvergenceDeg(net.frame, where.originM.x,
+                                                                                               where.originM.y));
+    f.credits = spec.overlay.credits ? *spec.overlay.credits : r.dataAttribution;
+    // The eye and the target back in metres (heights unexaggerated), then degrees.
+    const auto toFrame = [&](const Vec3& p) {
+        return Vec3{p.x * where.metresPerUnit + where.originM.x, p.z * where.metresPerUnit + where.originM.y,
+                    p.y * where.metresPerUnit / where.exaggeration};
+    };
+    const Vec3 eye = toFrame(camera.eye), target = toFrame(camera.target);
+    for (auto [p, out] : {std::pair{eye, &r.cameraEyeLonLatH}, std::pair{target, &r.cameraTargetLonLatH}}) {
+        double lat = 0, lon = 0, h = 0;
+        if (geo::frameToGeodetic(net.frame, p, lat, lon, h)) *out = {lon, lat, h};
+    }
+    const Vec3 d = eye - target;
+    r.cameraDistanceM = length(d);
+    r.cameraAzimuthDeg = std::fmod(std::atan2(d.x, d.y) * 180 / std::numbers::pi + 360, 360);
+    r.cameraElevationDeg =
+        std::asin(std::clamp(d.z / std::max(r.cameraDistanceM, 1e-300), -1.0, 1.0)) * 180 / std::numbers::pi;
+}
+
+// The image's credit joins the data's (a map's or a photo's licence asks for it too).
+void creditImage(const scene::SceneSpec& spec, const Terrain& t, CompileResult& r) {
+    if (!t.image) return;
+    r.drapeImageCoverage = double(t.image->coveredCount) / double(t.image->covered.size());
+    r.imageAttribution = !spec.look.drapeImageAttribution.empty() ? spec.look.drapeImageAttribution : t.image->attribution;
+    if (!spec.overlay.credits && !r.imageAttribution.empty())
+        r.overlayFacts.credits += (r.overlayFacts.credits.empty() ? "" : " ") + r.imageAttribution;
+    if (!r.imageAttribution.empty()) r.parameters.emplace_back("texture.image_attribution", r.imageAttribution);
+}
+
+// The writers the template's placeholders call: terrain, block model, contours.
+emit::GeometryWriters writersOf(const Surface& surface, const View& view, const Terrain& t,
+                                const emit::ContourRibbons& ribbons, const scene::SceneSpec& spec,
+                                const CompileOptions& options) {
+    const geo::GeoGrid& refined = surface.refined;
+    emit::GeometryWriters w;
+    if (t.field) {
+        w.terrain = [&](std::FILE* out) {
+            emit::writeHeightFieldSdl(out, *t.field, refined, view.where, t.heightPng.filename().string(),
+                                      t.drapePng.filename().string());
+        };
+    } else {
+        emit::WriteProgressFn writing;
+        if (options.progress)
+            writing = [&](double fraction) {
+                options.progress({ProgressEvent::Stage::Compiling,
+                                  fmt::format("writing {} ({} triangles)", options.povPath.filename().string(),
+                                              t.mesh->triangles),
+                                  static_cast<int>(100 * fraction)});
+            };
+        w.terrain = [&, writing](std::FILE* out) {
+            emit::writeMesh2(*t.mesh, out, writing);
+            if (!t.image) return;
+            const std::string texture = emit::drapeTextureSdl(refined, view.where, t.drapePng.filename().string());
+            std::fwrite(texture.data(), 1, texture.size(), out);
+        };
+    }
+    if (view.where.baseElevationM) w.base = [&](std::FILE* out) { emit::writeBlockBase(out, refined, view.where); };
+    if (!ribbons.faces.empty())
+        w.contours = [&](std::FILE* out) { emit::writeSurfaceContours(out, ribbons, *spec.overlay.contours); };
+    return w;
+}
+
+bool dumpNetFits(const CompileOptions& options, const geo::ControlNet& net, Diagnostics& diags) {
+    if (options.dumpNetPath.empty() || options.dumpNetPath.extension() != ".asc") return true;
+    if (std::abs(net.dx - net.dy) <= 1e-9 * net.dx) return true;
+    diags.error({options.dumpNetPath.string(), 0, 0},
+                fmt::format("an ESRI ASCII grid needs square cells, but the net's spacing is {} x {} m; set "
+                            "net.spacing_m or dump to .csv",
+                            formatShortest(net.dx), formatShortest(net.dy)));
+    return false;
+}
+
+// What the surface and its placement were, for the header and the sidecar.
+void recordSurface(CompileResult& r, const LoadedScene& loaded, const Surface& surface, const emit::ScenePlacement& where,
+                   const CompileResult::Sun& sunRecord) {
+    r.estimate = surface.estimate;
+    r.depth = surface.depth;
+    r.autoDepth = surface.autoDepth;
+    r.geometry = surface.geometry;
+    r.maskedNodes = surface.refined.maskedCount();
+    r.schemeFamily = loaded.resolved.family;
+    r.certified = subdiv::certifiedClass(loaded.resolved.report);
+    r.arity = loaded.resolved.scheme.arity;
+    r.holder = loaded.resolved.report.holder;
+    r.metresPerUnit = where.metresPerUnit;
+    r.baseFloorM = where.baseElevationM;
+    r.zRangeM = {where.zMinM, where.zMaxM};
+    r.sun = sunRecord;
+}
+
+// What the geometry became.
+void recordTerrain(CompileResult& r, const Terrain& t) {
+    r.heightPng = t.heightPng;
+    r.drapePng = t.drapePng;
+    r.heightStepM = t.heightStepM;
+    r.adaptiveToleranceM = t.adaptiveToleranceM;
+    r.adaptiveTolerancePx = t.adaptiveTolerancePx;
+    r.meshVertices = t.vertices;
+    r.meshTriangles = t.triangles;
+}
+
+}  // namespace
+
+std::optional<CompileResult> compileScene(const LoadedScene& loaded, const CompileOptions& options, Diagnostics& diags) {
+    const scene::SceneSpec& spec = loaded.scene;
+    auto tmpl = emit::loadSceneTemplate(options.templatesDir, diags);
+    if (!tmpl) return std::nullopt;
+    auto surface = buildSurface(loaded, diags, options.threads, options.progress);
+    if (!surface) return std::nullopt;
+    auto view = resolveView(spec, *surface, diags);
+    if (!view) return std::nullopt;
+    const auto t0 = Clock::now();
+    Terrain terrain;
+    if (!buildMeshes(loaded, *surface, *view, terrain, diags)) return std::nullopt;
+
+    CompileResult r;
+    r.scene = spec;
+    r.times = {loaded.seconds, surface->normalizeSeconds, surface->subdivideSeconds, 0};
+    describeView(spec, surface->net, *view, r);
+    const auto ribbons =
+        buildContours(spec, *surface, *view, r.overlayFacts.metresPerPixel, terrain.triangles, diags);
+    if (!ribbons || !dumpNetFits(options, surface->net, diags) || !writeTerrainPngs(spec, *surface, *view, options, terrain, diags))
+        return std::nullopt;
+    recordSurface(r, loaded, *surface, view->where, view->sunRecord);
+    recordTerrain(r, terrain);
+    r.contours = ribbons->made;
+    r.parameters = sceneHeader(spec, surface->net, loaded.resolved, surface->depth, r);
+    creditImage(spec, terrain, r);
+
+    const std::filesystem::path pov = options.writeAt(options.povPath, "the .pov");
+    if (!emit::writeScene(pov, *tmpl, view->where, view->camera, view->sun,
+                          writersOf(*surface, *view, terrain, *ribbons, spec, options), spec.look, spec.render,
+                          r.parameters, diags))
+        return std::nullopt;
+    if (!options.dumpNetPath.empty())
+        writeFileAtomically(options.writeAt(options.dumpNetPath, "--dump-net"),
+                            options.dumpNetPath.extension() == ".asc" ? geo::netToAsciiGrid(surface->net)
+                                                                      : geo::netToCsv(surface->net));
+    r.times.emit = secondsSince(t0);
+    std::error_code ec;
+    r.povBytes = std::filesystem::file_size(pov, ec);
+    r.net = std::move(surface->net);
+    return r;
+}
+
+}  // namespace relief

@@ -1,0 +1,73 @@
+#include "execute/execute.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <map>
+#include <memory>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "core/input_file.h"
+#include "core/text_escape.h"
+#include "execute/local.h"
+#include "render/tiles.h"
+
+namespace relief::execute {
+
+namespace fs = std::filesystem;
+
+Result run(const std::vector<Task>& tasks, const Options& options, const std::function<void(const Progress&)>& progress) {
+    Result result;
+    if (tasks.empty()) {
+        result.ok = true;
+        return result;
+    }
+    // Each plan read once, however many of its tiles are tasks.
+    std::map<fs::path, std::unique_ptr<plan::RenderPlan>> read;
+    std::vector<const plan::RenderPlan*> plans;
+    for (const auto& t : tasks) {
+        auto& p = read[t.plan];
+        if (!p) {
+            Diagnostics diags;
+            auto loaded = plan::readPlan(t.plan, diags);
+            if (!loaded) {
+                result.badInput = true;
+                result.error = formatDiagnostic(diags.all().front());
+                return result;
+            }
+            p = std::make_unique<plan::RenderPlan>(std::move(*loaded));
+        }
+        plans.push_back(p.get());
+    }
+    return options.executor == Executor::Slurm ? runSlurm(tasks, plans, options, progress)
+                                               : runLocal(tasks, plans, options, progress);
+}
+
+std::string runListedTask(const fs::path& tasksFile, int index) {
+    std::string problem;
+    const auto list = readInputFile(tasksFile, 64'000'000, problem);
+    if (!list)
+        return fmt::format("{}: cannot read the task list: {} (the job's folder must be on a filesystem every node sees)",
+                           tasksFile.string(), problem);
+    std::istringstream in(*list);
+    std::string line;
+    for (int i = 0; i <= index && std::getline(in, line); ++i) {
+    }
+    const auto tab = line.find('\t');
+    if (index < 0 || tab == std::string::npos)
+        return fmt::format("{}: has no task {}", tasksFile.string(), index);
+    const int tile = std::atoi(line.substr(0, tab).c_str());
+    Diagnostics diags;
+    const auto plan = plan::readPlan(line.substr(tab + 1), diags);
+    if (!plan) return formatDiagnostic(diags.all().front());
+    if (tile < 0 || tile >= plan->tiles) return fmt::format("the plan {} has no tile {}", plan->dir.string(), tile);
+    // The CPUs Slurm gave the task (sbatch --cpus-per-task, through --slurm-args), one by default.
+    render::TileOptions options;
+    const char* cpus = std::getenv("SLURM_CPUS_PER_TASK");
+    options.threads = cpus ? std::max(1, std::atoi(cpus)) : 1;
+    const render::RenderResult r = render::renderTile(*plan, tile, options);
+    return r.ok ? "" : fmt::format("tile {} of {}: {}", tile + 1, plan->tiles, r.error);
+}
+
+}  // namespace relief::execute

@@ -1,0 +1,172 @@
+// Tiles on a Slurm cluster: one job array, a task per tile, each running this
+// same relief on its plan (`relief render-tile --tasks LIST --index K`). The
+// command waits for the array by polling squeue (sbatch --wait never returns
+// for some failed arrays), and Ctrl-C cancels it.
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <thread>
+
+#include <fmt/format.h>
+
+#include "core/atomic_file.h"
+#include "core/input_file.h"
+#include "core/text_escape.h"
+#include "execute/command.h"
+#include "execute/local.h"
+
+namespace relief::execute {
+
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+// The states a task of an array ends in (squeue's long names).
+bool finalState(const std::string& s) {
+    return s == "COMPLETED" || s == "FAILED" || s == "CANCELLED" || s == "TIMEOUT" || s == "NODE_FAIL" ||
+           s == "OUT_OF_MEMORY" || s == "PREEMPTED" || s == "BOOT_FAIL" || s == "DEADLINE";
+}
+
+// Why the cluster cannot take the job, or "": its tools are here and it answers.
+std::string clusterProblem() {
+    for (const char* tool : {"sbatch", "squeue", "scancel", "sinfo"})
+        if (runCommand({"sh", "-c", std::string("command -v ") + tool}).status != 0)
+            return fmt::format("Slurm's {} is not on PATH (Debian: apt-get install slurm-client)", tool);
+    const CommandOutput info = runCommand({"sinfo", "-h", "-o", "%P"});
+    if (info.status == 0) return "";
+    std::string problem = fmt::format("no Slurm cluster answers (sinfo: {})", firstLine(info.output));
+    if (!std::getenv("SLURM_CONF"))
+        problem += "; SLURM_CONF is not set: point it at the cluster's slurm.conf (or install the cluster's "
+                   "configuration in /etc/slurm)";
+    return problem;
+}
+
+// The relief that runs the tasks: this very program (every node must have it at this path).
+std::string thisProgram() {
+    std::error_code ec;
+    const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+    return ec ? std::string("relief") : exe.string();
+}
+
+// The task list (a line a task: the tile, a tab, the plan's folder) and the
+// batch script that runs line $SLURM_ARRAY_TASK_ID of it.
+fs::path writeJob(const std::vector<Task>& tasks, const fs::path& dir) {
+    fs::create_directories(dir / "logs");
+    std::string list;
+    for (const auto& t : tasks) list += fmt::format("{}\t{}\n", t.tile, t.plan.string());
+    writeFileAtomically(dir / "tasks.txt", list);
+    const std::string script = fmt::format(
+        "#!/bin/sh\n"
+        "# relief's tiles as a Slurm job array: task $SLURM_ARRAY_TASK_ID renders line $SLURM_ARRAY_TASK_ID of the\n"
+        "# task list (counted from 0). The plans' folders must be on a filesystem every node sees.\n"
+        "exec {} render-tile --tasks {} --index \"$SLURM_ARRAY_TASK_ID\"\n",
+        shellQuoted(thisProgram()), shellQuoted(fs::absolute(dir / "tasks.txt").string()));
+    writeFileAtomically(dir / "job.sh", script);
+    return dir / "job.sh";
+}
+
+std::vector<std::string> words(const std::string& s) {
+    std::vector<std::string> out;
+    std::istringstream in(s);
+    for (std::string w; in >> w;) out.push_back(w);
+    return out;
+}
+
+// The states squeue gives the array's tasks now (task index -> state).
+std::map<int, std::string> taskStates(const std::string& job) {
+    std::map<int, std::string> states;
+    const CommandOutput q = runCommand({"squeue", "-h", "-r", "-j", job, "--states=all", "-o", "%K %T"});
+    if (q.status != 0) return states;
+    std::istringstream in(q.output);
+    for (std::string line; std::getline(in, line);) {
+        std::istringstream l(line);
+        std::string index, state;
+        if (l >> index >> state && index.find_first_not_of("0123456789") == std::string::npos)
+            states[std::stoi(index)] = state;
+    }
+    return states;
+}
+
+// The last line of a task's log that says "error" (relief's own, or Slurm's), else its last line.
+std::string logSays(const fs::path& log) {
+    std::string problem;
+    const auto text = readInputHead(log, 1'000'000, problem);
+    if (!text) return "its log is empty";
+    std::string last, lastError;
+    std::istringstream in(*text);
+    for (std::string line; std::getline(in, line);) {
+        if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+        last = line;
+        if (line.find("error") != std::string::npos) lastError = line;
+    }
+    return terminalText(lastError.empty() ? last : lastError, 400);
+}
+
+}  // namespace
+
+Result runSlurm(const std::vector<Task>& tasks, const std::vector<const plan::RenderPlan*>& plans,
+                const Options& options, const std::function<void(const Progress&)>& progress) {
+    Result result;
+    if (std::string problem = clusterProblem(); !problem.empty()) {
+        result.badInput = true;
+        result.error = problem;
+        return result;
+    }
+    const fs::path script = writeJob(tasks, options.jobDir);
+    std::vector<std::string> sbatch{"sbatch",
+                                    "--parsable",
+                                    fmt::format("--array=0-{}{}", tasks.size() - 1,
+                                                options.jobs > 0 ? fmt::format("%{}", options.jobs) : std::string()),
+                                    "--output=" + (fs::absolute(options.jobDir) / "logs" / "task-%a.log").string(),
+                                    "--job-name=relief"};
+    for (const auto& w : words(options.slurmArgs)) sbatch.push_back(w);
+    sbatch.push_back(script.string());
+    const CommandOutput submitted = runCommand(sbatch);
+    const std::string job = firstLine(submitted.output).substr(0, firstLine(submitted.output).find(';'));
+    if (submitted.status != 0 || job.empty() || job.find_first_not_of("0123456789") != std::string::npos) {
+        result.badInput = true;
+        result.error = fmt::format("sbatch refused the job: {}", firstLine(submitted.output));
+        return result;
+    }
+    const auto t0 = Clock::now();
+    std::map<int, std::string> states;
+    size_t reported = 0;
+    while (true) {
+        if (options.cancelled && options.cancelled()) {
+            runCommand({"scancel", job});
+            result.cancelled = true;
+            return result;
+        }
+        states = taskStates(job);
+        size_t ended = 0, completed = 0;
+        for (const auto& [k, s] : states) {
+            ended += finalState(s);
+            completed += s == "COMPLETED";
+        }
+        if (progress && completed != reported) {
+            reported = completed;
+            progress({completed, tasks.size(), std::chrono::duration<double>(Clock::now() - t0).count()});
+        }
+        if (ended == tasks.size()) break;
+        std::this_thread::sleep_for(std::chrono::milliseconds(250));
+    }
+    for (size_t i = 0; i < tasks.size(); ++i) {
+        std::string problem;
+        const std::string& state = states[static_cast<int>(i)];
+        if (state == "COMPLETED" && plan::readTileRecord(*plans[i], tasks[i].tile, problem)) continue;
+        const fs::path log = fs::absolute(options.jobDir) / "logs" / fmt::format("task-{}.log", i);
+        result.error = fmt::format("task {} (Slurm job {}_{}, tile {} of {}) {}: {}; its log: {}", i, job, i,
+                                   tasks[i].tile + 1, plans[i]->tiles, state, state == "COMPLETED" ? problem : logSays(log),
+                                   log.string());
+        return result;
+    }
+    result.ok = true;
+    return result;
+}
+
+}  // namespace relief::execute

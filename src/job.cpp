@@ -1,0 +1,364 @@
+// A scene job: compile into a render plan, render its tiles (here or on
+// Slurm), finish the still; or compile only. The outputs are one set
+// (core/output_set.h), the plan kept when the render does not finish.
+#include <unistd.h>
+
+#include <chrono>
+
+#include <fmt/format.h>
+
+#include "core/atomic_file.h"
+#include "core/input_file.h"
+#include "core/png_file.h"
+#include "core/text_escape.h"
+#include "pipeline.h"
+#include "render/tiles.h"
+#include "sidecar.h"
+
+namespace relief {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// The scene's [render] output, else out/<scene stem> with the extension.
+fs::path defaultOutput(const fs::path& scenePath, const std::string& sceneOutput, const char* extension) {
+    if (!sceneOutput.empty()) return sceneOutput;
+    return fs::path("out") / (scenePath.stem().string() + extension);
+}
+
+// The job's outputs, named from the scene and the job.
+OutputPaths jobPaths(const SceneJob& job, const LoadedScene& loaded) {
+    if (job.until == SceneJob::Until::Png)
+        return outputPathsFor(job.output.empty() ? defaultOutput(job.scenePath, loaded.scene.render.output, ".png")
+                                                 : job.output);
+    // Only compiling: the .pov is the output, and the scene's PNG name does not apply.
+    OutputPaths paths;
+    paths.pov = job.output.empty() ? defaultOutput(job.scenePath, "", ".pov") : job.output;
+    paths.sidecar = paths.pov;
+    paths.sidecar.replace_extension(".json");
+    return paths;
+}
+
+// The job's outputs, declared before any work is done, so that two of them
+// with one name, or an output over an input, are refused at once: the still,
+// the .pov, the net dump, the sidecar last (the seal of the set).
+void declareOutputs(const SceneJob& job, const LoadedScene& loaded, const OutputPaths& paths, OutputSet& outputs) {
+    const bool render = job.until == SceneJob::Until::Png;
+    const char* given = job.output.empty() ? nullptr : "-o";
+    if (render) outputs.add(paths.png, given ? given : "the still");
+    if (!job.stillOnly) {
+        outputs.add(paths.pov, !render && given ? given : "the .pov");
+        if (!job.dumpNetPath.empty()) outputs.add(job.dumpNetPath, "--dump-net");
+        outputs.add(paths.sidecar, "the sidecar", true);
+    }
+    const scene::SceneSpec& s = loaded.scene;
+    outputs.addInput(job.scenePath, "the scene file");
+    outputs.addInput(s.samples.path, "samples.path");
+    if (!s.look.drapeImage.empty()) outputs.addInput(s.look.drapeImage, "texture.image");
+    if (!s.look.ramp.cptPath.empty()) outputs.addInput(job.scenePath.parent_path() / s.look.ramp.cptPath, "texture.cpt");
+}
+
+// The scene's own output name stays in the current folder, links resolved too.
+bool outputStaysHere(const SceneJob& job, const LoadedScene& loaded, Diagnostics& diags) {
+    const std::string& output = loaded.scene.render.output;
+    if (!job.output.empty() || output.empty() || job.until != SceneJob::Until::Png || pathInside(output, "."))
+        return true;
+    diags.error(loaded.scene.render.locs.at("render.output"),
+                fmt::format("render.output = \"{}\" leads out of the current folder through a link; give -o to write "
+                            "there",
+                            printableExcerpt(output, 200)));
+    return false;
+}
+
+CompileOptions compileOptions(const SceneJob& job, const OutputPaths& paths, const ProgressFn& progress) {
+    CompileOptions c;
+    c.povPath = paths.pov;
+    c.templatesDir = job.templatesDir;
+    c.dumpNetPath = job.dumpNetPath;
+    c.threads = job.threads;
+    c.progress = progress;
+    return c;
+}
+
+// relief compile: the .pov, its PNGs and the sidecar, staged in the set.
+void compileOnly(PlannedJob& p, const LoadedScene& loaded, Diagnostics& diags, const ProgressFn& progress) {
+    OutputSet& outputs = p.outputs();
+    CompileOptions copts = compileOptions(p.job, p.outcome.paths, progress);
+    copts.writeAt = [&](const fs::path& final, std::string_view role) {
+        return outputs.contains(final) ? outputs.staged(final) : outputs.add(final, role);
+    };
+    p.outcome.compiled = compileScene(loaded, copts, diags);
+    if (!p.outcome.compiled) return;
+    writeFileAtomically(outputs.staged(p.outcome.paths.sidecar),
+                        sidecarText(sidecarJson(*p.outcome.compiled, p.outcome.paths)));
+    p.outcome.status = JobStatus::Ok;
+}
+
+// The plan's folder: <still>.plan, or the next free <still>.plan-N when a
+// running relief holds that one (two renders onto one name at once). A plan
+// a run left (relief's, and nobody's now) is replaced; anything else there is
+// in the way.
+std::optional<fs::path> planFolder(const fs::path& asked, Diagnostics& diags) {
+    std::error_code ec;
+    for (int n = 1; n < 100; ++n) {
+        const fs::path dir = n == 1 ? asked : fs::path(asked.string() + "-" + std::to_string(n));
+        if (!fs::exists(fs::symlink_status(dir, ec))) return dir;
+        if (!fs::is_directory(fs::symlink_status(dir, ec)) || !fs::exists(dir / "plan.json", ec)) {
+            diags.error({}, fmt::format("{} is in the way of the render plan: it is not one of relief's (no "
+                                        "plan.json); remove it or give --plan",
+                                        dir.string()));
+            return std::nullopt;
+        }
+        if (auto lock = plan::PlanLock::take(dir)) {
+            fs::remove_all(dir, ec);
+            if (!ec) return dir;
+        }
+    }
+    diags.error({}, fmt::format("too many renders of {} at once", asked.string()));
+    return std::nullopt;
+}
+
+// A render: the compiled scene and its facts in a plan, made in a private
+// folder and named when whole.
+void compileIntoPlan(PlannedJob& p, const LoadedScene& loaded, Diagnostics& diags, const ProgressFn& progress) {
+    const SceneJob& job = p.job;
+    const OutputPaths& paths = p.outcome.paths;
+    const fs::path asked = job.planDir.empty() ? paths.png.parent_path() / (paths.png.stem().string() + ".plan")
+                                               : job.planDir;
+    createParentFolder(asked);
+    PrivateFolder building(asked.has_parent_path() ? asked.parent_path() : fs::path("."), "plan");
+    p.lock = plan::PlanLock::take(building.path());  // held until the render ends; it moves with the folder
+    plan::RenderPlan plan;
+    plan.dir = building.path();
+    CompileOptions copts = compileOptions(job, paths, progress);
+    copts.writeAt = [&](const fs::path& final, std::string_view role) {
+        plan::PlanFile f{final.filename().string(), fs::absolute(final), std::string(role)};
+        if (role == "the .pov") plan.pov = f;
+        else if (role == "--dump-net") plan.extras.push_back(f);
+        else plan.reads.push_back(f);
+        return plan.dir / f.name;
+    };
+    p.outcome.compiled = compileScene(loaded, copts, diags);
+    if (!p.outcome.compiled) return;
+    const scene::SceneSpec& s = loaded.scene;
+    plan.povrayVersion = plan::povrayVersion();
+    plan.width = s.render.width;
+    plan.height = s.render.height;
+    plan.tiles = std::clamp(job.tiles, 1, s.render.height);
+    plan.antialias = s.render.antialias;
+    plan.alpha = s.render.background == scene::Background::Transparent;
+    plan.sandbox = job.sandbox;
+    plan.timeoutS = s.render.timeoutS;
+    plan.templatesDir = job.templatesDir.empty() ? fs::path() : fs::absolute(job.templatesDir);
+    plan.still = fs::absolute(paths.png);
+    plan.sidecar = fs::absolute(paths.sidecar);
+    plan.overlays = annotate::overlaysWanted(s.overlay, s.render.width);
+    plan.overlaySpec = s.overlay;
+    plan.overlaySpec.locs = {};
+    plan.overlayFacts = p.outcome.compiled->overlayFacts;
+    plan.sidecar0 = sidecarJson(*p.outcome.compiled, paths);
+    if (!writePlan(plan, diags)) return;
+    // Named when whole (the lock goes with it); another render onto the same
+    // name may take the name first, and this one takes the next.
+    std::optional<fs::path> dir;
+    std::error_code ec;
+    for (int attempt = 0; attempt < 10; ++attempt) {
+        if (!(dir = planFolder(asked, diags))) return;
+        fs::rename(building.path(), *dir, ec);
+        if (ec != std::errc::directory_not_empty && ec != std::errc::file_exists) break;
+    }
+    if (ec) {
+        diags.error({}, fmt::format("cannot write {}: {}", dir->string(), ec.message()));
+        return;
+    }
+    plan.dir = fs::absolute(*dir);
+    p.plan = std::move(plan);
+    p.outcome.plan = p.plan->dir;
+    p.outcome.status = JobStatus::Ok;
+}
+
+// A plan's file in the set: a hard link (no copy of a 100 MB .pov), else a copy.
+void stagePlanFile(const plan::RenderPlan& plan, const plan::PlanFile& f, OutputSet& outputs) {
+    const fs::path staged = outputs.contains(f.final) ? outputs.staged(f.final) : outputs.add(f.final, f.role);
+    std::error_code ec;
+    fs::create_hard_link(plan.dir / f.name, staged, ec);
+    if (ec) fs::copy_file(plan.dir / f.name, staged, ec);
+    if (ec) throw std::runtime_error(fmt::format("cannot write {}: {}", shownPath(f.final).string(), ec.message()));
+}
+
+// The still's pixels: the tiles stitched, the overlays drawn in memory, written once.
+bool writeStill(const plan::RenderPlan& plan, OutputSet& outputs, RenderFacts& facts, Diagnostics& diags) {
+    std::string error;
+    auto still = render::stitchTiles(plan, error);
+    if (!still) {
+        diags.error({(plan.dir / "plan.json").string(), 0, 0}, error);
+        return false;
+    }
+    if (plan.overlays) {
+        annotate::OverlayRecord record;
+        if (error = annotate::drawOverlays(*still, plan.overlaySpec, plan.overlayFacts, &record); !error.empty()) {
+            diags.error({}, "the overlays: " + error);
+            return false;
+        }
+        facts.overlays = record;
+    }
+    const fs::path png = outputs.contains(plan.still) ? outputs.staged(plan.still) : outputs.add(plan.still, "the still");
+    error = writePngAtomically(png, {still->width, still->height, still->channels, false, still->pixels.data()});
+    if (error.empty()) return true;
+    diags.error({}, error);
+    return false;
+}
+
+}  // namespace
+
+PlannedJob planJob(const SceneJob& job, Diagnostics& diags, const ProgressFn& progress) {
+    PlannedJob p;
+    p.job = job;
+    if (!job.outputs) p.ownOutputs = std::make_unique<OutputSet>();
+    try {
+        if (progress) progress({ProgressEvent::Stage::Reading, "reading " + job.scenePath.string(), -1});
+        auto loaded = loadScene(job.scenePath, diags, job.overrides);
+        if (!loaded) return p;
+        p.outcome.paths = jobPaths(job, *loaded);
+        if (!outputStaysHere(job, *loaded, diags)) return p;
+        declareOutputs(job, *loaded, p.outcome.paths, p.outputs());
+        if (progress)
+            progress({ProgressEvent::Stage::Compiling,
+                      fmt::format("compiling {} ({}, {})", job.scenePath.string(), loaded->resolved.family,
+                                  depthLabel(loaded->scene.subdivision)),
+                      -1});
+        if (job.until == SceneJob::Until::Pov) compileOnly(p, *loaded, diags, progress);
+        else compileIntoPlan(p, *loaded, diags, progress);
+    } catch (const std::runtime_error& e) {  // an output that cannot be made: bad input like any other
+        diags.error({}, e.what());
+        p.outcome.status = JobStatus::BadInput;
+    }
+    return p;
+}
+
+std::vector<execute::Task> tasksOf(const plan::RenderPlan& plan) {
+    std::vector<execute::Task> tasks;
+    for (int k : plan::missingTiles(plan)) tasks.push_back({plan.dir, k});
+    return tasks;
+}
+
+bool finishPlan(const plan::RenderPlan& plan, OutputSet& outputs, bool stillOnly, bool commit, bool keepPlan,
+                JobOutcome& outcome, Diagnostics& diags) {
+    const auto t0 = Clock::now();
+    try {
+        RenderFacts facts;
+        facts.perspective = plan.overlayFacts.perspective;
+        if (!writeStill(plan, outputs, facts, diags)) return false;
+        for (int k = 0; k < plan.tiles; ++k) {
+            std::string problem;
+            if (auto r = plan::readTileRecord(plan, k, problem)) facts.tiles.push_back(*r);
+        }
+        for (const auto& t : facts.tiles) {
+            outcome.render.parseSeconds += t.parseSeconds;
+            outcome.render.traceSeconds += t.traceSeconds;
+            outcome.render.wallSeconds = std::max(outcome.render.wallSeconds, t.wallSeconds);
+        }
+        outcome.render.ok = true;
+        outcome.overlays = facts.overlays;
+        if (!stillOnly) {
+            stagePlanFile(plan, plan.pov, outputs);
+            for (const auto& f : plan.reads) stagePlanFile(plan, f, outputs);
+            for (const auto& f : plan.extras) stagePlanFile(plan, f, outputs);
+            nlohmann::ordered_json sidecar = plan.sidecar0;
+            facts.finishSeconds = secondsSince(t0);
+            addRenderToSidecar(sidecar, facts);
+            const fs::path at =
+                outputs.contains(plan.sidecar) ? outputs.staged(plan.sidecar) : outputs.add(plan.sidecar, "the sidecar", true);
+            writeFileAtomically(at, sidecarText(sidecar));
+        }
+        if (!commit) return true;
+        outputs.commit();
+    } catch (const std::runtime_error& e) {
+        diags.error({}, e.what());
+        return false;
+    }
+    if (!keepPlan) {
+        std::error_code ec;
+        fs::remove_all(plan.dir, ec);
+        outcome.plan.clear();
+    }
+    return true;
+}
+
+namespace {
+
+// The tiles rendered; the outcome says how, when not all were.
+bool renderTiles(const plan::RenderPlan& plan, const execute::Options& execution, JobOutcome& outcome,
+                 Diagnostics& diags, const ProgressFn& progress) {
+    execute::Options options = execution;
+    if (options.jobDir.empty()) options.jobDir = plan.dir / "slurm";
+    options.povray = [&](const render::RenderProgress& r) {
+        if (progress) progress({ProgressEvent::Stage::Rendering, r.text, r.percent});
+    };
+    const auto tasks = tasksOf(plan);
+    outcome.tiles = static_cast<int>(tasks.size());
+    const auto t0 = Clock::now();
+    const execute::Result r = execute::run(tasks, options, [&](const execute::Progress& p) {
+        if (!progress || plan.tiles == 1) return;
+        const std::string left = p.done > 0 && p.done < p.total
+                                     ? fmt::format(", about {:.0f} s left", p.seconds / double(p.done) * double(p.total - p.done))
+                                     : "";
+        progress({ProgressEvent::Stage::Tiles,
+                  fmt::format("tiles: {} of {} rendered, {:.0f} s{}", p.done, p.total, p.seconds, left),
+                  static_cast<int>(100 * p.done / std::max<size_t>(1, p.total))});
+    });
+    outcome.render.wallSeconds = secondsSince(t0);
+    if (r.ok) return true;
+    outcome.status = r.cancelled ? JobStatus::Cancelled : r.badInput ? JobStatus::BadInput : JobStatus::ToolFailed;
+    outcome.render.error = r.error;
+    if (r.badInput) diags.error({}, r.error);
+    return false;
+}
+
+}  // namespace
+
+JobOutcome runSceneJob(const SceneJob& job, Diagnostics& diags, const ProgressFn& progress) {
+    PlannedJob p = planJob(job, diags, progress);
+    if (p.outcome.status != JobStatus::Ok) return std::move(p.outcome);
+    if (job.until == SceneJob::Until::Pov) {
+        if (!job.outputs) {
+            try {
+                p.ownOutputs->commit();
+            } catch (const std::runtime_error& e) {
+                diags.error({}, e.what());
+                p.outcome.status = JobStatus::BadInput;
+            }
+        }
+        return std::move(p.outcome);
+    }
+    if (!renderTiles(*p.plan, job.execution, p.outcome, diags, progress)) return std::move(p.outcome);
+    if (progress) progress({ProgressEvent::Stage::Finishing, "finishing " + p.outcome.paths.png.string(), -1});
+    if (!finishPlan(*p.plan, p.outputs(), job.stillOnly, !job.outputs, job.keepPlan || job.outputs, p.outcome, diags))
+        p.outcome.status = JobStatus::BadInput;
+    return std::move(p.outcome);
+}
+
+JobOutcome resumePlan(const fs::path& planDir, const execute::Options& execution, bool keepPlan, Diagnostics& diags,
+                      const ProgressFn& progress) {
+    JobOutcome outcome;
+    outcome.plan = planDir;
+    auto plan = plan::readPlan(planDir, diags);
+    if (!plan) return outcome;
+    plan->dir = fs::absolute(planDir);
+    const auto lock = plan::PlanLock::take(plan->dir);
+    if (!lock) {
+        diags.error({(plan->dir / "plan.json").string(), 0, 0}, "another relief is rendering this plan now");
+        return outcome;
+    }
+    outcome.paths = outputPathsFor(plan->still);
+    if (!renderTiles(*plan, execution, outcome, diags, progress)) return outcome;
+    OutputSet outputs;
+    outcome.status = finishPlan(*plan, outputs, false, true, keepPlan, outcome, diags) ? JobStatus::Ok : JobStatus::BadInput;
+    return outcome;
+}
+
+}  // namespace relief

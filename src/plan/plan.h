@@ -1,0 +1,116 @@
+#pragma once
+// The render plan: what compiling leaves for the render, so that the render
+// can run anywhere its folder is seen (other processes, other machines).
+// Input: the compiled scene's files and the facts the later steps need.
+// Output: a folder holding
+//   plan.json        this struct: the still's size and POV-Ray's options, the
+//                    overlays and their facts, the sidecar so far, the relief
+//                    and POV-Ray versions, the final names of the outputs, and
+//                    a hash of all of it and of the files below;
+//   <name>.pov       and the files it reads (a height field's, a drape's PNGs);
+//   net.csv|.asc     the control net, when the run dumps it;
+//   tiles/           tile-K.png (rows first..last of the still) and
+//                    tile-K.json (its record), as each tile is rendered.
+// The steps that use it: render/tiles.h (a tile, and the tiles stitched),
+// execute/ (many tiles at once, here or on Slurm), pipeline.h (finish).
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "annotate/overlay.h"
+#include "core/diagnostics.h"
+#include "scene/scene_spec.h"
+
+namespace relief::plan {
+
+/// Rows `first`..`last` of the still, as POV-Ray counts them (1 is the top,
+/// both included: +SR and +ER).
+struct TileRows {
+    int first = 1, last = 1;
+};
+/// Tile `index` of `tiles` strips of a still `height` rows high: as equal as
+/// whole rows make them, top first.
+TileRows tileRows(int height, int tiles, int index);
+
+/// A file the plan holds (in its folder) and the output it becomes.
+struct PlanFile {
+    std::string name;            ///< in the plan's folder
+    std::filesystem::path final; ///< where finishing moves it (absolute)
+    std::string role;            ///< "the .pov", "the height field's PNG", "--dump-net"
+};
+
+struct RenderPlan {
+    std::filesystem::path dir;   ///< the plan's folder (not stored: where it was read from)
+    std::string reliefVersion, povrayVersion;
+    std::string hash;            ///< "sha256:..." over this plan and its files
+    // The scene POV-Ray renders and what it reads.
+    PlanFile pov;
+    std::vector<PlanFile> reads;   ///< PNGs the .pov reads by name
+    std::vector<PlanFile> extras;  ///< other outputs made while compiling (the net dump)
+    // The still.
+    int width = 0, height = 0, tiles = 1;
+    bool antialias = true, alpha = false, sandbox = true;
+    double timeoutS = 0;
+    std::filesystem::path templatesDir;  ///< absolute: the template's own #include files
+    std::filesystem::path still, sidecar;  ///< the final PNG and sidecar (absolute)
+    // What finishing draws and writes.
+    bool overlays = false;
+    scene::OverlaySpec overlaySpec;     ///< without key locations
+    annotate::OverlayFacts overlayFacts;
+    nlohmann::ordered_json sidecar0;    ///< the sidecar so far (every field but the render's)
+};
+
+/// Writes `plan` into `plan.dir` (plan.json, its hash computed over the
+/// files already there and the plan's own fields); false with an error.
+bool writePlan(RenderPlan& plan, Diagnostics& diags);
+
+/// Reads the plan in `dir`; errors name the file and what is wrong (not a
+/// plan, another version's, damaged). The folder must hold every file it lists.
+std::optional<RenderPlan> readPlan(const std::filesystem::path& dir, Diagnostics& diags);
+
+/// What rendering a tile leaves beside its PNG.
+struct TileRecord {
+    int index = 0;
+    TileRows rows;
+    std::string planHash, reliefVersion, povrayVersion, host;
+    double parseSeconds = 0, traceSeconds = 0, wallSeconds = 0;
+    std::vector<std::string> povrayCommand;
+};
+std::filesystem::path tileImage(const RenderPlan& plan, int index);
+std::filesystem::path tileRecordPath(const RenderPlan& plan, int index);
+nlohmann::ordered_json tileRecordJson(const TileRecord& record);
+/// The record of tile `index`, or nullopt (with `problem` set) when it is
+/// missing, damaged, or from another plan or another relief or POV-Ray.
+std::optional<TileRecord> readTileRecord(const RenderPlan& plan, int index, std::string& problem);
+
+/// The tiles without a good record: what a render (or a resumed one) must do.
+std::vector<int> missingTiles(const RenderPlan& plan);
+
+/// Held by the run that uses a plan (renders its tiles here, or finishes
+/// it), on the file `lock` in its folder: a second run never takes a plan in
+/// use (a Slurm task only writes its tile, and takes none).
+class PlanLock {
+public:
+    /// The lock of `dir`, or nullopt when another run holds it.
+    static std::optional<PlanLock> take(const std::filesystem::path& dir);
+    PlanLock(PlanLock&& o) noexcept : fd_(o.fd_) { o.fd_ = -1; }
+    PlanLock& operator=(PlanLock&& o) noexcept {
+        std::swap(fd_, o.fd_);
+        return *this;
+    }
+    PlanLock(const PlanLock&) = delete;
+    ~PlanLock();
+
+private:
+    explicit PlanLock(int fd) : fd_(fd) {}
+    int fd_ = -1;
+};
+
+/// POV-Ray's version as `povray --version` says it ("3.7.0.10.unofficial"), or "".
+std::string povrayVersion();
+
+}  // namespace relief::plan

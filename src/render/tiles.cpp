@@ -1,0 +1,86 @@
+#include "render/tiles.h"
+
+#include <cstring>
+
+#include <fmt/format.h>
+
+#include "core/atomic_file.h"
+#include "relief/version.h"
+
+namespace relief::render {
+
+namespace fs = std::filesystem;
+
+RenderResult renderTile(const plan::RenderPlan& plan, int index, const TileOptions& options) {
+    const plan::TileRows rows = plan::tileRows(plan.height, plan.tiles, index);
+    RenderRequest req;
+    req.pov = plan.dir / plan.pov.name;
+    req.png = plan::tileImage(plan, index);
+    req.width = plan.width;
+    req.height = plan.height;
+    req.antialias = plan.antialias;
+    req.alpha = plan.alpha;
+    req.templatesDir = plan.templatesDir;
+    for (const auto& f : plan.reads) req.inputFiles.push_back(plan.dir / f.name);
+    req.threads = options.threads;
+    req.sandbox = plan.sandbox;
+    req.timeoutSeconds = plan.timeoutS;
+    if (plan.tiles > 1) req.rows = RowRange{rows.first, rows.last};
+    req.rawOutput = true;
+    req.cancelled = options.cancelled;
+    std::error_code ec;
+    fs::create_directories(plan.dir / "tiles", ec);
+    RenderResult result = renderPov(req, options.progress);
+    if (!result.ok) return result;
+    plan::TileRecord record;
+    record.index = index;
+    record.rows = rows;
+    record.planHash = plan.hash;
+    record.reliefVersion = kVersion;
+    record.povrayVersion = plan::povrayVersion();
+    record.parseSeconds = result.parseSeconds;
+    record.traceSeconds = result.traceSeconds;
+    record.wallSeconds = result.wallSeconds;
+    record.povrayCommand = result.command;
+    try {
+        writeFileAtomically(plan::tileRecordPath(plan, index), plan::tileRecordJson(record).dump(1) + "\n");
+    } catch (const std::runtime_error& e) {
+        result.ok = false;
+        result.cannotWriteOutput = true;
+        result.error = e.what();
+    }
+    return result;
+}
+
+std::optional<PngImage8> stitchTiles(const plan::RenderPlan& plan, std::string& error) {
+    PngImage8 still;
+    for (int k = 0; k < plan.tiles; ++k) {
+        std::string problem;
+        if (!plan::readTileRecord(plan, k, problem)) {
+            error = fmt::format("tile {} of {}: {}", k + 1, plan.tiles, problem);
+            return std::nullopt;
+        }
+        PngImage8 tile;
+        if (std::string e = readPng8(plan::tileImage(plan, k), tile); !e.empty()) {
+            error = fmt::format("tile {} of {}: {}", k + 1, plan.tiles, e);
+            return std::nullopt;
+        }
+        if (tile.width != plan.width || tile.height != plan.height || (k > 0 && tile.channels != still.channels)) {
+            error = fmt::format("tile {} of {} is {} x {} with {} channels, not the plan's {} x {}", k + 1, plan.tiles,
+                                tile.width, tile.height, tile.channels, plan.width, plan.height);
+            return std::nullopt;
+        }
+        if (k == 0) {
+            if (plan.tiles == 1) return tile;
+            still = tile;  // its own rows, and the size of the whole
+            continue;
+        }
+        const plan::TileRows rows = plan::tileRows(plan.height, plan.tiles, k);
+        const size_t rowBytes = static_cast<size_t>(tile.width) * tile.channels;
+        std::memcpy(still.pixels.data() + (rows.first - 1) * rowBytes, tile.pixels.data() + (rows.first - 1) * rowBytes,
+                    static_cast<size_t>(rows.last - rows.first + 1) * rowBytes);
+    }
+    return still;
+}
+
+}  // namespace relief::render

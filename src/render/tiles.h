@@ -1,0 +1,32 @@
+#pragma once
+// A still as tiles: rows of it rendered by POV-Ray from a render plan
+// (plan/plan.h), each its own process, anywhere the plan's folder is seen;
+// then the tiles stitched into the still. The stitch is exact: POV-Ray's
+// non-jittered adaptive antialiasing (+AM2 -J) reads nothing outside a
+// pixel's own samples, so a tile's rows are the whole still's rows.
+#include <functional>
+#include <optional>
+#include <string>
+
+#include "core/png_file.h"
+#include "plan/plan.h"
+#include "render/povray.h"
+
+namespace relief::render {
+
+struct TileOptions {
+    int threads = 0;                    ///< POV-Ray's threads; 0: all cores
+    std::function<bool()> cancelled;    ///< stops POV-Ray when it says so
+    ProgressFn progress;                ///< POV-Ray's own lines (may be empty)
+};
+
+/// Renders tile `index` of `plan` into the plan's tiles/ (its PNG, then its
+/// record: a tile with a record is whole). The result says why not.
+RenderResult renderTile(const plan::RenderPlan& plan, int index, const TileOptions& options);
+
+/// The still from the plan's tiles, each checked against the plan (its
+/// record's hash and versions, its size and channels); nullopt with `error`
+/// naming the first tile that is not right.
+std::optional<PngImage8> stitchTiles(const plan::RenderPlan& plan, std::string& error);
+
+}  // namespace relief::render

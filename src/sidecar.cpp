@@ -1,0 +1,133 @@
+// The JSON sidecar: what made the still, what it cost, what it shows.
+#include "sidecar.h"
+
+#include <fmt/format.h>
+
+#include "emit/geometry_kind.h"
+#include "measure/auto_depth.h"
+#include "relief/version.h"
+
+namespace relief {
+
+using nlohmann::ordered_json;
+
+ordered_json sidecarJson(const CompileResult& c, const OutputPaths& paths) {
+    ordered_json j;
+    j["relief_version"] = kVersion;
+    j["inputs"] = {{"scene", c.scene.sceneFile.string()},
+                   {"scene_sha1", c.scene.sceneSha1},
+                   {"samples", c.scene.samples.path.string()},
+                   {"sample_count", c.net.sampleCount}};
+    if (!c.dataAttribution.empty()) j["inputs"]["attribution"] = c.dataAttribution;
+    ordered_json params = ordered_json::object();
+    for (const auto& [k, v] : c.parameters) params[k] = v;
+    j["parameters"] = params;
+    j["net"] = {{"rows", c.net.grid.rows},
+                {"cols", c.net.grid.cols},
+                {"dx_m", c.net.dx},
+                {"dy_m", c.net.dy},
+                {"frame", c.net.frame.describe()},
+                {"filled_outside_hull", c.net.filledOutsideHull},
+                {"filled_nodata", c.net.filledNodata},
+                {"masked_nodata", c.net.maskedCount()}};
+    j["refined"] = {{"rows", c.estimate.rows},
+                    {"cols", c.estimate.cols},
+                    {"masked_nodata", c.maskedNodes},
+                    {"vertices", c.meshVertices},
+                    {"triangles", c.meshTriangles},
+                    {"pov_bytes", c.povBytes},
+                    {"memory_estimate_mb", c.estimate.memoryBytes / 1e6}};
+    ordered_json times = {{"read_scene", c.times.readScene},
+                          {"normalize", c.times.normalize},
+                          {"subdivide", c.times.subdivide},
+                          {"emit", c.times.emit}};
+    if (c.autoDepth) {
+        ordered_json levels = ordered_json::array();
+        const int arity = c.arity;
+        for (size_t i = 0; i < c.autoDepth->levels.size(); ++i) {
+            const auto& l = c.autoDepth->levels[i];
+            ordered_json level = {{"level", l.level},
+                                  {"hausdorff_m", l.distanceM},
+                                  {"curve", l.curve},
+                                  {"where_m", {l.x, l.y, l.z}},
+                                  {"seconds", l.seconds}};
+            const double rate = measure::observedRate(*c.autoDepth, i, arity);
+            if (std::isfinite(rate)) level["rate"] = rate;
+            levels.push_back(level);
+        }
+        j["auto_depth"] = {{"tolerance_m", c.scene.subdivision.toleranceM},
+                           {"depth", c.depth},
+                           {"holder_estimate", c.holder},
+                           {"levels", levels}};
+    }
+    if (c.contours.levels > 0)
+        j["contours"] = {{"interval_m", c.scene.overlay.contours->intervalM},
+                         {"levels", c.contours.levels},
+                         {"lines", c.contours.lines}};
+    if (c.baseFloorM)
+        j["base"] = {{"floor_elevation_m", *c.baseFloorM}, {"thickness_m", c.zRangeM[0] - *c.baseFloorM}};
+    j["sun"] = {{"azimuth_deg", c.sun.azimuthDeg},
+                {"altitude_deg", c.sun.altitudeDeg},
+                {"from", c.sun.fromDatetime ? "datetime" : "scene"}};
+    j["sun"]["azimuth_is"] = c.sun.fromDatetime ? "true bearing" : "bearing on the frame's grid, as given";
+    if (c.sun.fromDatetime) {
+        j["sun"]["datetime"] = c.sun.datetime;
+        j["sun"]["at_lonlat"] = {c.sun.lonDeg, c.sun.latDeg};
+    }
+    j["camera"] = {{"eye_lonlat_h", c.cameraEyeLonLatH},
+                   {"look_at_lonlat_h", c.cameraTargetLonLatH},
+                   {"azimuth_deg", c.cameraAzimuthDeg},
+                   {"elevation_deg", c.cameraElevationDeg},
+                   {"distance_m", c.cameraDistanceM},
+                   {"placed_by", c.scene.look.camera.position ? "position" : "orbit"}};
+    j["seconds"] = times;
+    j["geometry"] = {{"kind", emit::geometryKindName(c.geometry.kind)}, {"reason", c.geometry.reason}};
+    if (!c.heightPng.empty()) j["geometry"]["height_step_m"] = c.heightStepM;
+    if (c.geometry.kind == scene::GeometryKind::Adaptive) {
+        j["geometry"]["tolerance_m"] = c.adaptiveToleranceM;
+        j["geometry"]["tolerance_px"] = c.adaptiveTolerancePx;
+    }
+    j["geometry"]["triangles"] = c.meshTriangles;
+    j["outputs"] = {{"pov", paths.pov.string()}};
+    if (!c.heightPng.empty()) j["outputs"]["height_png"] = c.heightPng.string();
+    if (!c.drapePng.empty()) j["outputs"]["drape_png"] = c.drapePng.string();
+    if (c.drapeImageCoverage)
+        j["texture"] = {{"image", c.scene.look.drapeImageText},
+                        {"image_covers", *c.drapeImageCoverage},
+                        {"image_attribution", c.imageAttribution}};
+    if (!paths.png.empty()) j["outputs"]["png"] = paths.png.string();
+    return j;
+}
+
+void addRenderToSidecar(ordered_json& j, const RenderFacts& r) {
+    double parse = 0, trace = 0;
+    ordered_json tiles = ordered_json::array();
+    for (const auto& t : r.tiles) {
+        parse += t.parseSeconds;
+        trace += t.traceSeconds;
+        tiles.push_back(plan::tileRecordJson(t));
+    }
+    // Every tile parses the whole scene: the parse is paid once a tile, and summed here.
+    j["seconds"]["povray_parse"] = parse;
+    j["seconds"]["povray_trace"] = trace;
+    j["seconds"]["povray_wall"] = r.wallSeconds;
+    j["seconds"]["finish"] = r.finishSeconds;
+    if (!r.tiles.empty()) j["povray_command"] = r.tiles.front().povrayCommand;
+    j["tiles"] = tiles;
+    if (!r.overlays) return;
+    const annotate::OverlayRecord& o = *r.overlays;
+    j["overlay"] = {{"drawn", o.drawn}};
+    if (o.scaleBar.pixels > 0)
+        j["overlay"]["scale_bar"] = {{"metres", o.scaleBar.metres},
+                                     {"pixels", o.scaleBar.pixels},
+                                     {"valid", r.perspective ? "at the centre of the view" : "everywhere"}};
+    j["overlay"]["north_deg_clockwise_from_up"] = o.northDeg;
+    j["overlay"]["placement"] = o.placement;
+    j["overlay"]["on_terrain"] = o.onTerrain;
+}
+
+std::string sidecarText(const ordered_json& sidecar) {
+    return sidecar.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+}
+
+}  // namespace relief
