@@ -269,6 +269,7 @@ bool finishPlan(const plan::RenderPlan& plan, OutputSet& outputs, bool stillOnly
             for (const auto& f : plan.reads) stagePlanFile(plan, f, outputs);
             for (const auto& f : plan.extras) stagePlanFile(plan, f, outputs);
             nlohmann::ordered_json sidecar = plan.sidecar0;
+            facts.wallSeconds = outcome.render.wallSeconds;
             facts.finishSeconds = secondsSince(t0);
             addRenderToSidecar(sidecar, facts);
             const fs::path at =

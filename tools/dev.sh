@@ -26,10 +26,12 @@ esac
 # bubblewrap: POV-Ray's sandbox. libpng-dev: PNGs outside the image commands; libssl-dev: SHA-1.
 # libcairo2-dev, libpango1.0-dev: the still's overlays (text through fontconfig: fonts-dejavu-core).
 # libnova-dev: the sun's position from a date ([lighting] datetime).
+# slurm-wlm, munge: the tests' private Slurm cluster (tests/slurm/cluster.sh; relief --executor slurm).
 packages=(cmake make g++ pkg-config
           libgeographiclib-dev libgdal-dev libopenimageio-dev openimageio-tools libtomlplusplus-dev
           libcli11-dev libfmt-dev nlohmann-json3-dev libnanoflann-dev libpng-dev libssl-dev libcairo2-dev libpango1.0-dev libnova-dev libgtest-dev libbenchmark-dev
-          povray bubblewrap chromium fonts-dejavu-core locales clang libfuzzer-14-dev libclang-rt-14-dev libomp-14-dev)
+          povray bubblewrap chromium fonts-dejavu-core locales clang libfuzzer-14-dev libclang-rt-14-dev libomp-14-dev
+          slurm-wlm munge)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

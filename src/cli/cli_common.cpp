@@ -1,8 +1,10 @@
 #include "cli/cli_common.h"
 
+#include <signal.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -17,7 +19,8 @@ namespace relief::cli {
 
 const char* const kExitCodes =
     "Exit codes: 0 success; 1 internal error; 2 bad input (arguments, scene file, samples,\n"
-    "template, output budget) or an output that cannot be written; 3 POV-Ray missing or failed.\n"
+    "template, output budget) or an output that cannot be written; 3 POV-Ray missing or failed\n"
+    "(a tile, a Slurm task); 130 interrupted (Ctrl-C): nothing written, a render's plan kept.\n"
     "relief diff keeps idiff's: 0 pass, 1 warning, 2 failure, 3 images not comparable,\n"
     "4 file error or bad arguments. relief test: 0 all cases pass, 1 a case failed.";
 
@@ -97,6 +100,44 @@ int runCommands(CLI::App& app, const std::vector<Command>& commands, int argc, c
         std::cerr << "relief: internal error: " << terminalText(e.what()) << '\n';
         return code(Exit::Internal);
     }
+}
+
+void addExecutionOptions(CLI::App* app, ExecutionOptions& o, bool tiles, const char* jobsHelp) {
+    if (tiles)
+        app->add_option("--tiles", o.tiles, "strips of the still, each rendered by its own POV-Ray (default 1); "
+                                            "the same bytes for any number")
+            ->check(CLI::Range(1, 100000));
+    app->add_option("--jobs,-j", o.jobs, jobsHelp)->check(CLI::Range(0, 100000));
+    app->add_option("--executor", o.executor, "where the renders run: local (this machine, default) or slurm (a "
+                                              "job array on the cluster SLURM_CONF names; docs/distributed.md)")
+        ->check(CLI::IsMember({"local", "slurm"}));
+    app->add_option("--slurm-args", o.slurmArgs, "passed to sbatch, e.g. \"--partition=batch --time=30\"");
+}
+
+namespace {
+std::atomic<int> gSignals{0};
+void onInterrupt(int) {
+    if (gSignals.fetch_add(1) > 0) ::_exit(code(Exit::Interrupted));  // a second Ctrl-C: at once
+}
+}  // namespace
+
+void installInterruptHandler() {
+    struct sigaction sa {};
+    sa.sa_handler = onInterrupt;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, nullptr);
+    sigaction(SIGTERM, &sa, nullptr);
+}
+
+bool interrupted() { return gSignals.load() > 0; }
+
+execute::Options executionOf(const ExecutionOptions& o) {
+    execute::Options e;
+    e.executor = o.executor == "slurm" ? execute::Executor::Slurm : execute::Executor::Local;
+    e.jobs = o.jobs;
+    e.slurmArgs = o.slurmArgs;
+    e.cancelled = [] { return interrupted(); };
+    return e;
 }
 
 // KEY=VALUE strings -> scene overrides (`section.key=value`).

@@ -15,6 +15,7 @@
 
 #include "core/atomic_file.h"
 #include "core/diagnostics.h"
+#include "execute/execute.h"
 #include "pipeline.h"
 #include "scene/read_scene.h"
 
@@ -37,6 +38,8 @@ enum class Exit : int {
     DiffFileError = 4,      ///< diff: an image cannot be read or written, or bad arguments
 
     TestCaseFailed = 1,     ///< test: a case failed, errored or is new (without --update)
+
+    Interrupted = 130,      ///< stopped by Ctrl-C (SIGINT) or SIGTERM: nothing written, a render's plan kept
 };
 inline int code(Exit e) { return static_cast<int>(e); }
 
@@ -113,6 +116,25 @@ struct CommonOptions {
     bool quiet = false;
     bool noSandbox = false;
 };
+
+/// Where and how many tiles (or cases, or stills) are rendered at once:
+/// --jobs, --executor local|slurm, --slurm-args, and --tiles where a still
+/// is cut into strips.
+struct ExecutionOptions {
+    int tiles = 1;
+    int jobs = 0;
+    std::string executor = "local";
+    std::string slurmArgs;
+};
+void addExecutionOptions(CLI::App* app, ExecutionOptions& o, bool tiles, const char* jobsHelp);
+/// As execute::Options, cancelled by Ctrl-C (interruptHandler).
+execute::Options executionOf(const ExecutionOptions& o);
+
+/// Ctrl-C and SIGTERM stop a long command cleanly: the first asks the work
+/// to stop (every POV-Ray process it started, the Slurm job), which then
+/// returns; a second ends the process at once.
+void installInterruptHandler();
+bool interrupted();
 
 /// KEY=VALUE strings -> scene overrides (`section.key=value`); false with a message.
 bool parseOverrides(const std::vector<std::string>& list, scene::SceneOverrides& out);

@@ -122,6 +122,7 @@ struct TestOptions {
     std::string report = "out/test-report";
     std::string templates;
     int jobs = 2;
+    ExecutionOptions execution;
     bool update = false;
     bool noSandbox = false;
 };
@@ -141,6 +142,9 @@ int runTest(const TestOptions& o) {
     ro.update = o.update;
     ro.sandbox = !o.noSandbox;
     ro.manifestArgument = o.manifest;
+    installInterruptHandler();
+    ro.execution = executionOf(o.execution);
+    ro.execution.jobs = o.execution.executor == "slurm" ? o.jobs : 0;
     const auto t0 = std::chrono::steady_clock::now();
     std::cout << fmt::format("relief test: {} cases from {}, {} render{} at a time\n",
                              manifest->cases.size(), o.manifest, o.jobs, o.jobs == 1 ? "" : "s");
@@ -170,6 +174,7 @@ struct SweepOptions {
     CommonOptions common;
     std::vector<std::string> vary;
     int columns = 0;
+    ExecutionOptions execution;
 };
 
 // `relief sweep`: one still per parameter combination, then a contact sheet.
@@ -194,6 +199,9 @@ int runSweep(const SweepOptions& o) {
     request.threads = o.common.threads;
     request.sandbox = !o.common.noSandbox;
     request.columns = o.columns;
+    request.tiles = o.execution.tiles;
+    installInterruptHandler();
+    request.execution = executionOf(o.execution);
     Progress progress(o.common.quiet);
     using Kind = relief::figures::SweepEvent::Kind;
     const auto result = relief::figures::runSweep(request, [&](const relief::figures::SweepEvent& e) {
@@ -201,8 +209,7 @@ int runSweep(const SweepOptions& o) {
         if (e.kind == Kind::Started) {
             progress.show(still);
         } else if (e.kind == Kind::Rendering) {
-            if (e.render->text.rfind("Rendered", 0) == 0)
-                progress.show(fmt::format("{}: {}", still, e.render->text), e.render->percent);
+            progress.show(fmt::format("renders: {}", e.render->text), e.render->percent);
         } else {
             progress.done();
             const bool ok = e.outcome->status == relief::JobStatus::Ok;
@@ -214,6 +221,10 @@ int runSweep(const SweepOptions& o) {
                                          e.outcome->compiled->certified);
         }
     });
+    if (result.status == relief::JobStatus::Cancelled) {
+        std::cerr << "relief: interrupted; nothing written\n";
+        return code(Exit::Interrupted);
+    }
     if (result.status != relief::JobStatus::Ok)
         return code(result.status == relief::JobStatus::ToolFailed ? Exit::ToolFailed : Exit::BadInput);
     if (!result.sheetWritten) {
@@ -221,7 +232,9 @@ int runSweep(const SweepOptions& o) {
         return code(Exit::BadInput);
     }
     if (!result.sheetMessage.empty()) std::cerr << "relief: " << result.sheetMessage << '\n';
-    std::cerr << "wrote " << request.sheet.string() << " (" << result.tiles.size() << " stills)\n";
+    if (!o.common.quiet)
+        std::cerr << "wrote " << relief::terminalText(request.sheet.string(), 500) << " (" << result.tiles.size()
+                  << " stills)\n";
     return code(Exit::Ok);
 }
 
@@ -247,8 +260,13 @@ void addImageCommands(CLI::App& app, std::vector<Command>& out) {
     CLI::App* testCmd = app.add_subcommand(kImageCommands[1].name, kImageCommands[1].description);
     testCmd->add_option("manifest", test->manifest, "manifest (TOML): [defaults] and [[case]] entries")->required();
     testCmd->add_option("--report", test->report, "report folder (default out/test-report)");
-    testCmd->add_option("--jobs,-j", test->jobs, "renders at a time (default 2: measured faster on 2 cores)")
-        ->check(CLI::Range(1, 64));
+    testCmd->add_option("--jobs,-j", test->jobs, "renders at a time (default 2: measured faster on 2 cores; on "
+                                                 "Slurm, array tasks at once)")
+        ->check(CLI::Range(1, 100000));
+    testCmd->add_option("--executor", test->execution.executor,
+                        "where the cases render: local (default) or slurm (one array task a case; docs/distributed.md)")
+        ->check(CLI::IsMember({"local", "slurm"}));
+    testCmd->add_option("--slurm-args", test->execution.slurmArgs, "passed to sbatch, e.g. \"--partition=batch\"");
     testCmd->add_flag("--update", test->update, "bless the new images of failing or new cases as their references");
     testCmd->add_option("--templates", test->templates, "folder with scene.pov.in");
     testCmd->add_flag("--no-sandbox", test->noSandbox, "run POV-Ray without its bubblewrap sandbox (only for scenes you trust; see docs/security.md)");
@@ -262,7 +280,9 @@ void addImageCommands(CLI::App& app, std::vector<Command>& out) {
     sweepCmd->add_option("-o,--output", sweep->common.output, "contact sheet (default out/<scene>-sweep.png)");
     sweepCmd->add_option("--columns", sweep->columns, "tiles per row (default: the first --vary's count)");
     sweepCmd->add_option("--templates", sweep->common.templates, "folder with scene.pov.in");
-    sweepCmd->add_option("--threads", sweep->common.threads, "threads (0: all cores)");
+    sweepCmd->add_option("--threads", sweep->common.threads, "refiner threads (0: all cores)");
+    addExecutionOptions(sweepCmd, sweep->execution, true,
+                        "stills (or tiles) at once (0: as many as cores here; on Slurm, as many as the cluster runs)");
     sweepCmd->add_flag("-q,--quiet", sweep->common.quiet, "print errors only");
     sweepCmd->add_flag("--no-sandbox", sweep->common.noSandbox, "run POV-Ray without its bubblewrap sandbox (only for scenes you trust; see docs/security.md)");
     out.push_back({sweepCmd, [sweep] { return runSweep(*sweep); }});

@@ -1,115 +1,297 @@
 #include "cli/cli_common.h"
 
-// relief compile, relief render: one scene file to a .pov, or all the way to a PNG.
+// relief compile, relief render: one scene file to a .pov, or all the way to a
+// PNG; and the render's steps on their own: relief plan, render-tile, finish.
 #include <iostream>
 #include <memory>
 
 #include <fmt/format.h>
 
 #include "core/text_escape.h"
-
 #include "pipeline.h"
 
 namespace relief::cli {
 
 namespace {
 
-// `relief compile` (until the .pov) and `relief render` (until the PNG).
-int runScene(const CommonOptions& o, const std::string& dumpNet, relief::SceneJob::Until until) {
-    relief::Diagnostics diags;
-    Progress progress(o.quiet);
+struct SceneOptions {
+    CommonOptions common;
+    std::string dumpNet;
+    ExecutionOptions execution;
+    std::string plan;    ///< --plan: the plan's folder
+    std::string resume;  ///< --resume PLAN
+    bool keepPlan = false;
+};
+
+relief::SceneJob sceneJob(const SceneOptions& o, relief::SceneJob::Until until, bool& ok) {
     relief::SceneJob job;
     job.until = until;
-    job.scenePath = o.scene;
-    if (!parseOverrides(o.sets, job.overrides)) return code(Exit::BadInput);
-    job.output = o.output;
-    job.templatesDir = findTemplates(o.templates);
-    job.dumpNetPath = dumpNet;
-    job.threads = o.threads;
-    job.sandbox = !o.noSandbox;
-    const auto outcome = relief::runSceneJob(job, diags, [&](const relief::ProgressEvent& e) {
+    job.scenePath = o.common.scene;
+    ok = parseOverrides(o.common.sets, job.overrides);
+    job.output = o.common.output;
+    job.templatesDir = findTemplates(o.common.templates);
+    job.dumpNetPath = o.dumpNet;
+    job.threads = o.common.threads;
+    job.sandbox = !o.common.noSandbox;
+    job.tiles = o.execution.tiles;
+    job.planDir = o.plan;
+    job.keepPlan = o.keepPlan;
+    job.execution = executionOf(o.execution);
+    return job;
+}
+
+ProgressFn showing(Progress& progress) {
+    return [&](const relief::ProgressEvent& e) {
         // Each stage on a line of its own; the render's progress rewrites its line.
-        if (e.stage == relief::ProgressEvent::Stage::Compiling && e.percent < 0) progress.done();
+        if ((e.stage == relief::ProgressEvent::Stage::Compiling || e.stage == relief::ProgressEvent::Stage::Finishing) &&
+            e.percent < 0)
+            progress.done();
         progress.show(e);
-    });
+    };
+}
+
+void printWritten(const relief::JobOutcome& outcome, bool rendered) {
+    const auto& c = *outcome.compiled;
+    std::cerr << fmt::format("scheme {}: {}\n", c.schemeFamily, c.certified);
+    if (c.autoDepth) std::cerr << relief::autoDepthSummary(*c.autoDepth, c.scene.subdivision.toleranceM) << '\n';
+    // What POV-Ray gets: every vertex, the adaptive mesh, or the height field's PNGs.
+    const std::string pov = terminalText(outcome.paths.pov.string(), 500);
+    switch (c.geometry.kind) {
+        case scene::GeometryKind::HeightField:
+            std::cerr << fmt::format("wrote {} (a height field of {} x {} nodes: {}, {})\n", pov, c.estimate.rows,
+                                     c.estimate.cols, terminalText(c.heightPng.string(), 500),
+                                     terminalText(c.drapePng.string(), 500));
+            break;
+        case scene::GeometryKind::Adaptive:
+            std::cerr << fmt::format("wrote {} (an adaptive mesh2: {} triangles of the full {:.0f}, {:.1f} MB)\n", pov,
+                                     c.meshTriangles, c.estimate.triangles, c.povBytes / 1e6);
+            break;
+        default:
+            std::cerr << fmt::format("wrote {} ({} x {} vertices, {} triangles, {:.1f} MB)\n", pov, c.estimate.rows,
+                                     c.estimate.cols, c.meshTriangles, c.povBytes / 1e6);
+    }
+    if (rendered)
+        std::cerr << fmt::format("wrote {} ({} x {}{}; POV-Ray parse {:.2f} s, trace {:.2f} s)\n",
+                                 terminalText(outcome.paths.png.string(), 500), c.scene.render.width,
+                                 c.scene.render.height,
+                                 outcome.tiles > 1 ? fmt::format(", {} tiles", outcome.tiles) : std::string(),
+                                 outcome.render.parseSeconds, outcome.render.traceSeconds);
+}
+
+// How a job that did not finish ended, and its exit code.
+int reportFailure(const relief::JobOutcome& outcome, const relief::Diagnostics& diags, const std::string& scene) {
+    const std::string kept =
+        outcome.plan.empty()
+            ? std::string()
+            : fmt::format("relief: the render plan is kept: relief render --resume {} renders what is missing\n",
+                          terminalText(shellQuoted(outcome.plan.string()), 500));
+    switch (outcome.status) {
+        case relief::JobStatus::Cancelled:
+            printDiagnostics(diags, false);
+            std::cerr << "relief: interrupted; nothing written\n" << kept;
+            return code(Exit::Interrupted);
+        case relief::JobStatus::ToolFailed:
+            printDiagnostics(diags, false);
+            std::cerr << "relief: POV-Ray failed on the scene compiled from " << terminalText(scene, 500)
+                      << (outcome.plan.empty() ? " (nothing written; relief compile writes the .pov to look at):\n"
+                                               : " (nothing written; the plan keeps the .pov):\n")
+                      << terminalText(outcome.render.error, 8000, true) << '\n'
+                      << kept;
+            return code(Exit::ToolFailed);
+        default:
+            printDiagnostics(diags, false);
+            std::cerr << kept;
+            return code(Exit::BadInput);
+    }
+}
+
+// `relief compile` (until the .pov) and `relief render` (until the PNG, or a plan resumed).
+int runScene(const SceneOptions& o, relief::SceneJob::Until until) {
+    relief::Diagnostics diags;
+    Progress progress(o.common.quiet);
+    installInterruptHandler();
+    relief::JobOutcome outcome;
+    if (!o.resume.empty()) {
+        outcome = relief::resumePlan(o.resume, executionOf(o.execution), o.keepPlan, diags, showing(progress));
+    } else {
+        bool ok = true;
+        const relief::SceneJob job = sceneJob(o, until, ok);
+        if (!ok) return code(Exit::BadInput);
+        outcome = relief::runSceneJob(job, diags, showing(progress));
+    }
     progress.done();
-    if (outcome.status == relief::JobStatus::BadInput) {
+    if (outcome.status != relief::JobStatus::Ok) return reportFailure(outcome, diags, o.common.scene);
+    printDiagnostics(diags, true);  // warnings
+    if (!o.common.quiet && outcome.compiled) printWritten(outcome, until == relief::SceneJob::Until::Png);
+    if (!o.common.quiet && !outcome.compiled)
+        std::cerr << fmt::format("wrote {} (from the plan {}; POV-Ray parse {:.2f} s, trace {:.2f} s)\n",
+                                 terminalText(outcome.paths.png.string(), 500), terminalText(o.resume, 500),
+                                 outcome.render.parseSeconds, outcome.render.traceSeconds);
+    return code(Exit::Ok);
+}
+
+// `relief plan`: compile into a render plan and stop there.
+int runPlan(const SceneOptions& o) {
+    relief::Diagnostics diags;
+    Progress progress(o.common.quiet);
+    bool ok = true;
+    const relief::SceneJob job = sceneJob(o, relief::SceneJob::Until::Png, ok);
+    if (!ok) return code(Exit::BadInput);
+    relief::PlannedJob planned = relief::planJob(job, diags, showing(progress));
+    progress.done();
+    if (planned.outcome.status != relief::JobStatus::Ok) return reportFailure(planned.outcome, diags, o.common.scene);
+    printDiagnostics(diags, true);
+    std::cout << planned.plan->dir.string() << '\n';
+    if (!o.common.quiet)
+        std::cerr << fmt::format("planned {} tile{} of {}: relief render-tile {} --tile K (K from 0), then relief "
+                                 "finish {}\n",
+                                 planned.plan->tiles, planned.plan->tiles == 1 ? "" : "s",
+                                 terminalText(planned.outcome.paths.png.string(), 500),
+                                 terminalText(shellQuoted(planned.plan->dir.string()), 500),
+                                 terminalText(shellQuoted(planned.plan->dir.string()), 500));
+    return code(Exit::Ok);
+}
+
+struct TileOptions {
+    std::string plan, tasks;
+    int tile = -1, index = -1, threads = 0;
+};
+
+// `relief render-tile`: one tile of a plan (what a Slurm task runs).
+int runRenderTile(const TileOptions& o) {
+    installInterruptHandler();
+    std::string error;
+    if (!o.tasks.empty()) {
+        error = relief::execute::runListedTask(o.tasks, o.index);
+    } else {
+        relief::execute::Options e;
+        e.jobs = 1;
+        e.cancelled = [] { return interrupted(); };
+        relief::Diagnostics diags;
+        auto plan = relief::plan::readPlan(o.plan, diags);
+        if (!plan) {
+            printDiagnostics(diags, false);
+            return code(Exit::BadInput);
+        }
+        if (o.tile < 0 || o.tile >= plan->tiles) {
+            std::cerr << fmt::format("relief: error: --tile {}: the plan has tiles 0 to {}\n", o.tile, plan->tiles - 1);
+            return code(Exit::BadInput);
+        }
+        const auto r = relief::execute::run({{std::filesystem::absolute(o.plan), o.tile}}, e, {});
+        error = r.ok ? "" : r.error;
+    }
+    if (error.empty()) return code(Exit::Ok);
+    std::cerr << "relief: error: " << terminalText(error, 8000, true) << '\n';
+    return code(interrupted() ? Exit::Interrupted : Exit::ToolFailed);
+}
+
+// `relief finish`: a plan whose tiles are all rendered, made into the still and its set.
+int runFinish(const std::string& planDir, bool keepPlan) {
+    relief::Diagnostics diags;
+    relief::execute::Options none;
+    none.cancelled = [] { return false; };
+    auto plan = relief::plan::readPlan(planDir, diags);
+    if (!plan) {
         printDiagnostics(diags, false);
         return code(Exit::BadInput);
     }
-    printDiagnostics(diags, true);  // warnings
-    if (outcome.status == relief::JobStatus::ToolFailed) {
-        std::cerr << "relief: POV-Ray failed on the scene compiled from " << relief::terminalText(job.scenePath.string(), 500)
-                  << " (nothing written; relief compile writes the .pov to look at):\n"
-                  << relief::terminalText(outcome.render.error, 8000, true) << '\n';
-        return code(Exit::ToolFailed);
+    plan->dir = std::filesystem::absolute(planDir);
+    // A tile rendered but not right (another plan's, another POV-Ray's) is named by stitching; one not there is counted.
+    std::vector<int> missing;
+    for (int k = 0; k < plan->tiles; ++k)
+        if (!std::filesystem::exists(relief::plan::tileRecordPath(*plan, k))) missing.push_back(k);
+    if (!missing.empty()) {
+        std::cerr << fmt::format("relief: error: {} of the plan's {} tiles are not rendered (the first: tile {}): "
+                                 "relief render-tile, or relief render --resume {}\n",
+                                 missing.size(), plan->tiles, missing.front(), terminalText(shellQuoted(planDir), 500));
+        return code(Exit::BadInput);
     }
-    if (!o.quiet) {
-        const auto& c = *outcome.compiled;
-        std::cerr << fmt::format("scheme {}: {}\n", c.schemeFamily, c.certified);
-        if (c.autoDepth)
-            std::cerr << relief::autoDepthSummary(*c.autoDepth, c.scene.subdivision.toleranceM) << '\n';
-        // What POV-Ray gets: every vertex, the adaptive mesh, or the height field's PNGs.
-        switch (c.geometry.kind) {
-            case scene::GeometryKind::HeightField:
-                std::cerr << fmt::format("wrote {} (a height field of {} x {} nodes: {}, {})\n",
-                                         outcome.paths.pov.string(), c.estimate.rows, c.estimate.cols,
-                                         c.heightPng.string(), c.drapePng.string());
-                break;
-            case scene::GeometryKind::Adaptive:
-                std::cerr << fmt::format("wrote {} (an adaptive mesh2: {} triangles of the full {:.0f}, {:.1f} MB)\n",
-                                         outcome.paths.pov.string(), c.meshTriangles, c.estimate.triangles,
-                                         c.povBytes / 1e6);
-                break;
-            default:
-                std::cerr << fmt::format("wrote {} ({} x {} vertices, {} triangles, {:.1f} MB)\n",
-                                         outcome.paths.pov.string(), c.estimate.rows, c.estimate.cols,
-                                         c.meshTriangles, c.povBytes / 1e6);
-        }
-        if (until == relief::SceneJob::Until::Png)
-            std::cerr << fmt::format("wrote {} ({} x {}; POV-Ray parse {:.2f} s, trace {:.2f} s)\n",
-                                     outcome.paths.png.string(), c.scene.render.width,
-                                     c.scene.render.height, outcome.render.parseSeconds,
-                                     outcome.render.traceSeconds);
+    relief::OutputSet outputs;
+    relief::JobOutcome outcome;
+    if (!relief::finishPlan(*plan, outputs, false, true, keepPlan, outcome, diags)) {
+        printDiagnostics(diags, false);
+        return code(Exit::BadInput);
     }
+    std::cerr << fmt::format("wrote {}\n", terminalText(plan->still.string(), 500));
     return code(Exit::Ok);
+}
+
+void addCommonSceneOptions(CLI::App* sub, SceneOptions& o, const char* outputHelp, bool sceneRequired) {
+    auto* scene = sub->add_option("scene", o.common.scene, "scene file (TOML)");
+    if (sceneRequired) scene->required();
+    sub->add_option("-o,--output", o.common.output, outputHelp);
+    sub->add_option("--templates", o.common.templates,
+                    "folder with scene.pov.in (default: $RELIEF_TEMPLATES, the installed share/relief/templates, or "
+                    "the source tree's)");
+    sub->add_option("--threads", o.common.threads, "refiner threads (0: all cores)")->check(CLI::Range(0, 256));
+    sub->add_flag("-q,--quiet", o.common.quiet, "print errors only");
+    sub->add_option("--set", o.common.sets,
+                    "override a scene key: section.key=value, the value as TOML writes it (render.width=320, "
+                    "subdivision.omega=1/32, camera.position=[-3.17,55.94,600], overlay.contours={interval_m=10}, "
+                    "lighting.datetime=2026-06-21T09:00:00+01:00); repeatable");
+}
+
+void addRenderOptions(CLI::App* sub, SceneOptions& o) {
+    sub->add_option("--dump-net", o.dumpNet, "also write the control net (.csv or .asc)");
+    sub->add_flag("--no-sandbox", o.common.noSandbox,
+                  "run POV-Ray without its bubblewrap sandbox (only for scenes you trust; see docs/security.md)");
+    addExecutionOptions(sub, o.execution, true,
+                        "tiles at once (0: as many as cores here, each POV-Ray with its share of them; on Slurm, as "
+                        "many as the cluster runs)");
+    sub->add_option("--plan", o.plan, "the render plan's folder (default: <still>.plan beside the still)");
+    sub->add_flag("--keep-plan", o.keepPlan, "keep the plan (its .pov, PNGs and tiles) after the still is made");
 }
 
 }  // namespace
 
 void addSceneCommands(CLI::App& app, std::vector<Command>& out) {
-    struct Options {
-        CommonOptions common;
-        std::string dumpNet;
-    };
-    auto o = std::make_shared<Options>();
-    auto addCommon = [o](CLI::App* sub, const char* outputHelp) {
-        sub->add_option("scene", o->common.scene, "scene file (TOML)")->required();
-        sub->add_option("-o,--output", o->common.output, outputHelp);
-        sub->add_option("--templates", o->common.templates,
-                        "folder with scene.pov.in (default: $RELIEF_TEMPLATES, the installed "
-                        "share/relief/templates, or the source tree's)");
-        sub->add_option("--threads", o->common.threads, "refiner and POV-Ray threads (0: all cores)")
-            ->check(CLI::Range(0, 256));
-        sub->add_flag("-q,--quiet", o->common.quiet, "print errors only");
-        sub->add_option("--set", o->common.sets,
-                        "override a scene key: section.key=value, the value as TOML writes it (render.width=320, "
-                        "subdivision.omega=1/32, camera.position=[-3.17,55.94,600], "
-                        "overlay.contours={interval_m=10}, lighting.datetime=2026-06-21T09:00:00+01:00); repeatable");
-    };
-    CLI::App* compile = app.add_subcommand(
-        "compile", "write the POV-Ray scene (.pov) and a JSON sidecar; no rendering");
-    addCommon(compile, "the .pov to write (default: out/<scene name>.pov)");
+    auto o = std::make_shared<SceneOptions>();
+    CLI::App* compile = app.add_subcommand("compile", "write the POV-Ray scene (.pov) and a JSON sidecar; no rendering");
+    addCommonSceneOptions(compile, *o, "the .pov to write (default: out/<scene name>.pov)", true);
     compile->add_option("--dump-net", o->dumpNet,
-                        "also write the control net: .csv (x,y,z in the frame, metres) or .asc "
-                        "(ESRI ASCII grid; needs net.spacing_m)");
-    out.push_back({compile, [o] { return runScene(o->common, o->dumpNet, relief::SceneJob::Until::Pov); }});
+                        "also write the control net: .csv (x,y,z in the frame, metres) or .asc (ESRI ASCII grid; "
+                        "needs net.spacing_m)");
+    out.push_back({compile, [o] { return runScene(*o, relief::SceneJob::Until::Pov); }});
+
     CLI::App* render = app.add_subcommand(
-        "render", "compile, then render the still with POV-Ray (.png, .pov and .json sidecar)");
-    addCommon(render, "the PNG to write (default: [render] output, else out/<scene name>.png)");
-    render->add_option("--dump-net", o->dumpNet, "also write the control net (.csv or .asc)");
-    render->add_flag("--no-sandbox", o->common.noSandbox, "run POV-Ray without its bubblewrap sandbox (only for scenes you trust; see docs/security.md)");
-    out.push_back({render, [o] { return runScene(o->common, o->dumpNet, relief::SceneJob::Until::Png); }});
+        "render", "compile into a render plan, render its tiles with POV-Ray (here or on Slurm) and finish the still "
+                  "(.png, .pov and .json sidecar)");
+    addCommonSceneOptions(render, *o, "the PNG to write (default: [render] output, else out/<scene name>.png)", false);
+    addRenderOptions(render, *o);
+    render->add_option("--resume", o->resume, "render a kept plan's missing tiles and finish it (no scene file)");
+    render->callback([render, o] {
+        if (o->resume.empty() && o->common.scene.empty()) throw CLI::RequiredError("scene");
+        if (!o->resume.empty() && !o->common.scene.empty())
+            throw CLI::ValidationError("--resume", "give a plan to resume or a scene to render, not both");
+        (void)render;
+    });
+    out.push_back({render, [o] { return runScene(*o, relief::SceneJob::Until::Png); }});
+
+    CLI::App* plan = app.add_subcommand(
+        "plan", "compile into a render plan (a folder anyone who sees it can render: relief render-tile, relief "
+                "finish) and print its path");
+    addCommonSceneOptions(plan, *o, "the PNG the plan makes (default: [render] output, else out/<scene name>.png)",
+                          true);
+    addRenderOptions(plan, *o);
+    out.push_back({plan, [o] { return runPlan(*o); }});
+
+    auto t = std::make_shared<TileOptions>();
+    CLI::App* tile = app.add_subcommand("render-tile", "render one tile of a render plan (what each Slurm task runs)");
+    tile->add_option("plan", t->plan, "the render plan's folder");
+    tile->add_option("--tile", t->tile, "the tile, from 0");
+    tile->add_option("--tasks", t->tasks, "a task list (relief's Slurm job: a line a task) ...");
+    tile->add_option("--index", t->index, "... and the line of it to run, from 0 ($SLURM_ARRAY_TASK_ID)");
+    tile->callback([t] {
+        if (t->tasks.empty() == t->plan.empty())
+            throw CLI::ValidationError("render-tile", "give PLAN --tile K, or --tasks LIST --index K");
+    });
+    out.push_back({tile, [t] { return runRenderTile(*t); }});
+
+    auto f = std::make_shared<std::pair<std::string, bool>>();
+    CLI::App* finish = app.add_subcommand("finish", "make the still of a render plan whose tiles are all rendered");
+    finish->add_option("plan", f->first, "the render plan's folder")->required();
+    finish->add_flag("--keep-plan", f->second, "keep the plan after the still is made");
+    out.push_back({finish, [f] { return runFinish(f->first, f->second); }});
 }
 
 }  // namespace relief::cli

@@ -60,7 +60,7 @@ std::string runListedTask(const fs::path& tasksFile, int index) {
     const int tile = std::atoi(line.substr(0, tab).c_str());
     Diagnostics diags;
     const auto plan = plan::readPlan(line.substr(tab + 1), diags);
-    if (!plan) return formatDiagnostic(diags.all().front());
+    if (!plan) return diags.all().front().loc.file + ": " + diags.all().front().message;
     if (tile < 0 || tile >= plan->tiles) return fmt::format("the plan {} has no tile {}", plan->dir.string(), tile);
     // The CPUs Slurm gave the task (sbatch --cpus-per-task, through --slurm-args), one by default.
     render::TileOptions options;

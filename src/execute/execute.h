@@ -31,6 +31,12 @@ struct Options {
     std::filesystem::path jobDir;      ///< Slurm: the batch script, the task list and the logs
     std::function<bool()> cancelled;   ///< asked often; true stops every task (scancel on Slurm)
     render::ProgressFn povray;         ///< POV-Ray's own lines, when one task runs here alone (may be empty)
+    /// true: the first task that fails stops the rest (one still's tiles);
+    /// false: every task runs, each failure its own (a test suite's cases).
+    bool stopOnFailure = true;
+    /// Told of each task as it ends ("" or why it failed), from whichever
+    /// thread ran it: a caller can finish a plan as soon as its tiles are in.
+    std::function<void(size_t task, const std::string& error)> onTaskDone;
 };
 
 struct Progress {
@@ -43,6 +49,7 @@ struct Result {
     bool cancelled = false;
     bool badInput = false;  ///< not a task's failure: Slurm missing or not answering, a plan unreadable
     std::string error;      ///< the first failure: "tile 3 of 7: ...", "task 2 (Slurm job 15_2) FAILED: ..."
+    std::vector<std::string> taskErrors;  ///< per task: "" or why it failed (or did not run)
 };
 
 /// Runs every task; `progress` (may be empty) hears each one that finishes.

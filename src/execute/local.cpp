@@ -33,25 +33,30 @@ Result runLocal(const std::vector<Task>& tasks, const std::vector<const plan::Re
     std::mutex mutex;
     size_t done = 0;
     const auto t0 = Clock::now();
+    result.taskErrors.assign(tasks.size(), "not rendered");
     auto worker = [&] {
         for (size_t i = next++; i < tasks.size() && !tile.cancelled(); i = next++) {
             const plan::RenderPlan& plan = *plans[i];
             render::TileOptions one = tile;
             if (tasks.size() == 1) one.progress = options.povray;  // a still in one piece: POV-Ray's own progress
             const render::RenderResult r = render::renderTile(plan, tasks[i].tile, one);
+            std::string error;
+            if (!r.ok && !r.cancelled) error = plan.tiles == 1 ? r.error  // one piece: POV-Ray's words are the whole story
+                                                               : fmt::format("tile {} of {} (rows {}..{} of {}): {}",
+                                                                             tasks[i].tile + 1, plan.tiles,
+                                                                             plan::tileRows(plan.height, plan.tiles, tasks[i].tile).first,
+                                                                             plan::tileRows(plan.height, plan.tiles, tasks[i].tile).last,
+                                                                             plan.still.filename().string(), r.error);
+            if (r.cancelled) error = "stopped";
+            if (options.onTaskDone) options.onTaskDone(i, error);
             std::lock_guard lock(mutex);
+            result.taskErrors[i] = error;
             if (!r.ok) {
-                if (!r.cancelled && result.error.empty() && plan.tiles == 1) {
-                    result.error = r.error;  // one piece: POV-Ray's words are the whole story
-                    result.badInput = r.cannotWriteOutput;
-                } else if (!r.cancelled && result.error.empty()) {
-                    result.error = fmt::format("tile {} of {} (rows {}..{} of {}): {}", tasks[i].tile + 1, plan.tiles,
-                                               plan::tileRows(plan.height, plan.tiles, tasks[i].tile).first,
-                                               plan::tileRows(plan.height, plan.tiles, tasks[i].tile).last,
-                                               plan.still.filename().string(), r.error);
+                if (!r.cancelled && result.error.empty()) {
+                    result.error = error;
                     result.badInput = r.cannotWriteOutput;
                 }
-                stop = true;  // the other tiles stop too: the still cannot be made
+                if (options.stopOnFailure) stop = true;  // the other tiles stop too: the still cannot be made
                 continue;
             }
             ++done;
@@ -64,6 +69,7 @@ Result runLocal(const std::vector<Task>& tasks, const std::vector<const plan::Re
     for (auto& t : threads) t.join();
     result.cancelled = result.error.empty() && options.cancelled && options.cancelled();
     result.ok = result.error.empty() && !result.cancelled && done == tasks.size();
+    if (!result.ok && !options.stopOnFailure && !result.cancelled) result.badInput = false;
     return result;
 }
 

@@ -28,7 +28,7 @@ using Clock = std::chrono::steady_clock;
 
 // The states a task of an array ends in (squeue's long names).
 bool finalState(const std::string& s) {
-    return s == "COMPLETED" || s == "FAILED" || s == "CANCELLED" || s == "TIMEOUT" || s == "NODE_FAIL" ||
+    return s == "COMPLETED" || s == "FAILED" || s == "LOST" || s == "CANCELLED" || s == "TIMEOUT" || s == "NODE_FAIL" ||
            s == "OUT_OF_MEMORY" || s == "PREEMPTED" || s == "BOOT_FAIL" || s == "DEADLINE";
 }
 
@@ -46,11 +46,18 @@ std::string clusterProblem() {
     return problem;
 }
 
-// The relief that runs the tasks: this very program (every node must have it at this path).
-std::string thisProgram() {
+// The relief that runs the tasks: this program, or the relief beside it when
+// this is relief-images (relief test and sweep), in a build tree or installed
+// (<prefix>/libexec/relief/relief-images, <prefix>/bin/relief). Every node
+// must have it at that path.
+std::string reliefProgram() {
     std::error_code ec;
     const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-    return ec ? std::string("relief") : exe.string();
+    if (ec) return "relief";
+    if (exe.filename() != "relief-images") return exe.string();
+    for (const fs::path& p : {exe.parent_path() / "relief", exe.parent_path().parent_path().parent_path() / "bin" / "relief"})
+        if (fs::exists(p, ec)) return p.string();
+    return "relief";
 }
 
 // The task list (a line a task: the tile, a tab, the plan's folder) and the
@@ -65,7 +72,7 @@ fs::path writeJob(const std::vector<Task>& tasks, const fs::path& dir) {
         "# relief's tiles as a Slurm job array: task $SLURM_ARRAY_TASK_ID renders line $SLURM_ARRAY_TASK_ID of the\n"
         "# task list (counted from 0). The plans' folders must be on a filesystem every node sees.\n"
         "exec {} render-tile --tasks {} --index \"$SLURM_ARRAY_TASK_ID\"\n",
-        shellQuoted(thisProgram()), shellQuoted(fs::absolute(dir / "tasks.txt").string()));
+        shellQuoted(reliefProgram()), shellQuoted(fs::absolute(dir / "tasks.txt").string()));
     writeFileAtomically(dir / "job.sh", script);
     return dir / "job.sh";
 }
@@ -92,19 +99,23 @@ std::map<int, std::string> taskStates(const std::string& job) {
     return states;
 }
 
-// The last line of a task's log that says "error" (relief's own, or Slurm's), else its last line.
+// What a task's log says went wrong: relief's own error line (with the lines
+// that go on from it, up to three), else the last line that says "error",
+// else its last line.
 std::string logSays(const fs::path& log) {
     std::string problem;
     const auto text = readInputHead(log, 1'000'000, problem);
     if (!text) return "its log is empty";
-    std::string last, lastError;
+    std::vector<std::string> lines;
     std::istringstream in(*text);
-    for (std::string line; std::getline(in, line);) {
-        if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
-        last = line;
-        if (line.find("error") != std::string::npos) lastError = line;
-    }
-    return terminalText(lastError.empty() ? last : lastError, 400);
+    for (std::string line; std::getline(in, line);)
+        if (line.find_first_not_of(" \t\r") != std::string::npos) lines.push_back(line);
+    if (lines.empty()) return "its log is empty";
+    for (size_t i = 0; i < lines.size(); ++i)
+        if (lines[i].starts_with("relief: error: ")) return terminalText(lines[i].substr(15), 400);
+    for (auto it = lines.rbegin(); it != lines.rend(); ++it)
+        if (it->find("error") != std::string::npos) return terminalText(*it, 400);
+    return terminalText(lines.back(), 400);
 }
 
 }  // namespace
@@ -134,37 +145,48 @@ Result runSlurm(const std::vector<Task>& tasks, const std::vector<const plan::Re
         return result;
     }
     const auto t0 = Clock::now();
-    std::map<int, std::string> states;
-    size_t reported = 0;
-    while (true) {
+    result.taskErrors.assign(tasks.size(), "not rendered");
+    std::vector<bool> ended(tasks.size(), false);
+    size_t endedCount = 0, completed = 0;
+    // A task's outcome once it has ended: its tile's record, or why there is none.
+    const auto outcomeOf = [&](size_t i, const std::string& state) {
+        std::string problem;
+        if (state == "COMPLETED" && plan::readTileRecord(*plans[i], tasks[i].tile, problem)) return std::string();
+        const fs::path log = fs::absolute(options.jobDir) / "logs" / fmt::format("task-{}.log", i);
+        return fmt::format("task {} (Slurm job {}_{}, tile {} of {}) {}: {}; its log: {}", i, job, i, tasks[i].tile + 1,
+                           plans[i]->tiles, state, state == "COMPLETED" ? problem : logSays(log), log.string());
+    };
+    auto lastSeen = Clock::now();
+    while (endedCount < tasks.size()) {
         if (options.cancelled && options.cancelled()) {
             runCommand({"scancel", job});
             result.cancelled = true;
             return result;
         }
-        states = taskStates(job);
-        size_t ended = 0, completed = 0;
-        for (const auto& [k, s] : states) {
-            ended += finalState(s);
-            completed += s == "COMPLETED";
+        auto states = taskStates(job);
+        // A job squeue no longer knows (cancelled and purged elsewhere): what has not ended is lost.
+        if (!states.empty()) lastSeen = Clock::now();
+        else if (Clock::now() - lastSeen > std::chrono::seconds(30))
+            for (size_t i = 0; i < tasks.size(); ++i)
+                if (!ended[i]) states[static_cast<int>(i)] = "LOST";
+        for (const auto& [k, state] : states) {
+            const auto i = static_cast<size_t>(k);
+            if (i >= tasks.size() || ended[i] || !finalState(state)) continue;
+            ended[i] = true;
+            ++endedCount;
+            result.taskErrors[i] = outcomeOf(i, state);
+            completed += result.taskErrors[i].empty();
+            if (options.onTaskDone) options.onTaskDone(i, result.taskErrors[i]);
+            if (progress && result.taskErrors[i].empty())
+                progress({completed, tasks.size(), std::chrono::duration<double>(Clock::now() - t0).count()});
         }
-        if (progress && completed != reported) {
-            reported = completed;
-            progress({completed, tasks.size(), std::chrono::duration<double>(Clock::now() - t0).count()});
+        if (endedCount < tasks.size()) std::this_thread::sleep_for(std::chrono::milliseconds(250));
+    }
+    for (const auto& e : result.taskErrors)
+        if (!e.empty()) {
+            result.error = e;
+            return result;
         }
-        if (ended == tasks.size()) break;
-        std::this_thread::sleep_for(std::chrono::milliseconds(250));
-    }
-    for (size_t i = 0; i < tasks.size(); ++i) {
-        std::string problem;
-        const std::string& state = states[static_cast<int>(i)];
-        if (state == "COMPLETED" && plan::readTileRecord(*plans[i], tasks[i].tile, problem)) continue;
-        const fs::path log = fs::absolute(options.jobDir) / "logs" / fmt::format("task-{}.log", i);
-        result.error = fmt::format("task {} (Slurm job {}_{}, tile {} of {}) {}: {}; its log: {}", i, job, i,
-                                   tasks[i].tile + 1, plans[i]->tiles, state, state == "COMPLETED" ? problem : logSays(log),
-                                   log.string());
-        return result;
-    }
     result.ok = true;
     return result;
 }

@@ -117,6 +117,7 @@ SceneJob jobOf(const SweepRequest& request, const std::vector<std::pair<std::str
     job.templatesDir = request.templatesDir;
     job.threads = request.threads;
     job.sandbox = request.sandbox;
+    job.tiles = request.tiles;
     return job;
 }
 
@@ -143,31 +144,72 @@ SweepResult runSweep(const SweepRequest& request, const std::function<void(const
         return result;
     }
     // The stills and the sheet are one set of outputs: all appear, or none.
+    // Every combination is compiled into its plan, then all are rendered at
+    // once (here or on Slurm), then each is finished.
     OutputSet outputs;
+    std::vector<PlannedJob> planned;
+    const auto dropPlans = [&] {
+        std::error_code ec;
+        for (auto& p : planned)
+            if (p.plan) fs::remove_all(p.plan->dir, ec);
+    };
     for (size_t i = 0; i < combos.size(); ++i) {
-        const std::string label = labelOf(combos[i]);
         SceneJob job = jobOf(request, combos[i], stills / fmt::format("{:03}.png", i + 1));
         job.outputs = &outputs;
-        SweepEvent event{SweepEvent::Kind::Started, i + 1, combos.size(), label};
+        SweepEvent event{SweepEvent::Kind::Started, i + 1, combos.size(), labelOf(combos[i])};
         emit(event);
         Diagnostics diags;
-        const JobOutcome outcome = runSceneJob(job, diags, [&](const ProgressEvent& p) {
-            if (p.stage != ProgressEvent::Stage::Rendering) return;
-            SweepEvent e = event;
-            e.kind = SweepEvent::Kind::Rendering;
-            e.render = &p;
-            emit(e);
-        });
-        SweepEvent done = event;
-        done.kind = SweepEvent::Kind::Finished;
-        done.outcome = &outcome;
-        done.diags = &diags;
-        emit(done);
-        if (outcome.status != JobStatus::Ok) {
-            result.status = outcome.status;
+        planned.push_back(planJob(job, diags, {}));
+        if (planned.back().outcome.status == JobStatus::Ok) continue;
+        event.kind = SweepEvent::Kind::Finished;
+        event.outcome = &planned.back().outcome;
+        event.diags = &diags;
+        emit(event);
+        result.status = planned.back().outcome.status;
+        dropPlans();
+        return result;
+    }
+    std::vector<execute::Task> tasks;
+    for (const auto& p : planned)
+        for (const auto& t : tasksOf(*p.plan)) tasks.push_back(t);
+    execute::Options e = request.execution;
+    if (e.jobDir.empty()) e.jobDir = planned.front().plan->dir / "slurm";
+    const execute::Result rendered = execute::run(tasks, e, [&](const execute::Progress& p) {
+        const ProgressEvent tiles{ProgressEvent::Stage::Tiles,
+                                  fmt::format("{} of {} rendered, {:.0f} s", p.done, p.total, p.seconds),
+                                  static_cast<int>(100 * p.done / std::max<size_t>(1, p.total))};
+        SweepEvent event{SweepEvent::Kind::Rendering, p.done, p.total, "renders"};
+        event.render = &tiles;
+        emit(event);
+    });
+    if (!rendered.ok) {
+        JobOutcome failed;
+        failed.status = rendered.cancelled ? JobStatus::Cancelled : rendered.badInput ? JobStatus::BadInput : JobStatus::ToolFailed;
+        failed.render.error = rendered.error;
+        Diagnostics diags;
+        if (rendered.badInput) diags.error({}, rendered.error);
+        SweepEvent event{SweepEvent::Kind::Finished, 0, combos.size(), "renders"};
+        event.outcome = &failed;
+        event.diags = &diags;
+        emit(event);
+        result.status = failed.status;
+        dropPlans();
+        return result;
+    }
+    for (size_t i = 0; i < planned.size(); ++i) {
+        PlannedJob& p = planned[i];
+        Diagnostics diags;
+        if (!finishPlan(*p.plan, outputs, false, false, true, p.outcome, diags)) p.outcome.status = JobStatus::BadInput;
+        SweepEvent event{SweepEvent::Kind::Finished, i + 1, combos.size(), labelOf(combos[i])};
+        event.outcome = &p.outcome;
+        event.diags = &diags;
+        emit(event);
+        if (p.outcome.status != JobStatus::Ok) {
+            result.status = p.outcome.status;
+            dropPlans();
             return result;
         }
-        result.tiles.push_back({outcome.paths.png, fmt::format("{}\n{}", label, outcome.compiled->certified)});
+        result.tiles.push_back({p.outcome.paths.png, fmt::format("{}\n{}", labelOf(combos[i]), p.outcome.compiled->certified)});
     }
     const int columns = request.columns > 0 ? request.columns
                         : request.variations.empty()
@@ -184,6 +226,7 @@ SweepResult runSweep(const SweepRequest& request, const std::function<void(const
         result.sheetMessage = e.what();
         result.sheetWritten = false;
     }
+    dropPlans();
     return result;
 }
 

@@ -42,6 +42,8 @@ struct SweepRequest {
     int threads = 0;
     bool sandbox = true;                 ///< POV-Ray in bubblewrap
     int columns = 0;                     ///< 0: the first variation's count
+    int tiles = 1;                       ///< strips of each still
+    execute::Options execution;          ///< where the stills render (all at once)
 };
 
 /// What the sweep is doing: a still started, its render's progress, or it finished.
@@ -61,8 +63,10 @@ struct SweepResult {
     bool sheetWritten = false;
 };
 
-/// Renders one still per combination (stopping at the first that fails: its
-/// diagnostics come with its Finished event), then writes the contact sheet.
+/// Checks every combination, compiles each into its render plan, renders them
+/// all (here or on Slurm; the first failure stops the sweep, its diagnostics
+/// with its Finished event), finishes each still, then writes the contact
+/// sheet; the stills and the sheet appear together, or nothing does.
 SweepResult runSweep(const SweepRequest& request, const std::function<void(const SweepEvent&)>& onEvent);
 
 }  // namespace relief::figures

@@ -8,6 +8,8 @@
 #include <set>
 #include <thread>
 
+#include "execute/execute.h"
+
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
@@ -178,36 +180,34 @@ std::vector<fs::path> referencesOf(const TestCase& c) {
     return refs;
 }
 
-CaseResult runCase(const TestCase& c, const RunOptions& o, int povThreads) {
-    CaseResult r;
-    r.testCase = &c;
-    const auto t0 = std::chrono::steady_clock::now();
-    const fs::path images = o.reportDir / "images";
-    r.newImage = images / (c.name + ".new.png");
+SceneJob caseJob(const TestCase& c, const RunOptions& o) {
     SceneJob job;
     job.scenePath = c.scene;
     job.overrides = {{"render.width", std::to_string(c.width)}, {"render.height", std::to_string(c.height)}};
-    job.output = r.newImage;
+    job.output = o.reportDir / "images" / (c.name + ".new.png");
     job.templatesDir = o.templatesDir;
-    job.threads = povThreads;
+    job.threads = 1;  // the refiner: cases compile side by side
     job.sandbox = o.sandbox;
     job.stillOnly = true;  // the .pov and sidecar of a test render are not part of the report
-    Diagnostics diags;
-    const JobOutcome outcome = runSceneJob(job, diags, nullptr);
-    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    if (outcome.status != JobStatus::Ok) {
-        r.status = CaseStatus::Error;
-        for (const auto& d : diags.all())
-            if (d.severity == Severity::Error) r.message += (r.message.empty() ? "" : "; ") + formatDiagnostic(d);
-        if (outcome.status == JobStatus::ToolFailed) r.message = "POV-Ray failed: " + outcome.render.error;
-        return r;
-    }
+    return job;
+}
+
+std::string errorsOf(const Diagnostics& diags) {
+    std::string message;
+    for (const auto& d : diags.all())
+        if (d.severity == Severity::Error) message += (message.empty() ? "" : "; ") + formatDiagnostic(d);
+    return message;
+}
+
+// The new image against the case's references: the closest one decides.
+void compareCase(const TestCase& c, const RunOptions& o, CaseResult& r) {
+    const fs::path images = o.reportDir / "images";
     std::error_code ec;
     const auto refs = referencesOf(c);
     if (refs.empty()) {
         r.status = CaseStatus::New;
         r.message = fmt::format("no reference image in {}", c.referenceDir.string());
-        return r;
+        return;
     }
     bool first = true;
     for (const auto& ref : refs) {
@@ -236,7 +236,7 @@ CaseResult runCase(const TestCase& c, const RunOptions& o, int povThreads) {
     // not copied into a report that travels.
     if (d.verdict == compare::Verdict::FileError) {
         r.referenceImage.clear();
-        return r;
+        return;
     }
     const fs::path refCopy = images / (c.name + ".ref.png");
     fs::copy_file(r.referenceImage, refCopy, fs::copy_options::overwrite_existing, ec);
@@ -245,7 +245,6 @@ CaseResult runCase(const TestCase& c, const RunOptions& o, int povThreads) {
         r.diffImage = images / (c.name + ".diff.png");
         if (!compare::writeDifferenceImage(r.newImage, refCopy, r.diffImage).empty()) r.diffImage.clear();
     }
-    return r;
 }
 
 }  // namespace
@@ -266,50 +265,83 @@ bool checkUpdatable(const Manifest& m, Diagnostics& diags) {
     return !diags.hasErrors();
 }
 
+namespace {
+
+// Every case compiled into its plan, `jobs` at once (compiling runs here); a
+// case that cannot be compiled is an error now.
+std::vector<PlannedJob> planCases(const Manifest& m, const RunOptions& o, std::vector<CaseResult>& results,
+                                  const std::function<void(size_t)>& finished) {
+    std::vector<PlannedJob> planned(m.cases.size());
+    std::atomic<size_t> next{0};
+    auto worker = [&] {
+        for (size_t i = next++; i < m.cases.size(); i = next++) {
+            Diagnostics diags;
+            planned[i] = planJob(caseJob(m.cases[i], o), diags, nullptr);
+            if (planned[i].outcome.status == JobStatus::Ok) continue;
+            results[i].status = CaseStatus::Error;
+            results[i].message = errorsOf(diags);
+            finished(i);
+        }
+    };
+    const int jobs = std::max(1, std::min<int>(o.jobs, static_cast<int>(m.cases.size())));
+    std::vector<std::thread> threads;
+    for (int j = 1; j < jobs; ++j) threads.emplace_back(worker);
+    worker();
+    for (auto& t : threads) t.join();
+    return planned;
+}
+
+}  // namespace
+
 std::vector<CaseResult> runCases(const Manifest& m, const RunOptions& o, const CaseDoneFn& done) {
     fs::create_directories(o.reportDir / "images");
     std::vector<CaseResult> results(m.cases.size());
-    const int jobs = std::max(1, std::min<int>(o.jobs, static_cast<int>(m.cases.size())));
-    const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-    const int povThreads = std::max(1, cores / jobs);  // no oversubscription
-    std::atomic<size_t> next{0};
-    std::mutex mutex;
-    std::vector<size_t> finished;
-    auto worker = [&] {
-        for (size_t i = next++; i < m.cases.size(); i = next++) {
-            CaseResult r = runCase(m.cases[i], o, povThreads);
-            std::lock_guard lock(mutex);
-            results[i] = std::move(r);
-            finished.push_back(i);
-        }
-    };
-    std::vector<std::thread> threads;
-    for (int j = 1; j < jobs; ++j) threads.emplace_back(worker);
-    // The calling thread works too, and reports what has finished in between.
-    size_t reported = 0;
-    auto report = [&] {
-        std::vector<size_t> now;
-        {
-            std::lock_guard lock(mutex);
-            now.assign(finished.begin() + static_cast<long>(reported), finished.end());
-        }
-        for (size_t i : now) {
-            ++reported;
-            if (done) done(results[i], reported, m.cases.size());
-        }
-    };
-    for (size_t i = next++; i < m.cases.size(); i = next++) {
-        CaseResult r = runCase(m.cases[i], o, povThreads);
-        {
-            std::lock_guard lock(mutex);
-            results[i] = std::move(r);
-            finished.push_back(i);
-        }
-        report();
+    std::vector<std::chrono::steady_clock::time_point> started(m.cases.size(), std::chrono::steady_clock::now());
+    for (size_t i = 0; i < m.cases.size(); ++i) {
+        results[i].testCase = &m.cases[i];
+        results[i].newImage = o.reportDir / "images" / (m.cases[i].name + ".new.png");
     }
-    for (auto& t : threads) t.join();
-    report();
-
+    std::mutex mutex;
+    size_t reported = 0;
+    auto finished = [&](size_t i) {
+        results[i].seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started[i]).count();
+        std::lock_guard lock(mutex);
+        if (done) done(results[i], ++reported, m.cases.size());
+    };
+    std::vector<PlannedJob> planned = planCases(m, o, results, finished);
+    // The cases' renders, a task each, here or on Slurm; each case finished
+    // and compared as soon as its render is in.
+    std::vector<execute::Task> tasks;
+    std::vector<size_t> caseOf;
+    for (size_t i = 0; i < planned.size(); ++i)
+        if (planned[i].plan)
+            for (const auto& t : tasksOf(*planned[i].plan)) tasks.push_back(t), caseOf.push_back(i);
+    execute::Options e = o.execution;
+    e.jobs = e.executor == execute::Executor::Local ? o.jobs : e.jobs;
+    e.stopOnFailure = false;
+    if (e.jobDir.empty()) e.jobDir = o.reportDir / "slurm";
+    e.onTaskDone = [&](size_t task, const std::string& error) {
+        const size_t i = caseOf[task];
+        CaseResult& r = results[i];
+        Diagnostics diags;
+        if (!error.empty()) {
+            r.status = CaseStatus::Error;
+            r.message = "POV-Ray failed: " + error;
+        } else if (!finishPlan(*planned[i].plan, planned[i].outputs(), true, true, false, planned[i].outcome, diags)) {
+            r.status = CaseStatus::Error;
+            r.message = errorsOf(diags);
+        } else {
+            compareCase(m.cases[i], o, r);
+        }
+        finished(i);
+    };
+    const execute::Result run = execute::run(tasks, e, {});
+    if (!run.ok && tasks.size() > 0 && run.taskErrors.empty())  // nothing ran: Slurm missing, say
+        for (size_t i : caseOf) {
+            results[i].status = CaseStatus::Error;
+            results[i].message = run.error;
+            finished(i);
+        }
     if (o.update)
         for (auto& r : results) {
             if (r.status != CaseStatus::Fail && r.status != CaseStatus::New) continue;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "compare/compare_images.h"
+#include "execute/execute.h"
 #include "core/diagnostics.h"
 
 namespace relief::regress {
@@ -59,12 +60,15 @@ struct RunOptions {
     bool update = false;                    ///< bless new images of failing or new cases
     bool sandbox = true;                    ///< POV-Ray in bubblewrap
     std::string manifestArgument;           ///< as typed, for the bless command line
+    execute::Options execution;             ///< where the cases render (local: `jobs` at once)
 };
 
 using CaseDoneFn = std::function<void(const CaseResult&, size_t done, size_t total)>;
 
-/// Renders and compares every case; calls `done` as each finishes (from the
-/// calling thread). Results are in manifest order.
+/// Compiles every case into its plan, renders them (one task a case, here or
+/// on Slurm), and compares each as soon as its render is in; calls `done` as
+/// each finishes (from whichever thread finished it, one at a time). Results
+/// are in manifest order.
 std::vector<CaseResult> runCases(const Manifest& manifest, const RunOptions& options,
                                  const CaseDoneFn& done);
 

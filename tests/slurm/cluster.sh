@@ -19,6 +19,7 @@ stop() {
     kill -9 "$pid" 2>/dev/null
     rm -f "$pidfile"
   done
+  [ -s "$dir/munge-dir" ] && [ "$(cat "$dir/munge-dir")" != "$dir/munge" ] && rm -rf "$(cat "$dir/munge-dir")"
   return 0
 }
 
@@ -37,15 +38,19 @@ start() {
   done
   export PATH="$PATH:/usr/sbin"
   stop
-  rm -rf "$dir" && mkdir -p "$dir"/{state,spool,munge} || exit 1
-  chmod 0755 "$dir" "$dir/munge"  # munged refuses a folder others cannot enter
+  rm -rf "$dir" && mkdir -p "$dir"/{state,spool} || exit 1
+  # munge's socket path must fit a Unix socket's 108 bytes: a short folder in /tmp when DIR is deep.
+  local munge="$dir/munge"
+  [ ${#munge} -gt 80 ] && munge=$(mktemp -d /tmp/relief-munge-XXXXXX)
+  mkdir -p "$munge" && echo "$munge" > "$dir/munge-dir"
+  chmod 0755 "$dir" "$munge"  # munged refuses a folder others cannot enter
   local host; host=$(hostname -s)
   local user; user=$(id -un)
-  mungekey -c -k "$dir/munge/munge.key" -b 1024 >/dev/null 2>&1 || dd if=/dev/urandom of="$dir/munge/munge.key" bs=1024 count=1 2>/dev/null
-  chmod 0400 "$dir/munge/munge.key"
-  munged --socket="$dir/munge/munge.socket" --key-file="$dir/munge/munge.key" --pid-file="$dir/munged.pid" \
-         --log-file="$dir/munge/munged.log" --seed-file="$dir/munge/munged.seed" --force \
-    || { echo "FAIL: munged did not start"; cat "$dir/munge/munged.log" 2>/dev/null; exit 1; }
+  mungekey -c -k "$munge/munge.key" -b 1024 >/dev/null 2>&1 || dd if=/dev/urandom of="$munge/munge.key" bs=1024 count=1 2>/dev/null
+  chmod 0400 "$munge/munge.key"
+  munged --socket="$munge/munge.socket" --key-file="$munge/munge.key" --pid-file="$dir/munged.pid" \
+         --log-file="$munge/munged.log" --seed-file="$munge/munged.seed" --force \
+    || { echo "FAIL: munged did not start"; cat "$munge/munged.log" 2>/dev/null; exit 1; }
   cat > "$conf" <<EOF
 ClusterName=relief-test
 SlurmctldHost=$host
@@ -55,7 +60,7 @@ SlurmUser=$user
 SlurmdUser=$user
 AuthType=auth/munge
 CredType=cred/munge
-AuthInfo=socket=$dir/munge/munge.socket
+AuthInfo=socket=$munge/munge.socket
 StateSaveLocation=$dir/state
 SlurmdSpoolDir=$dir/spool
 SlurmctldPidFile=$dir/slurmctld.pid

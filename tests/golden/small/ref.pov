@@ -44,14 +44,6 @@ camera {
   angle 40.000000
 }
 
-// The sun: parallel rays from the scene's azimuth and altitude.
-light_source {
-  <-2946.296200,3515.013859,2939.112289>
-  color rgb <1.0, 0.97, 0.92> * 1.25
-  parallel
-  point_at <4.954080,12.865262,-12.137991>
-}
-
 // What is behind the terrain ([render] background): the sky, a colour or nothing.
 sky_sphere {
   pigment {
@@ -67,7 +59,18 @@ sky_sphere {
 
 #declare TerrainFinish = finish { ambient 0.14 diffuse 0.86 specular 0.02 roughness 0.2 };
 
-object {
+// The sun and everything it lights, as one light group: POV-Ray keeps no
+// shadow cache for a group's light, and that cache makes a pixel depend on
+// which pixels were traced before it (threads, tiles).
+light_group {
+  // The sun: parallel rays from the scene's azimuth and altitude.
+  light_source {
+    <-2946.296200,3515.013859,2939.112289>
+    color rgb <1.0, 0.97, 0.92> * 1.25
+    parallel
+    point_at <4.954080,12.865262,-12.137991>
+  }
+  object {
 mesh2 {
   vertex_vectors {
     1485,
@@ -6125,7 +6128,7 @@ mesh2 {
   }
   inside_vector <0, 1, 0>
 }
-}
+  }
 // The block model ([base]): walls from the surface's edge down to a floor at 85.09 m.
 mesh2 {
   vertex_vectors {
@@ -7008,4 +7011,6 @@ mesh2 {
 
 
 
+  global_lights off
+}
 // End of the scene.
