@@ -26,7 +26,7 @@ one_case() {  # name raster net-keys
   # covers the same pixels), the heights' PNG, a plain gradient pigment; no drape, no overlays.
   {
     printf '#version 3.7;\nglobal_settings { assumed_gamma 1.0 ambient_light rgb <1, 1, 1> }\n'
-    awk '/^camera \{/,/^\}/ {print} /^light_source \{/,/^\}/ {print} /^sky_sphere \{/,/^\}/ {print}' "$name.pov"
+    awk '/^camera \{/,/^\}/ {print} /^  light_source \{/,/^  \}/ {print} /^sky_sphere \{/,/^\}/ {print}' "$name.pov"
     printf 'height_field { png "%s-hf.png" smooth\n' "$name"
     printf '  pigment { gradient y color_map { [0 color rgb <0.2, 0.45, 0.2>] [1 color rgb <0.9, 0.9, 0.85>] } }\n'
     grep -E '^  (scale|translate) <' "$name.pov"

@@ -81,8 +81,13 @@ void closeNetworkFileSystems() {
             network.emplace_back(prefix);
     }
     CSLDestroy(prefixes);
-    // One each: GDAL owns its handlers (and deletes them when it is cleaned up).
-    for (const auto& prefix : network) VSIFileManager::InstallHandler(prefix, new NoNetworkFiles);
+    // GDAL owns the handlers in its table and deletes them when it is cleaned up, but installing
+    // over a prefix forgets the handler that was there; keep those, never used again, in reach.
+    static std::vector<VSIFilesystemHandler*> replaced;
+    for (const auto& prefix : network) {
+        replaced.push_back(VSIFileManager::GetHandler(prefix.c_str()));
+        VSIFileManager::InstallHandler(prefix, new NoNetworkFiles);
+    }
 }
 
 void registerAllowedDrivers() {

@@ -19,6 +19,7 @@
 
 #include "core/atomic_file.h"
 #include "core/output_set.h"
+#include "core/png_file.h"
 #include "render/png.h"
 
 extern char** environ;
@@ -334,15 +335,25 @@ std::string failureText(const Watched& w, const RenderRequest& req, const Povray
                                : "povray was killed by a signal";
 }
 
-// POV-Ray's image where the request wants it: re-encoded canonically, or
-// (a tile, stitched later) copied as POV-Ray wrote it.
+// POV-Ray's image where the request wants it: re-encoded canonically (the
+// whole image, or a tile's own rows only, so that stitching reads each pixel
+// once however many tiles there are), or, whole, as POV-Ray wrote it (to be
+// re-encoded once, when the still is finished).
 std::string deliver(const std::filesystem::path& raw, const RenderRequest& req) {
-    if (!req.rawOutput) return writeCanonicalPng(raw, req.png);
-    return writeThroughTemporary(req.png, [&](const std::filesystem::path& staged) {
-        std::error_code ec;
-        std::filesystem::copy_file(raw, staged, ec);
-        return ec ? ec.message() : std::string();
-    });
+    if (!req.rows && req.rawOutput)
+        return writeThroughTemporary(req.png, [&](const std::filesystem::path& staged) {
+            std::error_code ec;
+            std::filesystem::copy_file(raw, staged, ec);
+            return ec ? ec.message() : std::string();
+        });
+    if (!req.rows) return writeCanonicalPng(raw, req.png);
+    PngImage8 image;
+    if (std::string error = readPng8(raw, image); !error.empty()) return error;
+    const size_t rowBytes = static_cast<size_t>(image.width) * image.channels;
+    const int rows = req.rows->last - req.rows->first + 1;
+    if (req.rows->first < 1 || req.rows->last > image.height || rows < 1) return "POV-Ray's image has not the rows asked for";
+    return writePngAtomically(req.png, {image.width, rows, image.channels, false,
+                                        image.pixels.data() + (req.rows->first - 1) * rowBytes});
 }
 
 }  // namespace

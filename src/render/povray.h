@@ -40,9 +40,10 @@ struct RenderRequest {
     /// PNGs): POV-Ray finds them on its library path.
     std::vector<std::filesystem::path> inputFiles;
     /// Rows first..last only (1 = the top; POV-Ray's +SR and +ER): a tile of
-    /// the still, the rest of the image left black. Unset: every row.
+    /// the still; `png` then holds those rows alone. Unset: every row.
     std::optional<RowRange> rows;
-    /// The PNG as POV-Ray wrote it (a tile, to be stitched), not re-encoded.
+    /// Without `rows`: the PNG as POV-Ray wrote it (with its date), for a
+    /// caller that re-encodes it anyway.
     bool rawOutput = false;
     /// Asked every 200 ms; true stops POV-Ray (result.cancelled).
     std::function<bool()> cancelled;

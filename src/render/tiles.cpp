@@ -26,7 +26,7 @@ RenderResult renderTile(const plan::RenderPlan& plan, int index, const TileOptio
     req.sandbox = plan.sandbox;
     req.timeoutSeconds = plan.timeoutS;
     if (plan.tiles > 1) req.rows = RowRange{rows.first, rows.last};
-    req.rawOutput = true;
+    else req.rawOutput = true;  // finishing re-encodes the still once
     req.cancelled = options.cancelled;
     std::error_code ec;
     fs::create_directories(plan.dir / "tiles", ec);
@@ -65,20 +65,23 @@ std::optional<PngImage8> stitchTiles(const plan::RenderPlan& plan, std::string& 
             error = fmt::format("tile {} of {}: {}", k + 1, plan.tiles, e);
             return std::nullopt;
         }
-        if (tile.width != plan.width || tile.height != plan.height || (k > 0 && tile.channels != still.channels)) {
-            error = fmt::format("tile {} of {} is {} x {} with {} channels, not the plan's {} x {}", k + 1, plan.tiles,
-                                tile.width, tile.height, tile.channels, plan.width, plan.height);
+        if (plan.tiles == 1) return tile;  // the still in one piece
+        const plan::TileRows rows = plan::tileRows(plan.height, plan.tiles, k);
+        if (tile.width != plan.width || tile.height != rows.last - rows.first + 1 ||
+            (k > 0 && tile.channels != still.channels)) {
+            error = fmt::format("tile {} of {} is {} x {} with {} channels, not rows {}..{} of the plan's {} x {}", k + 1,
+                                plan.tiles, tile.width, tile.height, tile.channels, rows.first, rows.last, plan.width,
+                                plan.height);
             return std::nullopt;
         }
-        if (k == 0) {
-            if (plan.tiles == 1) return tile;
-            still = tile;  // its own rows, and the size of the whole
-            continue;
-        }
-        const plan::TileRows rows = plan::tileRows(plan.height, plan.tiles, k);
         const size_t rowBytes = static_cast<size_t>(tile.width) * tile.channels;
-        std::memcpy(still.pixels.data() + (rows.first - 1) * rowBytes, tile.pixels.data() + (rows.first - 1) * rowBytes,
-                    static_cast<size_t>(rows.last - rows.first + 1) * rowBytes);
+        if (k == 0) {
+            still.width = plan.width;
+            still.height = plan.height;
+            still.channels = tile.channels;
+            still.pixels.resize(rowBytes * static_cast<size_t>(plan.height));
+        }
+        std::memcpy(still.pixels.data() + (rows.first - 1) * rowBytes, tile.pixels.data(), tile.pixels.size());
     }
     return still;
 }
