@@ -82,10 +82,11 @@ void closeNetworkFileSystems() {
     }
     CSLDestroy(prefixes);
     // GDAL owns the handlers in its table and deletes them when it is cleaned up, but installing
-    // over a prefix forgets the handler that was there; keep those, never used again, in reach.
-    static std::vector<VSIFilesystemHandler*> replaced;
+    // over a prefix forgets the handler that was there; keep those, never used again, in reach
+    // (through a pointer no destructor clears, since the leak check runs after static destructors).
+    static auto* replaced = new std::vector<VSIFilesystemHandler*>;
     for (const auto& prefix : network) {
-        replaced.push_back(VSIFileManager::GetHandler(prefix.c_str()));
+        replaced->push_back(VSIFileManager::GetHandler(prefix.c_str()));
         VSIFileManager::InstallHandler(prefix, new NoNetworkFiles);
     }
 }

@@ -149,9 +149,15 @@ JobResult runJob(const Job& job, const std::vector<double>& xs, const std::vecto
 class Hull {
 public:
     Hull(const std::vector<double>& xs, const std::vector<double>& ys) {
-        OGRMultiPoint points;
-        for (size_t i = 0; i < xs.size(); ++i) points.addGeometryDirectly(new OGRPoint(xs[i], ys[i]));
-        hull_.reset(points.ConvexHull());
+        // The hull of a line through the samples is the samples' hull; a line takes them all in
+        // one array, where a multipoint grows by one point (and one reallocation) at a time.
+        if (xs.size() >= 2) {
+            OGRLineString line;
+            line.setPoints(int(xs.size()), xs.data(), ys.data());
+            hull_.reset(line.ConvexHull());
+        } else if (xs.size() == 1) {
+            hull_ = std::make_unique<OGRPoint>(xs[0], ys[0]);
+        }
         if (hull_) prepared_ = OGRCreatePreparedGeometry(hull_.get());
     }
     ~Hull() {
