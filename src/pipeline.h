@@ -9,8 +9,11 @@
 //     .pov, RenderSpec --render::renderPov--> PNG                  (runSceneJob)
 //
 // Each stage is a free function in its own folder that takes its spec and
-// returns a plain value; this file only wires them together, times them,
-// names the outputs and writes the sidecar.
+// returns a plain value. This header declares what composes them: loadScene
+// and buildSurface (pipeline.cpp: the scene and its samples to a refined
+// surface), compileScene (compile.cpp: the surface to a render plan's .pov),
+// the job (job.cpp: compile, render the tiles, finish) and the sidecar
+// (sidecar.cpp).
 #include <array>
 #include <cstdint>
 #include <filesystem>

@@ -53,6 +53,9 @@ if [ ! -f "$pristine" ]; then
 fi
 
 root=$(mktemp -d /var/tmp/relief-fresh-root.XXXXXX)
+# mktemp makes the folder 0700, and it becomes the chroot's /: a package's user (munge's
+# postinst runs su munge) could not reach /bin/sh. A machine's / is 0755.
+chmod 755 "$root"
 cleanup() { [ "$keep" -eq 1 ] && echo "root kept: $root" || rm -rf "$root"; }
 trap cleanup EXIT
 tar -C "$root" -xf "$pristine"

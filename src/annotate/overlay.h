@@ -18,8 +18,6 @@
 
 namespace relief::annotate {
 
-/// What the overlays say, computed from the scene, its placement and its
-/// camera (pipeline.cpp): the numbers, not how to draw them.
 /// Where the terrain lies on a still, column by column: in each band of
 /// `bandPx` pixels, from its highest point on the image to its lowest (a
 /// terrain seen from above covers what lies between). Made from the terrain's
@@ -32,6 +30,8 @@ struct TerrainOnImage {
     bool covers(double x, double y) const;
 };
 
+/// What the overlays say, computed from the scene, its placement and its
+/// camera (overlayFacts, below): the numbers, not how to draw them.
 struct OverlayFacts {
     std::string credits;  ///< the scene's, or the samples' attribution
     // The legend: the ramp as drawn (linear RGB), over true elevations.

@@ -1,5 +1,5 @@
 #pragma once
-// Stage 4 of 5, the adaptive geometry kind: a mesh2 of far fewer triangles
+// Stage 4 of 6, the adaptive geometry kind: a mesh2 of far fewer triangles
 // where the refined surface is smooth, with no vertex of the full surface
 // further than a tolerance from it. The method is the right-triangulated
 // irregular network (RTIN; Evans, Kirkpatrick and Townsend, "Right-Triangulated

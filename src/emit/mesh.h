@@ -1,5 +1,5 @@
 #pragma once
-// Stage 4 of 5 (part 1). Input: the refined GeoGrid (frame metres) and the
+// Stage 4 of 6 (part 1). Input: the refined GeoGrid (frame metres) and the
 // LookSpec. Output: Mesh,
 // in POV-Ray scene units and axes, with normals and an elevation palette.
 #include <algorithm>

@@ -1,5 +1,5 @@
 #pragma once
-// Stage 4 of 5 (part 2). Input: Mesh, LookSpec and RenderSpec. Output: a POV-Ray scene
+// Stage 4 of 6 (part 2). Input: Mesh, LookSpec and RenderSpec. Output: a POV-Ray scene
 // (.pov) from templates/scene.pov.in with the mesh as a `mesh2`. The same
 // inputs give byte-identical output: every number goes through the
 // locale-free writers of core/number_format.h.

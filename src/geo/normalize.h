@@ -1,5 +1,5 @@
 #pragma once
-// Stage 2 of 5. Input: FrameSpec, NetSpec and the samples (WGS84
+// Stage 2 of 6. Input: FrameSpec, NetSpec and the samples (WGS84
 // lon/lat/elev, geo/samples.h). Output: ControlNet, a GeoGrid (metres,
 // x = east, y = north, z = up) ready for subdivision.
 #include <array>
@@ -61,9 +61,6 @@ std::optional<Frame> chooseFrame(const scene::FrameSpec& spec,
 std::vector<FramePoint> projectSamples(const Frame& frame, const std::vector<GeoSample>& samples,
                                        Diagnostics& diags);
 
-/// Grids the projected samples onto the rectangular net with GDAL's
-/// GDALGridCreate. Linear (Delaunay) interpolation leaves nodes outside the
-/// samples' convex hull empty; those are filled with the nearest sample.
 /// The largest box of `frame` (xmin, ymin, xmax, ymax) inside a lon/lat window
 /// (lon_min, lat_min, lon_max, lat_max; its edges are curves in the frame);
 /// nullopt when the window does not fit in the frame.
@@ -90,6 +87,9 @@ bool layoutNet(const scene::NetSpec& spec, std::array<double, 4> dataBox, double
 /// How far the gridding is, 0..1 (GDAL reports it per row of the net).
 using GridProgressFn = std::function<void(double fraction)>;
 
+/// Grids the projected samples onto the rectangular net with GDAL's
+/// GDALGridCreate. Linear (Delaunay) interpolation leaves nodes outside the
+/// samples' convex hull empty; those are filled with the nearest sample.
 /// `samplesName` names the samples in messages.
 std::optional<ControlNet> gridSamples(const scene::NetSpec& spec, const std::string& samplesName,
                                       const Frame& frame, const std::vector<FramePoint>& points,

@@ -1,5 +1,5 @@
 #pragma once
-// Stage 5 of 5. Input: a .pov file. Output: a PNG rendered by POV-Ray 3.7,
+// Stage 5 of 6. Input: a .pov file. Output: a PNG rendered by POV-Ray 3.7,
 // run in a controlled environment (its own HOME and POVINI, so no user
 // configuration leaks in) and, by default, in a bubblewrap sandbox, with
 // progress reported from its stderr.

@@ -66,7 +66,8 @@ public:
           sectionLoc_(std::move(sectionLoc)) {}
 
     /// Records the section's and every key's location (the value's) in `locs`.
-    void recordLocations(KeyLocations& locs) const {
+    void recordLocations(KeyLocations& locs) {
+        locs_ = &locs;
         locs.file = file_;
         locs.sections[name_] = sectionLoc_;
         if (!table_) return;
@@ -247,6 +248,8 @@ public:
 
     // Reports the keys no getter asked for, with the closest known key.
     void finish() {
+        if (locs_)
+            for (const auto& key : known_) locs_->known.insert(qualified(key));
         if (!table_) return;
         const std::vector<std::string> knownList(known_.begin(), known_.end());
         for (auto&& [k, v] : *table_) {
@@ -266,6 +269,7 @@ private:
     Diagnostics& diags_;
     SourceLoc sectionLoc_;
     std::set<std::string> known_;
+    KeyLocations* locs_ = nullptr;  ///< where finish() records the known keys
 };
 
 const std::vector<std::string> kSections{"samples", "frame",    "net",      "vertical",
@@ -396,11 +400,11 @@ std::optional<SceneSpec> readScene(const std::filesystem::path& path, Diagnostic
     {
         Section s = sectionInto("samples", scene.samples.locs);
         if (!s.present()) {
-            diags.error({file, 0, 0}, "missing section [samples]: give path = \"data.csv\" "
-                                      "(columns lon,lat,elev)");
+            diags.error({file, 0, 0}, "missing section [samples]: give path = \"dem.tif\" (any raster GDAL "
+                                      "reads) or \"data.csv\" (columns lon,lat,elev)");
         } else {
-            s.require("path", "the CSV file of samples (columns lon,lat,elev), relative to the "
-                              "scene file");
+            s.require("path", "the elevations: a raster GDAL reads or a CSV of samples (columns "
+                              "lon,lat,elev), relative to the scene file");
             if (auto p = s.string("path")) {
                 scene.samples.pathAsWritten = *p;
                 scene.samples.path = path.parent_path() / *p;

@@ -1,5 +1,5 @@
 #pragma once
-// Stage 1 of 5. Input: a scene file (TOML). Output: SceneSpec, one typed spec
+// Stage 1 of 6. Input: a scene file (TOML). Output: SceneSpec, one typed spec
 // per stage, every value validated, defaults filled in, and the source location
 // of every key kept in the spec that holds it, so the stage that finds a
 // problem reports it at the key that caused it.
@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -39,9 +40,12 @@ struct KeyLocations {
     std::string file;                               ///< the scene file, as given
     std::map<std::string, SourceLoc> sections;      ///< "net" -> the [net] header
     std::map<std::string, SourceLoc> keys;          ///< "net.spacing_m" -> the key
+    std::set<std::string> known;                    ///< every key the reader reads in these sections
     /// The location of `qualifiedKey` ("section.key"), else of its section, else the file.
+    /// A key the reader does not know is a typo in relief (a test over the sources finds them).
     SourceLoc at(const std::string& qualifiedKey) const;
     bool has(const std::string& qualifiedKey) const { return keys.count(qualifiedKey) > 0; }
+    bool knows(const std::string& qualifiedKey) const { return known.count(qualifiedKey) > 0; }
 };
 
 enum class FrameKind { Utm, Local };

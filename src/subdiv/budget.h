@@ -1,5 +1,5 @@
 #pragma once
-// Stage 3 of 5 (part 3): what a refinement will cost, known before doing it.
+// Stage 3 of 6 (part 3): what a refinement will cost, known before doing it.
 #include <string>
 
 #include "core/diagnostics.h"

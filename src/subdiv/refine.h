@@ -1,5 +1,5 @@
 #pragma once
-// Stage 3 of 5 (part 2). Input: a Grid (control net, metres) and a Scheme.
+// Stage 3 of 6 (part 2). Input: a Grid (control net, metres) and a Scheme.
 // Output: the refined Grid. One generic refiner for every scheme: a tensor
 // product, rows first, then columns, `levels` times.
 #include <span>

@@ -1,5 +1,5 @@
 #pragma once
-// Stage 3 of 5 (part 0). Input: a SchemeSpec, as a scene file or the command
+// Stage 3 of 6 (part 0). Input: a SchemeSpec, as a scene file or the command
 // line names a scheme (family and parameters, a preset, or a mask). Output: the
 // Scheme, every parameter, and what it certifiably gives. The only place a
 // scheme spec becomes a Scheme, so every caller reports the same problems in

@@ -1,5 +1,5 @@
 #pragma once
-// Stage 3 of 5 (part 1): subdivision schemes as data. A scheme is its arity,
+// Stage 3 of 6 (part 1): subdivision schemes as data. A scheme is its arity,
 // one rule (a weight list and where it starts) per child position, and a named
 // boundary rule; one generic refiner (refine.h) applies any of them. Masks and
 // their derivations: docs/schemes.md (from the source papers). A scheme spec

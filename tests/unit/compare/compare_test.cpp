@@ -6,6 +6,7 @@
 
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
+#include "unit/test_dirs.h"
 
 namespace relief::compare {
 namespace {
@@ -16,8 +17,7 @@ const fs::path kImages = fs::path(RELIEF_SOURCE_DIR) / "tests/data/images";
 // rect.png is a.png with a 20 x 10 red rectangle: the heat map is black
 // everywhere else, and exactly those 200 pixels light up.
 TEST(DifferenceImage, LightsUpExactlyTheChangedPixels) {
-    const fs::path out = fs::temp_directory_path() / "relief-compare-heat.png";
-    fs::remove(out);
+    const fs::path out = relief::testing::freshTestDir("relief-compare") / "heat.png";
     ASSERT_EQ(writeDifferenceImage(kImages / "a.png", kImages / "rect.png", out), "");
     OIIO::ImageBuf heat(out.string());
     ASSERT_TRUE(heat.read());

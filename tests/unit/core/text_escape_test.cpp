@@ -15,6 +15,7 @@
 #include "core/text_escape.h"
 #include "emit/svg.h"
 #include "regress/regress.h"
+#include "unit/test_dirs.h"
 
 namespace relief {
 namespace {
@@ -119,8 +120,7 @@ TEST(TextEscape, SvgTextStaysText) {
 // The HTML report and the JUnit XML of `relief test`: a failing case's message
 // (which holds a path, hence anything) stays text in both.
 TEST(TextEscape, TestReportTextStaysText) {
-    const fs::path dir = fs::temp_directory_path() / "relief-report-hostile";
-    fs::remove_all(dir);
+    const fs::path dir = relief::testing::freshTestDir("relief-report-hostile");
     fs::create_directories(dir / "report");
     regress::Manifest m;
     m.file = dir / "manifest.toml";

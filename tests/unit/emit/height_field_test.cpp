@@ -12,6 +12,7 @@
 #include "emit/geometry_kind.h"
 #include "emit/height_field.h"
 #include "emit/mesh.h"
+#include "unit/test_dirs.h"
 
 namespace relief::emit {
 namespace {
@@ -55,9 +56,7 @@ TEST(HeightField, QuantizesNorthFirst) {
 
 // The PNG holds the levels exactly, 16-bit, and the same levels give the same bytes.
 TEST(HeightField, PngRoundTripAndDeterminism) {
-    const fs::path dir = fs::temp_directory_path() / "relief-height-field";
-    fs::remove_all(dir);
-    fs::create_directories(dir);
+    const fs::path dir = relief::testing::freshTestDir("relief-height-field");
     const auto plane = tiltedPlane();
     const HeightField field = quantizeHeights(plane, placeTerrain(plane, {}));
     ASSERT_EQ(writeHeightFieldPng(field, dir / "a.png"), "");
@@ -105,7 +104,7 @@ TEST(HeightField, MaskedNodesAreTransparent) {
         for (int c = 0; c < 4; ++c)
             EXPECT_EQ(drape.pixels[(static_cast<size_t>(2 - r) * 4 + c) * 4 + 3], r == 2 && c == 3 ? 0 : 65535)
                 << r << " " << c;
-    const fs::path png = fs::temp_directory_path() / "relief-hf-masked" / "d.png";
+    const fs::path png = relief::testing::freshTestDir("relief-hf-masked") / "d.png";
     fs::create_directories(png.parent_path());
     ASSERT_EQ(writeDrapePng(drape, png), "");
     OIIO::ImageSpec asStored;  // not premultiplied: the colours under alpha 0 as written

@@ -4,6 +4,7 @@
 
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
+#include "unit/test_dirs.h"
 
 namespace relief::figures {
 namespace {
@@ -22,8 +23,7 @@ TEST(Sweep, CombinationsFirstVariationFastest) {
 
 // Tiles land where the layout says, with white between them and a label strip under each.
 TEST(Sweep, ContactSheetLayout) {
-    const auto dir = std::filesystem::temp_directory_path() / "relief-sheet-test";
-    std::filesystem::create_directories(dir);
+    const auto dir = relief::testing::freshTestDir("relief-sheet-test");
     const float red[3] = {1, 0, 0}, blue[3] = {0, 0, 1};
     OIIO::ImageBuf a(OIIO::ImageSpec(64, 48, 3, OIIO::TypeDesc::UINT8)), b(a.spec());
     OIIO::ImageBufAlgo::fill(a, red);

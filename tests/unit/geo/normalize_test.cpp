@@ -14,33 +14,45 @@ namespace {
 
 using GeographicLib::UTMUPS;
 
-TEST(GeographicLib, UtmRoundTrip) {
-    std::mt19937 rng(7);
-    std::uniform_real_distribution<double> lat(-79, 83), lon(-180, 180);
-    for (int i = 0; i < 200; ++i) {
-        const double la = lat(rng), lo = lon(rng);
-        int zone;
-        bool northp;
-        double x, y, gamma, k, la2, lo2;
-        UTMUPS::Forward(la, lo, zone, northp, x, y, gamma, k);
-        UTMUPS::Reverse(zone, northp, x, y, la2, lo2, gamma, k);
-        EXPECT_NEAR(la2, la, 1e-9);
-        EXPECT_NEAR(std::remainder(lo2 - lo, 360.0), 0.0, 1e-9);
-    }
-}
+// relief's frame conversions: a point on a zone's central meridian at the
+// equator is (500000, 0) in UTM, the southern hemisphere's false northing is
+// 10,000 km, a local frame's origin is (0, 0, 0) with y towards true north;
+// and every point comes back where it started.
+TEST(Frame, GeodeticToFrameAndBack) {
+    Frame utm31;
+    utm31.utmZone = 31;
+    Vec3 p;
+    ASSERT_TRUE(geodeticToFrame(utm31, 0, 3, 12.5, p));
+    EXPECT_NEAR(p.x, 500000, 1e-6);
+    EXPECT_NEAR(p.y, 0, 1e-6);
+    EXPECT_EQ(p.z, 12.5);
+    Frame utm60s;
+    utm60s.utmZone = 60, utm60s.northp = false;
+    ASSERT_TRUE(geodeticToFrame(utm60s, -1e-9, 177, 0, p));
+    EXPECT_NEAR(p.y, 10'000'000, 1e-3);
+    Frame local;
+    local.kind = scene::FrameKind::Local, local.originLatDeg = -36.876, local.originLonDeg = 174.764;
+    ASSERT_TRUE(geodeticToFrame(local, -36.876, 174.764, 0, p));
+    EXPECT_NEAR(std::hypot(p.x, p.y, p.z), 0, 1e-6);
+    ASSERT_TRUE(geodeticToFrame(local, -36.866, 174.764, 0, p));  // 0.01 degrees north: about 1109 m
+    EXPECT_NEAR(p.x, 0, 1e-6);
+    EXPECT_NEAR(p.y, 1109.4, 0.5);
 
-TEST(GeographicLib, LocalCartesianRoundTrip) {
-    const GeographicLib::LocalCartesian lc(-36.876, 174.764, 0);
-    for (double dlat : {-0.01, 0.0, 0.004})
-        for (double dlon : {-0.02, 0.003})
-            for (double h : {-50.0, 0.0, 1234.5}) {
-                double x, y, z, la, lo, hh;
-                lc.Forward(-36.876 + dlat, 174.764 + dlon, h, x, y, z);
-                lc.Reverse(x, y, z, la, lo, hh);
-                EXPECT_NEAR(la, -36.876 + dlat, 1e-11);
-                EXPECT_NEAR(lo, 174.764 + dlon, 1e-11);
-                EXPECT_NEAR(hh, h, 1e-6);
-            }
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> dlat(-0.05, 0.05), dlon(-0.05, 0.05), h(-400, 4000);
+    for (const Frame& frame : {utm60s, local}) {
+        const double lat0 = frame.kind == scene::FrameKind::Local ? -36.876 : -41.29;
+        const double lon0 = frame.kind == scene::FrameKind::Local ? 174.764 : 174.78;
+        for (int i = 0; i < 100; ++i) {
+            const double la = lat0 + dlat(rng), lo = lon0 + dlon(rng), hh = h(rng);
+            double la2 = 0, lo2 = 0, h2 = 0;
+            ASSERT_TRUE(geodeticToFrame(frame, la, lo, hh, p));
+            ASSERT_TRUE(frameToGeodetic(frame, p, la2, lo2, h2));
+            EXPECT_NEAR(la2, la, 1e-9);
+            EXPECT_NEAR(lo2, lo, 1e-9);
+            EXPECT_NEAR(h2, hh, 1e-6);
+        }
+    }
 }
 
 // Samples that form a complete grid, regular in UTM, go through the same

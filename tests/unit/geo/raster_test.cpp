@@ -19,6 +19,7 @@
 
 #include "geo/gdal_setup.h"
 #include "geo/samples.h"
+#include "unit/test_dirs.h"
 
 namespace relief::geo {
 namespace {
@@ -26,9 +27,7 @@ namespace {
 namespace fs = std::filesystem;
 
 fs::path freshDir(const std::string& name) {
-    const fs::path dir = fs::temp_directory_path() / ("relief-raster-" + name);
-    fs::remove_all(dir);
-    fs::create_directories(dir);
+    const fs::path dir = relief::testing::freshTestDir("relief-raster-" + name);
     return dir;
 }
 

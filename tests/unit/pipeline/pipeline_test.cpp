@@ -15,6 +15,7 @@
 
 #include "core/atomic_file.h"
 #include "geo/gdal_setup.h"
+#include "unit/test_dirs.h"
 
 namespace relief {
 namespace {
@@ -24,9 +25,7 @@ namespace fs = std::filesystem;
 const fs::path kSource = RELIEF_SOURCE_DIR;
 
 fs::path freshDir(const std::string& name) {
-    const fs::path dir = fs::temp_directory_path() / ("relief-pipeline-" + name);
-    fs::remove_all(dir);
-    fs::create_directories(dir);
+    const fs::path dir = relief::testing::freshTestDir("relief-pipeline-" + name);
     return dir;
 }
 

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include "unit/test_dirs.h"
 
 namespace relief::regress {
 namespace {
@@ -13,9 +14,7 @@ namespace fs = std::filesystem;
 // Defaults apply to every case, a case overrides them, and every problem is
 // reported at its line.
 TEST(Manifest, DefaultsOverridesAndErrorsAtTheirLines) {
-    const fs::path dir = fs::temp_directory_path() / "relief-manifest-test";
-    fs::remove_all(dir);
-    fs::create_directories(dir);
+    const fs::path dir = relief::testing::freshTestDir("relief-manifest-test");
     std::ofstream(dir / "s.toml") << "[samples]\npath = \"x.csv\"\n";
     std::ofstream(dir / "m.toml") << "[defaults]\nwidth = 200\nfail = 0.01\n"
                                      "[[case]]\nname = \"a\"\nscene = \"s.toml\"\nreferences = \"ref\"\n"
@@ -40,9 +39,7 @@ TEST(Manifest, DefaultsOverridesAndErrorsAtTheirLines) {
 
 // A case's name names its files in the report: no path, no markup, no control characters.
 TEST(Manifest, CaseNamesAreFileNames) {
-    const fs::path dir = fs::temp_directory_path() / "relief-manifest-names";
-    fs::remove_all(dir);
-    fs::create_directories(dir);
+    const fs::path dir = relief::testing::freshTestDir("relief-manifest-names");
     std::ofstream(dir / "s.toml") << "[samples]\npath = \"x.csv\"\n";
     for (const std::string name : {"../../escape", "a/b", ".hidden", "<b>x</b>", "tab\\there", ""}) {
         std::ofstream(dir / "m.toml") << "[[case]]\nname = \"" << name << "\"\nscene = \"s.toml\"\nreferences = \"ref\"\n";
@@ -61,9 +58,7 @@ TEST(Manifest, CaseNamesAreFileNames) {
 // Found by fuzz_manifest: a scene path the system refuses (here too long for
 // it) made std::filesystem throw out of the reader; it is a missing scene.
 TEST(Manifest, AScenePathTheSystemRefusesIsAnError) {
-    const fs::path dir = fs::temp_directory_path() / "relief-manifest-long-path";
-    fs::remove_all(dir);
-    fs::create_directories(dir);
+    const fs::path dir = relief::testing::freshTestDir("relief-manifest-long-path");
     std::ofstream(dir / "m.toml") << "[[case]]\nname = \"a\"\nscene = \"/" << std::string(5000, 'j')
                                   << ".toml\"\nreferences = \"ref\"\n";
     Diagnostics diags;

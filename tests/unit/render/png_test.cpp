@@ -7,6 +7,7 @@
 #include <OpenImageIO/imagebuf.h>
 
 #include "core/atomic_file.h"
+#include "unit/test_dirs.h"
 
 namespace relief::render {
 namespace {
@@ -16,9 +17,7 @@ namespace fs = std::filesystem;
 // Two PNGs with the same pixels but different dates and software give the
 // same bytes once canonical, with the pixels unchanged.
 TEST(CanonicalPng, SamePixelsGiveSameBytes) {
-    const fs::path dir = fs::temp_directory_path() / "relief-png-test";
-    fs::remove_all(dir);
-    fs::create_directories(dir);
+    const fs::path dir = relief::testing::freshTestDir("relief-png-test");
     OIIO::ImageSpec spec(4, 3, 3, OIIO::TypeDesc::UINT8);
     for (const char* when : {"2026:01:01 00:00:00", "2026:11:30 12:00:00"}) {
         OIIO::ImageBuf image(spec);

@@ -2,12 +2,16 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <regex>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "scene/color_ramp.h"
 #include "scene/read_scene.h"
+#include "unit/test_dirs.h"
 
 namespace relief::scene {
 namespace {
@@ -22,8 +26,7 @@ TEST(ParseFraction, NumbersAndFractions) {
 }
 
 TEST(ReadScene, MinimalSceneGetsDefaults) {
-    const auto dir = std::filesystem::temp_directory_path() / "relief-scene-test";
-    std::filesystem::create_directories(dir);
+    const auto dir = relief::testing::freshTestDir("relief-scene-test");
     std::ofstream(dir / "s.csv") << "lon,lat,elev\n";
     std::ofstream(dir / "s.toml") << "[samples]\npath = \"s.csv\"\n";
     Diagnostics diags;
@@ -40,12 +43,41 @@ TEST(ReadScene, MinimalSceneGetsDefaults) {
     std::filesystem::remove_all(dir);
 }
 
+// Every key relief's stages look up by name (`locs.at("net.spacing_m")`,
+// `locs.has(...)`) is a key the reader reads: a typo would silently report a
+// problem at the section instead of the key.
+TEST(ReadScene, EveryKeyTheStagesLookUpIsASceneKey) {
+    const auto dir = relief::testing::freshTestDir("relief-scene-keys-test");
+    std::ofstream(dir / "s.csv") << "lon,lat,elev\n";
+    std::ofstream(dir / "s.toml") << "[samples]\npath = \"s.csv\"\n";
+    Diagnostics diags;
+    const auto s = readScene(dir / "s.toml", diags);
+    ASSERT_TRUE(s);
+    std::set<std::string> known;
+    for (const KeyLocations* locs : {&s->samples.locs, &s->frame.locs, &s->net.locs, &s->subdivision.locs,
+                                     &s->look.locs, &s->geometry.locs, &s->render.locs, &s->overlay.locs,
+                                     &s->limits.locs})
+        known.insert(locs->known.begin(), locs->known.end());
+    ASSERT_GT(known.size(), 50u);
+    const std::regex lookup(R"re(locs\.(?:at|has)\("([a-z_]+\.[a-z_.]+)"\))re");
+    int lookups = 0;
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(std::filesystem::path(RELIEF_SOURCE_DIR) / "src")) {
+        if (!entry.is_regular_file()) continue;
+        std::ifstream in(entry.path());
+        const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        for (std::sregex_iterator m(text.begin(), text.end(), lookup), end; m != end; ++m, ++lookups)
+            EXPECT_TRUE(known.count((*m)[1])) << entry.path().filename().string() << " looks up " << (*m)[1]
+                                              << ", which the scene reader does not read";
+    }
+    EXPECT_GT(lookups, 15);
+    std::filesystem::remove_all(dir);
+}
+
 // Every key's location is kept in the spec of the stage that reads it, so that
 // stage can report a problem at the key; absent keys fall back to their
 // section, then to the file.
 TEST(ReadScene, EachSpecKeepsTheLocationOfEveryKey) {
-    const auto dir = std::filesystem::temp_directory_path() / "relief-scene-locs-test";
-    std::filesystem::create_directories(dir);
+    const auto dir = relief::testing::freshTestDir("relief-scene-locs-test");
     std::ofstream(dir / "s.csv") << "lon,lat,elev\n";
     std::ofstream(dir / "s.toml") << "[samples]\npath = \"s.csv\"\n"
                                      "[net]\nspacing_m = 20\n"
@@ -75,8 +107,7 @@ TEST(ReadScene, EachSpecKeepsTheLocationOfEveryKey) {
 // writes values (an inline table, a quoted string): the block's thickness or
 // false, slope and blend colouring, contours, the sun's date and time.
 TEST(ReadScene, ReportKeysFromTheFileAndFromOverrides) {
-    const auto dir = std::filesystem::temp_directory_path() / "relief-scene-report-test";
-    std::filesystem::create_directories(dir);
+    const auto dir = relief::testing::freshTestDir("relief-scene-report-test");
     std::ofstream(dir / "s.csv") << "lon,lat,elev\n";
     std::ofstream(dir / "s.toml") << "[samples]\npath = \"s.csv\"\n"
                                      "[base]\nthickness_m = 40\n"
