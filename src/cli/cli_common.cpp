@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <iostream>
+#include <sstream>
 #include <tuple>
 
 #include <fmt/format.h>
@@ -17,12 +18,42 @@
 
 namespace relief::cli {
 
-const char* const kExitCodes =
-    "Exit codes: 0 success; 1 internal error; 2 bad input (arguments, scene file, samples,\n"
-    "template, output budget) or an output that cannot be written; 3 POV-Ray missing or failed\n"
-    "(a tile, a Slurm task); 130 interrupted (Ctrl-C): nothing written, a render's plan kept.\n"
-    "relief diff keeps idiff's: 0 pass, 1 warning, 2 failure, 3 images not comparable,\n"
-    "4 file error or bad arguments. relief test: 0 all cases pass, 1 a case failed.";
+const std::vector<ExitCodeRow> kExitCodeRows = {
+    {Exit::Ok, "success"},
+    {Exit::Internal, "internal error (a bug in relief)"},
+    {Exit::BadInput, "bad input: arguments, scene file, samples, template, over the output budget, or an output "
+                     "that cannot be written; every problem is printed as `file:line:col: error: ...`"},
+    {Exit::ToolFailed, "POV-Ray is missing or failed (a tile, a Slurm task: named, with its log); its own error "
+                       "text is printed"},
+    {Exit::Interrupted, "interrupted (Ctrl-C, SIGTERM): every POV-Ray and Slurm task stopped, nothing written, a "
+                        "render's plan kept for `--resume`"},
+};
+
+namespace {
+
+// `text` in lines of at most `width` characters, the later ones indented by `indent`.
+std::string wrapped(const std::string& text, size_t width, size_t indent) {
+    std::string out, line;
+    std::istringstream words(text);
+    for (std::string w; words >> w;) {
+        if (!line.empty() && line.size() + 1 + w.size() > width) {
+            out += line + "\n" + std::string(indent, ' ');
+            line.clear();
+        }
+        line += (line.empty() ? "" : " ") + w;
+    }
+    return out + line;
+}
+
+}  // namespace
+
+std::string exitCodesHelp() {
+    std::string out = "Exit codes:\n";
+    for (const ExitCodeRow& row : kExitCodeRows)
+        out += fmt::format("  {:<4} {}\n", code(row.exit), wrapped(row.meaning, 86, 7));
+    return out + "relief diff keeps idiff's: 0 pass, 1 warning, 2 failure, 3 images not comparable, 4 file error or\n"
+                 "bad arguments. relief test: 0 all cases pass, 1 a case failed.";
+}
 
 void printDiagnostics(const Diagnostics& diags, bool wrote) {
     // In file order, so a user fixes them top to bottom.

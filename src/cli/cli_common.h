@@ -43,7 +43,15 @@ enum class Exit : int {
 };
 inline int code(Exit e) { return static_cast<int>(e); }
 
-extern const char* const kExitCodes;
+/// One exit code every command but diff and test shares, and what it means:
+/// `relief --help` and README.md's table are both this list (tests/cli/exit_codes.sh).
+struct ExitCodeRow {
+    Exit exit;
+    const char* meaning;
+};
+extern const std::vector<ExitCodeRow> kExitCodeRows;
+/// The help's footer: the rows, then diff's and test's own codes.
+std::string exitCodesHelp();
 
 /// A registered subcommand: run() is called when it was parsed; a parse error
 /// exits with parseErrorCode (relief diff keeps idiff's 4).

@@ -16,7 +16,7 @@ int main(int argc, char** argv) {
         "scene file (TOML) -> control net (GeographicLib, GDAL) -> subdivision -> POV-Ray "
         "mesh2 -> PNG",
         relief::kVersion)};
-    app.footer(std::string("\n") + kExitCodes + "\nScene format: docs/scene-format.md");
+    app.footer("\n" + exitCodesHelp() + "\nScene format: docs/scene-format.md");
     app.set_version_flag("--version", fmt::format("relief {}", relief::kVersion));
     app.require_subcommand(1);
 

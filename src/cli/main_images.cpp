@@ -10,7 +10,7 @@ using namespace relief::cli;
 
 int main(int argc, char** argv) {
     CLI::App app{fmt::format("relief {}: image commands", relief::kVersion), "relief"};
-    app.footer(std::string("\n") + kExitCodes);
+    app.footer("\n" + exitCodesHelp());
     app.set_version_flag("--version", fmt::format("relief {}", relief::kVersion));
     app.require_subcommand(1);
 
