@@ -6,6 +6,7 @@
 #include <chrono>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "core/atomic_file.h"
 #include "core/input_file.h"
@@ -98,6 +99,15 @@ void compileOnly(PlannedJob& p, const LoadedScene& loaded, Diagnostics& diags, c
     p.outcome.status = JobStatus::Ok;
 }
 
+// Whether `dir` holds a render plan of some relief (its plan.json says "relief_plan").
+bool isRenderPlan(const fs::path& dir) {
+    std::string problem;
+    const auto text = readInputFile(dir / "plan.json", 1 << 26, problem);
+    if (!text) return false;
+    const auto j = nlohmann::json::parse(*text, nullptr, false);
+    return j.is_object() && j.contains("relief_plan");
+}
+
 // The plan's folder: <still>.plan, or the next free <still>.plan-N when a
 // running relief holds that one (two renders onto one name at once). A plan
 // a run left (relief's, and nobody's now) is replaced; anything else there is
@@ -107,9 +117,11 @@ std::optional<fs::path> planFolder(const fs::path& asked, Diagnostics& diags) {
     for (int n = 1; n < 100; ++n) {
         const fs::path dir = n == 1 ? asked : fs::path(asked.string() + "-" + std::to_string(n));
         if (!fs::exists(fs::symlink_status(dir, ec))) return dir;
-        if (!fs::is_directory(fs::symlink_status(dir, ec)) || !fs::exists(dir / "plan.json", ec)) {
-            diags.error({}, fmt::format("{} is in the way of the render plan: it is not one of relief's (no "
-                                        "plan.json); remove it or give --plan",
+        // Only a folder that reads as a whole plan of this relief's is ever removed: a folder
+        // of the user's that happens to hold a plan.json is in the way, never deleted.
+        if (!fs::is_directory(fs::symlink_status(dir, ec)) || !isRenderPlan(dir)) {
+            diags.error({}, fmt::format("{} is in the way of the render plan: it is not a render plan of this "
+                                        "relief's; remove it or give --plan",
                                         dir.string()));
             return std::nullopt;
         }

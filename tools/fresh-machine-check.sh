@@ -53,12 +53,13 @@ if [ ! -f "$pristine" ]; then
 fi
 
 root=$(mktemp -d /var/tmp/relief-fresh-root.XXXXXX)
-# mktemp makes the folder 0700, and it becomes the chroot's /: a package's user (munge's
-# postinst runs su munge) could not reach /bin/sh. A machine's / is 0755.
-chmod 755 "$root"
 cleanup() { [ "$keep" -eq 1 ] && echo "root kept: $root" || rm -rf "$root"; }
 trap cleanup EXIT
 tar -C "$root" -xf "$pristine"
+# mktemp makes folders 0700 (the root's, and debootstrap's, whose ./ the tar keeps), and the root
+# becomes the chroot's /: a package's own user (munge's postinst runs su munge) could not reach
+# /bin/sh. A machine's / is 0755.
+chmod 755 "$root"
 cp -L /etc/resolv.conf "$root/etc/resolv.conf" 2>/dev/null || true
 
 # A clean clone of HEAD: what is committed, nothing of the work tree.

@@ -109,7 +109,9 @@ int reportFailure(const relief::JobOutcome& outcome, const relief::Diagnostics& 
 int runScene(const SceneOptions& o, relief::SceneJob::Until until) {
     relief::Diagnostics diags;
     Progress progress(o.common.quiet);
-    installInterruptHandler();
+    // Rendering stops its POV-Rays and keeps the plan on Ctrl-C; compiling alone has nothing to
+    // stop, and the default action ends it at once (its outputs are whole or absent).
+    if (until == relief::SceneJob::Until::Png || !o.resume.empty()) installInterruptHandler();
     relief::JobOutcome outcome;
     if (!o.resume.empty()) {
         outcome = relief::resumePlan(o.resume, executionOf(o.execution), o.keepPlan, diags, showing(progress));
@@ -162,7 +164,7 @@ int runRenderTile(const TileOptions& o) {
     installInterruptHandler();
     std::string error;
     if (!o.tasks.empty()) {
-        error = relief::execute::runListedTask(o.tasks, o.index);
+        error = relief::execute::runListedTask(o.tasks, o.index, [] { return interrupted(); });
     } else {
         relief::execute::Options e;
         e.jobs = 1;
@@ -196,12 +198,18 @@ int runFinish(const std::string& planDir, bool keepPlan) {
         return code(Exit::BadInput);
     }
     plan->dir = std::filesystem::absolute(planDir);
+    const auto lock = relief::plan::PlanLock::take(plan->dir);
+    if (!lock) {
+        std::cerr << fmt::format("relief: error: {}: another relief is using this render plan now; wait for it\n",
+                                 terminalText(planDir, 500));
+        return code(Exit::BadInput);
+    }
     // A tile rendered but not right (another plan's, another POV-Ray's) is named by stitching; one not there is counted.
     std::vector<int> missing;
     for (int k = 0; k < plan->tiles; ++k)
         if (!std::filesystem::exists(relief::plan::tileRecordPath(*plan, k))) missing.push_back(k);
     if (!missing.empty()) {
-        std::cerr << fmt::format("relief: error: {} of the plan's {} tiles are not rendered (the first: tile {}): "
+        std::cerr << fmt::format("relief: error: {} of the plan's {} tiles are not rendered (the first: --tile {}): "
                                  "relief render-tile, or relief render --resume {}\n",
                                  missing.size(), plan->tiles, missing.front(), terminalText(shellQuoted(planDir), 500));
         return code(Exit::BadInput);

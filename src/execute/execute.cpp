@@ -44,7 +44,7 @@ Result run(const std::vector<Task>& tasks, const Options& options, const std::fu
                                                : runLocal(tasks, plans, options, progress);
 }
 
-std::string runListedTask(const fs::path& tasksFile, int index) {
+std::string runListedTask(const fs::path& tasksFile, int index, const std::function<bool()>& cancelled) {
     std::string problem;
     const auto list = readInputFile(tasksFile, 64'000'000, problem);
     if (!list)
@@ -66,6 +66,7 @@ std::string runListedTask(const fs::path& tasksFile, int index) {
     render::TileOptions options;
     const char* cpus = std::getenv("SLURM_CPUS_PER_TASK");
     options.threads = cpus ? std::max(1, std::atoi(cpus)) : 1;
+    options.cancelled = cancelled;
     const render::RenderResult r = render::renderTile(*plan, tile, options);
     return r.ok ? "" : fmt::format("tile {} of {}: {}", tile + 1, plan->tiles, r.error);
 }

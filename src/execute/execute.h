@@ -57,6 +57,7 @@ Result run(const std::vector<Task>& tasks, const Options& options, const std::fu
 
 /// One task of a Slurm job array, as the batch script asks for it: line
 /// `index` of the task list `tasksFile`. Returns "" or why it failed.
-std::string runListedTask(const std::filesystem::path& tasksFile, int index);
+std::string runListedTask(const std::filesystem::path& tasksFile, int index,
+                          const std::function<bool()>& cancelled = {});
 
 }  // namespace relief::execute

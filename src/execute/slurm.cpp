@@ -99,9 +99,8 @@ std::map<int, std::string> taskStates(const std::string& job) {
     return states;
 }
 
-// What a task's log says went wrong: relief's own error line (with the lines
-// that go on from it, up to three), else the last line that says "error",
-// else its last line.
+// What a task's log says went wrong: relief's own error line, else the last
+// line that says "error", else its last line.
 std::string logSays(const fs::path& log) {
     std::string problem;
     const auto text = readInputHead(log, 1'000'000, problem);
@@ -179,8 +178,14 @@ Result runSlurm(const std::vector<Task>& tasks, const std::vector<const plan::Re
             if (options.onTaskDone) options.onTaskDone(i, result.taskErrors[i]);
             if (progress && result.taskErrors[i].empty())
                 progress({completed, tasks.size(), std::chrono::duration<double>(Clock::now() - t0).count()});
+            // A still cannot be made without every tile: the rest of the array is cancelled.
+            if (!result.taskErrors[i].empty() && options.stopOnFailure) {
+                runCommand({"scancel", job});
+                result.error = result.taskErrors[i];
+                return result;
+            }
         }
-        if (endedCount < tasks.size()) std::this_thread::sleep_for(std::chrono::milliseconds(250));
+        if (endedCount < tasks.size()) std::this_thread::sleep_for(std::chrono::milliseconds(500));
     }
     for (const auto& e : result.taskErrors)
         if (!e.empty()) {

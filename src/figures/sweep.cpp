@@ -173,7 +173,10 @@ SweepResult runSweep(const SweepRequest& request, const std::function<void(const
     for (const auto& p : planned)
         for (const auto& t : tasksOf(*p.plan)) tasks.push_back(t);
     execute::Options e = request.execution;
-    if (e.jobDir.empty()) e.jobDir = planned.front().plan->dir / "slurm";
+    // Slurm's job folder (script, task list, logs) beside the sheet: kept when a task fails,
+    // since the message names its log, and removed once every still is rendered.
+    const bool ownJobDir = e.jobDir.empty();
+    if (ownJobDir) e.jobDir = request.sheet.parent_path() / (request.sheet.stem().string() + ".slurm");
     const execute::Result rendered = execute::run(tasks, e, [&](const execute::Progress& p) {
         const ProgressEvent tiles{ProgressEvent::Stage::Tiles,
                                   fmt::format("{} of {} rendered, {:.0f} s", p.done, p.total, p.seconds),
@@ -195,6 +198,10 @@ SweepResult runSweep(const SweepRequest& request, const std::function<void(const
         result.status = failed.status;
         dropPlans();
         return result;
+    }
+    if (ownJobDir) {
+        std::error_code ec;
+        fs::remove_all(e.jobDir, ec);
     }
     for (size_t i = 0; i < planned.size(); ++i) {
         PlannedJob& p = planned[i];

@@ -9,8 +9,8 @@
 //                    a hash of all of it and of the files below;
 //   <name>.pov       and the files it reads (a height field's, a drape's PNGs);
 //   net.csv|.asc     the control net, when the run dumps it;
-//   tiles/           tile-K.png (rows first..last of the still) and
-//                    tile-K.json (its record), as each tile is rendered.
+//   tiles/           tile-0003.png (tile 3: rows first..last of the still) and
+//                    tile-0003.json (its record), as each tile is rendered.
 // The steps that use it: render/tiles.h (a tile, and the tiles stitched),
 // execute/ (many tiles at once, here or on Slurm), pipeline.h (finish).
 #include <filesystem>

@@ -316,6 +316,9 @@ Watched watch(pid_t pid, int fd, const RenderRequest& req, std::chrono::steady_c
     if (!current.empty()) w.lastLines.push_back(current);
     while (::waitpid(pid, &w.status, 0) < 0 && errno == EINTR) {
     }
+    // Ctrl-C in a terminal reaches POV-Ray too (one process group): it may end before the loop
+    // above saw the cancellation, and its end is then the interruption's, not a failure.
+    if (req.cancelled && req.cancelled()) w.cancelled = true;
     return w;
 }
 

@@ -65,7 +65,6 @@ std::optional<PngImage8> stitchTiles(const plan::RenderPlan& plan, std::string& 
             error = fmt::format("tile {} of {}: {}", k + 1, plan.tiles, e);
             return std::nullopt;
         }
-        if (plan.tiles == 1) return tile;  // the still in one piece
         const plan::TileRows rows = plan::tileRows(plan.height, plan.tiles, k);
         if (tile.width != plan.width || tile.height != rows.last - rows.first + 1 ||
             (k > 0 && tile.channels != still.channels)) {
@@ -74,6 +73,7 @@ std::optional<PngImage8> stitchTiles(const plan::RenderPlan& plan, std::string& 
                                 plan.height);
             return std::nullopt;
         }
+        if (plan.tiles == 1) return tile;  // the still in one piece
         const size_t rowBytes = static_cast<size_t>(tile.width) * tile.channels;
         if (k == 0) {
             still.width = plan.width;

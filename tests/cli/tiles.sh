@@ -75,7 +75,7 @@ grep -q "tile 3 of 3: it was rendered by POV-Ray 9.9 on .*, the plan made for " 
 rm "$a/tiles/tile-0002.json"
 "$relief" finish "$a" 2> missing.txt; code=$?
 [ "$code" = 2 ] || fail "a missing tile: exit $code, expected 2"
-grep -q "relief: error: 1 of the plan's 3 tiles are not rendered (the first: tile 2)" missing.txt || { fail "missing:"; cat missing.txt; }
+grep -q "relief: error: 1 of the plan's 3 tiles are not rendered (the first: --tile 2)" missing.txt || { fail "missing:"; cat missing.txt; }
 
 # 5. A tile that fails: the render stops, naming the tile and POV-Ray's words; nothing written.
 mkdir -p bad && sed 's/^#version 3.7;/#version 3.7;\nsphere { <0,0,0>, 1 pigment { colour Nonexistent } }/' \

@@ -60,10 +60,12 @@ mkdir -p bad && sed 's/^#version 3.7;/#version 3.7;\nsphere { <0,0,0>, 1 pigment
 "$relief" render -q "$small" --templates bad --tiles 3 --executor slurm -o failed/x.png 2> failed.txt
 code=$?
 [ "$code" = 3 ] || fail "a failing task: exit $code, expected 3"
-grep -Eq "^task 0 \(Slurm job [0-9]+_0, tile 1 of 3\) FAILED: tile 1 of 3: File 'scene.pov' line [0-9]+: Parse Error: No matching } in 'pigment'.*; its log: $work/failed/x.plan/slurm/logs/task-0.log$" failed.txt ||
+# Every task fails; the first seen to end is named and the rest of the array is cancelled.
+grep -Eq "^task ([0-2]) \(Slurm job [0-9]+_\1, tile [1-3] of 3\) FAILED: tile [1-3] of 3: File 'scene.pov' line [0-9]+: Parse Error: No matching } in 'pigment'.*; its log: $work/failed/x.plan/slurm/logs/task-\1.log$" failed.txt ||
   { fail "a failing task:"; cat failed.txt; }
 [ -e failed/x.png ] && fail "a failing task: a still was written"
-[ -s failed/x.plan/slurm/logs/task-0.log ] || fail "a failing task: no log"
+log=$(sed -n 's/.*; its log: \(.*\)$/\1/p' failed.txt | head -1)
+[ -s "$log" ] || fail "a failing task: no log at '$log'"
 
 # 5. A task whose plan this machine does not see.
 printf '0\t%s\n' "$work/nowhere/x.plan" > tasks.txt
