@@ -357,8 +357,7 @@ JobOutcome runSceneJob(const SceneJob& job, Diagnostics& diags, const ProgressFn
 
 JobOutcome resumePlan(const fs::path& planDir, const execute::Options& execution, bool keepPlan, Diagnostics& diags,
                       const ProgressFn& progress) {
-    JobOutcome outcome;
-    outcome.plan = planDir;
+    JobOutcome outcome;  // without a plan to resume until it is read and ours
     auto plan = plan::readPlan(planDir, diags);
     if (!plan) return outcome;
     plan->dir = fs::absolute(planDir);
@@ -367,6 +366,7 @@ JobOutcome resumePlan(const fs::path& planDir, const execute::Options& execution
         diags.error({(plan->dir / "plan.json").string(), 0, 0}, "another relief is rendering this plan now");
         return outcome;
     }
+    outcome.plan = planDir;
     outcome.paths = outputPathsFor(plan->still);
     if (!renderTiles(*plan, execution, outcome, diags, progress)) return outcome;
     OutputSet outputs;

@@ -13,7 +13,7 @@
 #include "core/atomic_file.h"
 #include "curves/curve_file.h"
 #include "curves/hausdorff.h"
-#include "emit/svg.h"
+#include "plot/svg.h"
 #include "core/number_format.h"
 #include "measure/compare_geometry.h"
 #include "measure/profile.h"

@@ -122,7 +122,8 @@ int runScene(const SceneOptions& o, relief::SceneJob::Until until) {
         outcome = relief::runSceneJob(job, diags, showing(progress));
     }
     progress.done();
-    if (outcome.status != relief::JobStatus::Ok) return reportFailure(outcome, diags, o.common.scene);
+    if (outcome.status != relief::JobStatus::Ok)
+        return reportFailure(outcome, diags, o.resume.empty() ? o.common.scene : o.resume);
     printDiagnostics(diags, true);  // warnings
     if (!o.common.quiet && outcome.compiled) printWritten(outcome, until == relief::SceneJob::Until::Png);
     if (!o.common.quiet && !outcome.compiled)

@@ -5,7 +5,7 @@
 #include <fmt/format.h>
 
 #include "core/number_format.h"
-#include "emit/svg.h"
+#include "plot/svg.h"
 #include "subdiv/refine.h"
 #include "subdiv/resolve.h"
 
@@ -23,7 +23,7 @@ std::optional<CurveFigure> curveFigure(const curves::CurveFile& polygon, const s
     std::vector<Vec3> control;
     for (const auto& p : polygon.points) control.push_back({p.x, p.y, 0});
     CurveFigure figure;
-    std::vector<emit::SvgCurve> drawn;
+    std::vector<plot::SvgCurve> drawn;
     for (const CurveVariant& variant : variants) {
         const auto resolved = subdiv::resolveScheme(variant.scheme, diags);
         if (!resolved) return std::nullopt;
@@ -58,7 +58,7 @@ std::optional<CurveFigure> curveFigure(const curves::CurveFile& polygon, const s
         drawn.push_back({label, file.points, polygon.closed});
         figure.refined.push_back(std::move(file));
     }
-    figure.svg = emit::curvesSvg(title, {"control polygon", polygon.points, polygon.closed}, drawn);
+    figure.svg = plot::curvesSvg(title, {"control polygon", polygon.points, polygon.closed}, drawn);
     return figure;
 }
 

@@ -8,7 +8,7 @@
 #include <GeographicLib/GeodesicLine.hpp>
 
 #include "core/number_format.h"
-#include "emit/svg.h"
+#include "plot/svg.h"
 #include "geo/profile.h"
 
 namespace relief::measure {
@@ -170,7 +170,7 @@ std::string formatDistance(double m) {
 
 std::string comparisonMapSvg(const GeometryComparison& r, const std::string& a,
                              const std::string& b, const std::string& frame) {
-    using emit::SvgCurve;
+    using plot::SvgCurve;
     auto lines = [](const curves::CurveSet& set) {
         std::vector<SvgCurve> out;
         for (const auto& c : set) {
@@ -184,8 +184,8 @@ std::string comparisonMapSvg(const GeometryComparison& r, const std::string& a,
     // One colour per level; a solid, b dashed.
     static constexpr const char* kLevelColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd",
                                                     "#ff7f0e", "#8c564b", "#e377c2", "#17becf"};
-    std::vector<emit::SvgLayer> layers{{"profiles", {}, "#888", true}};
-    std::vector<emit::SvgMarker> markers;
+    std::vector<plot::SvgLayer> layers{{"profiles", {}, "#888", true}};
+    std::vector<plot::SvgMarker> markers;
     std::string levels;
     for (size_t i = 0; i < r.contours.size(); ++i) {
         const auto& c = r.contours[i];
@@ -198,10 +198,10 @@ std::string comparisonMapSvg(const GeometryComparison& r, const std::string& a,
     }
     auto& profiles = layers.front();
     for (const auto& p : r.profiles) profiles.lines.push_back({"", p.path, false});
-    emit::SvgAxes axes{true, 1, fmt::format("x (m, {})", frame), "y (m)"};
+    plot::SvgAxes axes{true, 1, fmt::format("x (m, {})", frame), "y (m)"};
     if (layers.size() > 1) layers[1].label += " (" + a + ")";
     if (layers.size() > 2) layers[2].label += " (" + b + ")";
-    return emit::plotSvg(fmt::format("contour lines at {} m (a solid, b dashed); circles: where H is reached",
+    return plot::plotSvg(fmt::format("contour lines at {} m (a solid, b dashed); circles: where H is reached",
                                              levels),
                                  layers, markers, axes);
 }

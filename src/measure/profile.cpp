@@ -5,7 +5,7 @@
 
 #include <fmt/format.h>
 
-#include "emit/svg.h"
+#include "plot/svg.h"
 
 namespace relief::measure {
 
@@ -45,10 +45,10 @@ std::string profileSvg(const SurfaceProfile& p, const std::string& sceneName,
     used = exaggeration > 0
                ? exaggeration
                : std::max(1.0, std::round(0.3 * p.lengthM / std::max(p.zMaxM - p.zMinM, 1e-9)));
-    const emit::SvgAxes axes{true, used, "distance along the geodesic (m)", "elevation (m)"};
+    const plot::SvgAxes axes{true, used, "distance along the geodesic (m)", "elevation (m)"};
     const std::string title = fmt::format("{}: profile, {:.0f} m, vertical exaggeration {:g}", sceneName,
                                           p.lengthM, used);
-    return emit::curvesSvg(title, {"control net (bilinear)", p.control.points, false},
+    return plot::curvesSvg(title, {"control net (bilinear)", p.control.points, false},
                            {{refinedLabel, p.refined.points, false}}, axes);
 }
 

@@ -327,6 +327,8 @@ std::vector<CaseResult> runCases(const Manifest& m, const RunOptions& o, const C
         if (!error.empty()) {
             r.status = CaseStatus::Error;
             r.message = "POV-Ray failed: " + error;
+            std::error_code ec;  // the report is copied elsewhere: no .pov or PNGs of a plan left in it
+            fs::remove_all(planned[i].plan->dir, ec);
         } else if (!finishPlan(*planned[i].plan, planned[i].outputs(), true, true, false, planned[i].outcome, diags)) {
             r.status = CaseStatus::Error;
             r.message = errorsOf(diags);

@@ -13,7 +13,7 @@
 #include <string>
 
 #include "core/text_escape.h"
-#include "emit/svg.h"
+#include "plot/svg.h"
 #include "regress/regress.h"
 #include "unit/test_dirs.h"
 
@@ -98,12 +98,12 @@ TEST(TextEscape, OneLineAndExcerpts) {
 // Every hostile title and label comes out of the SVG as the text it was.
 TEST(TextEscape, SvgTextStaysText) {
     for (const std::string& s : kHostile) {
-        emit::SvgLayer layer{s, {{s, {{0, 0}, {1, 1}}}}, "", false, false};
-        emit::SvgAxes axes;
+        plot::SvgLayer layer{s, {{s, {{0, 0}, {1, 1}}}}, "", false, false};
+        plot::SvgAxes axes;
         axes.show = true;
         axes.xLabel = s;
         axes.yLabel = s;
-        const std::string svg = emit::plotSvg(s, {layer}, {{{0, 0}, {1, 1}, s}}, axes);
+        const std::string svg = plot::plotSvg(s, {layer}, {{{0, 0}, {1, 1}, s}}, axes);
         XmlTree xml(svg);
         ASSERT_TRUE(xml.root) << "not well-formed XML: " << svg.substr(0, 300);
         std::string text;

@@ -6,7 +6,7 @@
 
 #include "curves/curve_file.h"
 
-namespace relief::emit {
+namespace relief::plot {
 
 struct SvgCurve {
     std::string label;
@@ -47,4 +47,4 @@ std::string plotSvg(const std::string& title, const std::vector<SvgLayer>& layer
 std::string curvesSvg(const std::string& title, const SvgCurve& control,
                       const std::vector<SvgCurve>& curves, const SvgAxes& axes = {});
 
-}  // namespace relief::emit
+}  // namespace relief::plot

@@ -1,4 +1,4 @@
-#include "emit/svg.h"
+#include "plot/svg.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 
 #include "core/text_escape.h"
 
-namespace relief::emit {
+namespace relief::plot {
 
 namespace {
 
@@ -116,4 +116,4 @@ std::string curvesSvg(const std::string& title, const SvgCurve& control,
     return plotSvg(title, layers, {}, axes);
 }
 
-}  // namespace relief::emit
+}  // namespace relief::plot
