@@ -155,6 +155,10 @@ int runTest(const TestOptions& o) {
                                      r.seconds, relief::terminalText(r.message))
                       << std::flush;
         });
+    if (interrupted()) {
+        std::cerr << "relief test: interrupted; no report written\n";
+        return code(Exit::Interrupted);
+    }
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     relief::regress::writeReport(*manifest, results, ro, wall);
     size_t failed = 0;
