@@ -89,7 +89,8 @@ run_in_root() {  # run_in_root LOG COMMAND
     mount --bind "$root" "$root"
     mount -t proc proc "$root/proc"
     mount --rbind /dev "$root/dev"
-    mount -t sysfs sysfs "$root/sys"
+    # /sys with what is mounted below it, cgroups included, as on a real machine (slurmd needs them).
+    mount --rbind /sys "$root/sys"
     mount --bind "$cache/archives" "$root/var/cache/apt/archives"
     exec chroot "$root" /usr/bin/env -i HOME=/root TERM=dumb LANG=C.UTF-8 \
       PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin \

@@ -97,22 +97,28 @@ for f in png pov json; do [ -e "out/slow.$f" ] && fail "timeout: slow.$f was wri
 # 7. The output folder made read-only while POV-Ray renders: exit 2, the previous set untouched.
 #    (As root, permissions bind nobody: the renders run as the user nobody.)
 as_user=(); [ "$(id -u)" = 0 ] && as_user=(setpriv --reuid=nobody --regid=nogroup --clear-groups)
-mkdir -p ro keep && { [ "$(id -u)" = 0 ] && chown nobody ro; true; }
-"${as_user[@]}" "$relief" render -q --no-sandbox "$scene" -o ro/still.png || fail "read-only: the first render"
-cp ro/still.png ro/still.pov ro/still.json keep/
-"${as_user[@]}" "$relief" render -q --no-sandbox "$scene" --set subdivision.omega=0.31 -o ro/still.png 2> ro-err.txt &
-pid=$!
-for _ in $(seq 300); do povray_of "$pid" && break; sleep 0.05; done
-chmod a-w ro
-wait "$pid"; code=$?
-chmod u+w ro
-[ "$code" = 2 ] || { fail "read-only mid-render: exit $code, expected 2"; cat ro-err.txt; }
-grep -q "^relief: error: cannot write ro/still.png: Permission denied" ro-err.txt && grep -q "nothing written" ro-err.txt ||
-  { fail "read-only: not 'cannot write ... nothing written':"; cat ro-err.txt; }
-same_set ro/still keep/still || fail "read-only mid-render: the previous set changed"
-# Writable again, the next run removes the private folder the refused one could not.
-"${as_user[@]}" "$relief" render -q --no-sandbox "$src/tests/golden/small/scene.toml" -o ro/small.png || fail "read-only: after"
-[ -z "$(ls -A ro | grep '^\.relief-')" ] || fail "read-only: private folders left: $(ls -A ro | tr '\n' ' ')"
+# nobody must reach relief and the scenes: a clone under /root (0700) is out of its reach.
+if [ "${#as_user[@]}" -gt 0 ] && ! "${as_user[@]}" sh -c 'test -x "$1" && test -r "$2" && test -r "$3"' _ \
+     "$relief" "$scene" "$src/tests/golden/small/scene.toml"; then
+  echo "SKIP 7 (read-only mid-render): the user nobody cannot reach $relief and the scenes"
+else
+  mkdir -p ro keep && { [ "$(id -u)" = 0 ] && chown nobody ro; true; }
+  "${as_user[@]}" "$relief" render -q --no-sandbox "$scene" -o ro/still.png || fail "read-only: the first render"
+  cp ro/still.png ro/still.pov ro/still.json keep/
+  "${as_user[@]}" "$relief" render -q --no-sandbox "$scene" --set subdivision.omega=0.31 -o ro/still.png 2> ro-err.txt &
+  pid=$!
+  for _ in $(seq 300); do povray_of "$pid" && break; sleep 0.05; done
+  chmod a-w ro
+  wait "$pid"; code=$?
+  chmod u+w ro
+  [ "$code" = 2 ] || { fail "read-only mid-render: exit $code, expected 2"; cat ro-err.txt; }
+  grep -q "^relief: error: cannot write ro/still.png: Permission denied" ro-err.txt && grep -q "nothing written" ro-err.txt ||
+    { fail "read-only: not 'cannot write ... nothing written':"; cat ro-err.txt; }
+  same_set ro/still keep/still || fail "read-only mid-render: the previous set changed"
+  # Writable again, the next run removes the private folder the refused one could not.
+  "${as_user[@]}" "$relief" render -q --no-sandbox "$src/tests/golden/small/scene.toml" -o ro/small.png || fail "read-only: after"
+  [ -z "$(ls -A ro | grep '^\.relief-')" ] || fail "read-only: private folders left: $(ls -A ro | tr '\n' ' ')"
+fi
 
 # 8. A sweep whose second value is bad renders nothing.
 "$relief" sweep "$src/tests/golden/small/scene.toml" --vary subdivision.omega=1/64,abc -o sweep/sheet.png 2> sweep.txt
