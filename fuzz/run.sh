@@ -2,7 +2,7 @@
 # Runs one fuzz target for SECONDS (or, with RUNS=N in the environment, N executions) on a corpus
 # seeded from the project's own files of its kind; a finding (crash, leak, undefined behaviour,
 # timeout) fails it and leaves the input as crash-* / leak-* / timeout-* in the corpus folder.
-# Usage: fuzz/run.sh TARGET_BINARY scene|samples|curve|manifest|cpt|vrt CORPUS_DIR SECONDS
+# Usage: fuzz/run.sh TARGET_BINARY scene|samples|curve|manifest|cpt|vrt|plan CORPUS_DIR SECONDS
 set -u
 bin=$(realpath "$1") kind=$2 corpus=$3 seconds=$4
 src=$(cd "$(dirname "$0")/.." && pwd)
@@ -15,6 +15,7 @@ case "$kind" in
   manifest) seed "$src"/tests/golden/manifest.toml "$src"/tests/cli/report/manifest.toml ;;
   cpt) seed "$src"/scenes/palettes/*.cpt "$src"/tests/cli/bad/*/*.cpt ;;
   vrt) seed "$src"/tests/cli/bad/*/*.vrt "$src"/tests/data/rasters/*.vrt ;;
+  plan) seed "$src"/tests/data/plans/*.json ;;
   *) echo "unknown kind $kind"; exit 2 ;;
 esac
 limit=(-max_total_time="$seconds")

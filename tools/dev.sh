@@ -74,7 +74,7 @@ case "$mode" in
     build build-asan -DCMAKE_BUILD_TYPE=Debug -DRELIEF_SANITIZE=ON -DRELIEF_BUILD_BENCH=OFF
     (cd build-asan && ctest --output-on-failure -j "$jobs" -L "unit|cli")
     echo "== the readers under libFuzzer (AddressSanitizer + UBSan), ${RELIEF_FUZZ_SECONDS:-30} s each"
-    TARGETS="fuzz_scene fuzz_samples fuzz_curve fuzz_manifest fuzz_cpt fuzz_vrt" \
+    TARGETS="fuzz_scene fuzz_samples fuzz_curve fuzz_manifest fuzz_cpt fuzz_vrt fuzz_plan" \
       build build-fuzz -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRELIEF_FUZZ=ON \
         -DRELIEF_BUILD_TESTS=OFF -DRELIEF_BUILD_BENCH=OFF -DRELIEF_FUZZ_SECONDS="${RELIEF_FUZZ_SECONDS:-30}"
     (cd build-fuzz && ctest --output-on-failure -j "$jobs" -L fuzz)
