@@ -17,13 +17,17 @@ cd "$work"
 ratio() { echo "scale=3; $1 / $2" | bc -l; }
 sidecar() { sed -n "s/.*\"$2\": \\([0-9.e+-]*\\).*/\\1/p" "$1" | head -1; }
 
-one=() two=()
-for run in 1 2 3; do
-  one+=("$(time_of "$relief" render -q "$scene" "${size[@]}" --tiles 1 -o one/still.png)")
-  two+=("$(time_of "$relief" render -q "$scene" "${size[@]}" --tiles 2 --jobs 2 -o two/still.png)")
-done
+# pair A B: runs the commands A and B alternately, three times each; their medians in $ma and $mb.
+pair() {
+  local a=() b=() run
+  for run in 1 2 3; do a+=("$($1)"); b+=("$($2)"); done
+  ma=$(median "${a[@]}") mb=$(median "${b[@]}")
+}
+
+whole() { time_of "$relief" render -q "$scene" "${size[@]}" --tiles 1 -o one/still.png; }
+tiled() { time_of "$relief" render -q "$scene" "${size[@]}" --tiles 2 --jobs 2 -o two/still.png; }
+pair whole tiled; m1=$ma m2=$mb
 cmp -s one/still.png two/still.png || echo "warning: the tiled still differs"
-m1=$(median "${one[@]}") m2=$(median "${two[@]}")
 echo "3840 x 2160 default scene: --tiles 1 $m1 s, --tiles 2 --jobs 2 $m2 s, ratio $(ratio "$m2" "$m1")"
 for f in one two; do
   p=$(sidecar $f/still.json povray_parse) t=$(sidecar $f/still.json povray_trace)
@@ -33,19 +37,13 @@ done
 bash "$src/tests/slurm/cluster.sh" start "$work/cluster" >/dev/null || { echo "no Slurm cluster: skipped"; exit 0; }
 trap 'bash "$src/tests/slurm/cluster.sh" stop "$work/cluster" >/dev/null; rm -rf "$work"' EXIT
 export SLURM_CONF="$work/cluster/slurm.conf"
-loc=() slu=()
-for run in 1 2 3; do
-  loc+=("$(time_of "$relief" render -q "$scene" "${size[@]}" --tiles 2 --jobs 2 -o loc/still.png)")
-  slu+=("$(time_of "$relief" render -q "$scene" "${size[@]}" --tiles 2 --executor slurm -o slu/still.png)")
-done
+here() { time_of "$relief" render -q "$scene" "${size[@]}" --tiles 2 --jobs 2 -o loc/still.png; }
+slurm() { time_of "$relief" render -q "$scene" "${size[@]}" --tiles 2 --executor slurm -o slu/still.png; }
+pair here slurm; ml=$ma ms=$mb
 cmp -s loc/still.png slu/still.png || echo "warning: Slurm's still differs"
-ml=$(median "${loc[@]}") ms=$(median "${slu[@]}")
 echo "--tiles 2: here $ml s, Slurm $ms s: overhead $(echo "$ms - $ml" | bc -l) s, ratio $(ratio "$ms" "$ml")"
 
-tl=() ts=()
-for run in 1 2 3; do
-  tl+=("$(time_of "$relief" test "$src/tests/golden/manifest.toml" --jobs 2 --report tl)")
-  ts+=("$(time_of "$relief" test "$src/tests/golden/manifest.toml" --jobs 2 --executor slurm --report ts)")
-done
-ml=$(median "${tl[@]}") ms=$(median "${ts[@]}")
+test_here() { time_of "$relief" test "$src/tests/golden/manifest.toml" --jobs 2 --report tl; }
+test_slurm() { time_of "$relief" test "$src/tests/golden/manifest.toml" --jobs 2 --executor slurm --report ts; }
+pair test_here test_slurm; ml=$ma ms=$mb
 echo "relief test (17 cases) --jobs 2: here $ml s, Slurm $ms s, ratio $(ratio "$ms" "$ml")"
