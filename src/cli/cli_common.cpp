@@ -1,6 +1,7 @@
 #include "cli/cli_common.h"
 
 #include <signal.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -110,6 +111,7 @@ bool isImageCommand(const char* name) {
 }
 
 int runCommands(CLI::App& app, const std::vector<Command>& commands, int argc, char** argv) {
+    raiseOpenFileLimit();
     try {
         app.parse(argc, argv);
     } catch (const CLI::Success& e) {
@@ -133,11 +135,21 @@ int runCommands(CLI::App& app, const std::vector<Command>& commands, int argc, c
     }
 }
 
+void raiseOpenFileLimit() {
+    struct rlimit files {};
+    if (::getrlimit(RLIMIT_NOFILE, &files) != 0 || files.rlim_cur >= files.rlim_max) return;
+    files.rlim_cur = files.rlim_max;
+    ::setrlimit(RLIMIT_NOFILE, &files);  // best effort: a refusal leaves the limit as it was
+}
+
+void addTilesOption(CLI::App* app, ExecutionOptions& o) {
+    app->add_option("--tiles", o.tiles, "strips of the still, each rendered by its own POV-Ray (default 1); "
+                                        "the same bytes for any number")
+        ->check(CLI::Range(1, 100000));
+}
+
 void addExecutionOptions(CLI::App* app, ExecutionOptions& o, bool tiles, const char* jobsHelp) {
-    if (tiles)
-        app->add_option("--tiles", o.tiles, "strips of the still, each rendered by its own POV-Ray (default 1); "
-                                            "the same bytes for any number")
-            ->check(CLI::Range(1, 100000));
+    if (tiles) addTilesOption(app, o);
     app->add_option("--jobs,-j", o.jobs, jobsHelp)->check(CLI::Range(0, 100000));
     app->add_option("--executor", o.executor, "where the renders run: local (this machine, default) or slurm (a "
                                               "job array on the cluster SLURM_CONF names; docs/distributed.md)")

@@ -135,8 +135,13 @@ int runTest(const TestOptions& o) {
         printDiagnostics(diags, false);
         return code(Exit::BadInput);
     }
+    if (const std::string refusal = relief::regress::ReportFolder::refusal(o.report); !refusal.empty()) {
+        std::cerr << "relief: error: " << terminalText(refusal, 1000) << '\n';
+        return code(Exit::BadInput);
+    }
+    relief::regress::ReportFolder report(o.report);
     relief::regress::RunOptions ro;
-    ro.reportDir = o.report;
+    ro.reportDir = report.staged();
     ro.templatesDir = findTemplates(o.templates);
     ro.jobs = o.jobs;
     ro.update = o.update;
@@ -161,6 +166,7 @@ int runTest(const TestOptions& o) {
     }
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     relief::regress::writeReport(*manifest, results, ro, wall);
+    report.publish();
     size_t failed = 0;
     for (const auto& r : results)
         failed += r.status == relief::regress::CaseStatus::Fail ||

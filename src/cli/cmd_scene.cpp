@@ -240,14 +240,20 @@ void addCommonSceneOptions(CLI::App* sub, SceneOptions& o, const char* outputHel
                     "lighting.datetime=2026-06-21T09:00:00+01:00); repeatable");
 }
 
-void addRenderOptions(CLI::App* sub, SceneOptions& o) {
+// `render` renders the plan it makes; `plan` only writes it (and keeps it), so where and how
+// many tiles run is not its to take.
+void addRenderOptions(CLI::App* sub, SceneOptions& o, bool renders) {
     sub->add_option("--dump-net", o.dumpNet, "also write the control net (.csv or .asc)");
     sub->add_flag("--no-sandbox", o.common.noSandbox,
                   "run POV-Ray without its bubblewrap sandbox (only for scenes you trust; see docs/security.md)");
+    sub->add_option("--plan", o.plan, "the render plan's folder (default: <still>.plan beside the still)");
+    if (!renders) {
+        addTilesOption(sub, o.execution);
+        return;
+    }
     addExecutionOptions(sub, o.execution, true,
                         "tiles at once (0: as many as cores here, each POV-Ray with its share of them; on Slurm, as "
                         "many as the cluster runs)");
-    sub->add_option("--plan", o.plan, "the render plan's folder (default: <still>.plan beside the still)");
     sub->add_flag("--keep-plan", o.keepPlan, "keep the plan (its .pov, PNGs and tiles) after the still is made");
 }
 
@@ -266,7 +272,7 @@ void addSceneCommands(CLI::App& app, std::vector<Command>& out) {
         "render", "compile into a render plan, render its tiles with POV-Ray (here or on Slurm) and finish the still "
                   "(.png, .pov and .json sidecar)");
     addCommonSceneOptions(render, *o, "the PNG to write (default: [render] output, else out/<scene name>.png)", false);
-    addRenderOptions(render, *o);
+    addRenderOptions(render, *o, true);
     render->add_option("--resume", o->resume, "render a kept plan's missing tiles and finish it (no scene file)");
     render->callback([render, o] {
         if (o->resume.empty() && o->common.scene.empty()) throw CLI::RequiredError("scene");
@@ -281,7 +287,7 @@ void addSceneCommands(CLI::App& app, std::vector<Command>& out) {
                 "finish) and print its path");
     addCommonSceneOptions(plan, *o, "the PNG the plan makes (default: [render] output, else out/<scene name>.png)",
                           true);
-    addRenderOptions(plan, *o);
+    addRenderOptions(plan, *o, false);
     out.push_back({plan, [o] { return runPlan(*o); }});
 
     auto t = std::make_shared<TileOptions>();

@@ -121,119 +121,145 @@ SceneJob jobOf(const SweepRequest& request, const std::vector<std::pair<std::str
     return job;
 }
 
+// One sweep between its phases: its combinations, their plans and its one set
+// of outputs. Each phase returns false when the sweep stops there (the failure
+// reported with its Finished event); the plans go with the run.
+class SweepRun {
+public:
+    SweepRun(const SweepRequest& request, const std::function<void(const SweepEvent&)>& onEvent)
+        : request_(request), onEvent_(onEvent), combos_(combinations(request.variations)),
+          stills_(request.sheet.parent_path() / (request.sheet.stem().string() + "-stills")) {}
+    SweepRun(const SweepRun&) = delete;
+    ~SweepRun() {
+        std::error_code ec;
+        for (auto& p : planned_)
+            if (p.plan) fs::remove_all(p.plan->dir, ec);
+    }
+
+    // Every combination read and checked before any is rendered: a bad value
+    // anywhere stops the sweep with nothing written.
+    bool checkAll(SweepResult& result) {
+        for (size_t i = 0; i < combos_.size(); ++i) {
+            Diagnostics diags;
+            if (loadScene(request_.scenePath, diags, jobOf(request_, combos_[i], {}).overrides)) continue;
+            const JobOutcome refused;
+            return stopped(i + 1, labelOf(combos_[i]), refused, diags, JobStatus::BadInput, result);
+        }
+        return true;
+    }
+
+    bool planAll(SweepResult& result) {
+        for (size_t i = 0; i < combos_.size(); ++i) {
+            SceneJob job = jobOf(request_, combos_[i], stills_ / fmt::format("{:03}.png", i + 1));
+            job.outputs = &outputs_;
+            emit({SweepEvent::Kind::Started, i + 1, combos_.size(), labelOf(combos_[i])});
+            Diagnostics diags;
+            planned_.push_back(planJob(job, diags, {}));
+            const JobOutcome& outcome = planned_.back().outcome;
+            if (outcome.status != JobStatus::Ok)
+                return stopped(i + 1, labelOf(combos_[i]), outcome, diags, outcome.status, result);
+        }
+        return true;
+    }
+
+    // All the plans' tiles at once, here or on Slurm.
+    bool renderAll(SweepResult& result) {
+        std::vector<execute::Task> tasks;
+        for (const auto& p : planned_)
+            for (const auto& t : tasksOf(*p.plan)) tasks.push_back(t);
+        execute::Options e = request_.execution;
+        // Slurm's job folder (script, task list, logs) beside the sheet: kept when a task fails,
+        // since the message names its log, and removed once every still is rendered.
+        const bool ownJobDir = e.jobDir.empty();
+        if (ownJobDir) e.jobDir = request_.sheet.parent_path() / (request_.sheet.stem().string() + ".slurm");
+        const execute::Result rendered = execute::run(tasks, e, [&](const execute::Progress& p) {
+            const ProgressEvent tiles{ProgressEvent::Stage::Tiles,
+                                      fmt::format("{} of {} rendered, {:.0f} s", p.done, p.total, p.seconds),
+                                      static_cast<int>(100 * p.done / std::max<size_t>(1, p.total))};
+            SweepEvent event{SweepEvent::Kind::Rendering, p.done, p.total, "renders"};
+            event.render = &tiles;
+            emit(event);
+        });
+        if (!rendered.ok) {
+            JobOutcome failed;
+            failed.status = rendered.cancelled  ? JobStatus::Cancelled
+                            : rendered.badInput ? JobStatus::BadInput
+                                                : JobStatus::ToolFailed;
+            failed.render.error = rendered.error;
+            Diagnostics diags;
+            if (rendered.badInput) diags.error({}, rendered.error);
+            return stopped(0, "renders", failed, diags, failed.status, result);
+        }
+        std::error_code ec;
+        if (ownJobDir) fs::remove_all(e.jobDir, ec);
+        return true;
+    }
+
+    bool finishAll(SweepResult& result) {
+        for (size_t i = 0; i < planned_.size(); ++i) {
+            PlannedJob& p = planned_[i];
+            Diagnostics diags;
+            if (!finishPlan(*p.plan, outputs_, false, false, true, p.outcome, diags))
+                p.outcome.status = JobStatus::BadInput;
+            if (p.outcome.status != JobStatus::Ok)
+                return stopped(i + 1, labelOf(combos_[i]), p.outcome, diags, p.outcome.status, result);
+            SweepEvent event{SweepEvent::Kind::Finished, i + 1, combos_.size(), labelOf(combos_[i])};
+            event.outcome = &p.outcome;
+            event.diags = &diags;
+            emit(event);
+            result.tiles.push_back(
+                {p.outcome.paths.png, fmt::format("{}\n{}", labelOf(combos_[i]), p.outcome.compiled->certified)});
+        }
+        return true;
+    }
+
+    // The sheet beside the stills; the set committed only when it is written.
+    void writeSheet(SweepResult& result) {
+        const int columns = request_.columns > 0         ? request_.columns
+                            : request_.variations.empty() ? 1
+                                                          : static_cast<int>(request_.variations[0].values.size());
+        std::vector<Tile> staged = result.tiles;
+        for (auto& t : staged) t.image = outputs_.staged(t.image);
+        try {
+            result.sheetMessage = writeContactSheet(staged, columns, request_.scenePath.filename().string(),
+                                                    outputs_.add(request_.sheet, "the contact sheet", true));
+            result.sheetWritten = result.sheetMessage.empty() || result.sheetMessage.rfind("warning", 0) == 0;
+            if (result.sheetWritten) outputs_.commit();
+        } catch (const std::runtime_error& e) {
+            result.sheetMessage = e.what();
+            result.sheetWritten = false;
+        }
+    }
+
+private:
+    void emit(const SweepEvent& e) const {
+        if (onEvent_) onEvent_(e);
+    }
+    bool stopped(size_t index, const std::string& label, const JobOutcome& outcome, const Diagnostics& diags,
+                 JobStatus status, SweepResult& result) const {
+        SweepEvent event{SweepEvent::Kind::Finished, index, combos_.size(), label};
+        event.outcome = &outcome;
+        event.diags = &diags;
+        emit(event);
+        result.status = status;
+        return false;
+    }
+
+    const SweepRequest& request_;
+    const std::function<void(const SweepEvent&)>& onEvent_;
+    const std::vector<std::vector<std::pair<std::string, std::string>>> combos_;
+    const fs::path stills_;
+    OutputSet outputs_;  // declared before the plans: they are removed first
+    std::vector<PlannedJob> planned_;
+};
+
 }  // namespace
 
 SweepResult runSweep(const SweepRequest& request, const std::function<void(const SweepEvent&)>& onEvent) {
     SweepResult result;
-    const auto combos = combinations(request.variations);
-    const fs::path stills = request.sheet.parent_path() / (request.sheet.stem().string() + "-stills");
-    auto emit = [&](SweepEvent e) {
-        if (onEvent) onEvent(e);
-    };
-    // Every combination is read and checked before any is rendered: a bad
-    // value anywhere stops the sweep with nothing written.
-    for (size_t i = 0; i < combos.size(); ++i) {
-        Diagnostics diags;
-        if (loadScene(request.scenePath, diags, jobOf(request, combos[i], {}).overrides)) continue;
-        const JobOutcome refused;
-        SweepEvent done{SweepEvent::Kind::Finished, i + 1, combos.size(), labelOf(combos[i])};
-        done.outcome = &refused;
-        done.diags = &diags;
-        emit(done);
-        result.status = JobStatus::BadInput;
-        return result;
-    }
-    // The stills and the sheet are one set of outputs: all appear, or none.
-    // Every combination is compiled into its plan, then all are rendered at
-    // once (here or on Slurm), then each is finished.
-    OutputSet outputs;
-    std::vector<PlannedJob> planned;
-    const auto dropPlans = [&] {
-        std::error_code ec;
-        for (auto& p : planned)
-            if (p.plan) fs::remove_all(p.plan->dir, ec);
-    };
-    for (size_t i = 0; i < combos.size(); ++i) {
-        SceneJob job = jobOf(request, combos[i], stills / fmt::format("{:03}.png", i + 1));
-        job.outputs = &outputs;
-        SweepEvent event{SweepEvent::Kind::Started, i + 1, combos.size(), labelOf(combos[i])};
-        emit(event);
-        Diagnostics diags;
-        planned.push_back(planJob(job, diags, {}));
-        if (planned.back().outcome.status == JobStatus::Ok) continue;
-        event.kind = SweepEvent::Kind::Finished;
-        event.outcome = &planned.back().outcome;
-        event.diags = &diags;
-        emit(event);
-        result.status = planned.back().outcome.status;
-        dropPlans();
-        return result;
-    }
-    std::vector<execute::Task> tasks;
-    for (const auto& p : planned)
-        for (const auto& t : tasksOf(*p.plan)) tasks.push_back(t);
-    execute::Options e = request.execution;
-    // Slurm's job folder (script, task list, logs) beside the sheet: kept when a task fails,
-    // since the message names its log, and removed once every still is rendered.
-    const bool ownJobDir = e.jobDir.empty();
-    if (ownJobDir) e.jobDir = request.sheet.parent_path() / (request.sheet.stem().string() + ".slurm");
-    const execute::Result rendered = execute::run(tasks, e, [&](const execute::Progress& p) {
-        const ProgressEvent tiles{ProgressEvent::Stage::Tiles,
-                                  fmt::format("{} of {} rendered, {:.0f} s", p.done, p.total, p.seconds),
-                                  static_cast<int>(100 * p.done / std::max<size_t>(1, p.total))};
-        SweepEvent event{SweepEvent::Kind::Rendering, p.done, p.total, "renders"};
-        event.render = &tiles;
-        emit(event);
-    });
-    if (!rendered.ok) {
-        JobOutcome failed;
-        failed.status = rendered.cancelled ? JobStatus::Cancelled : rendered.badInput ? JobStatus::BadInput : JobStatus::ToolFailed;
-        failed.render.error = rendered.error;
-        Diagnostics diags;
-        if (rendered.badInput) diags.error({}, rendered.error);
-        SweepEvent event{SweepEvent::Kind::Finished, 0, combos.size(), "renders"};
-        event.outcome = &failed;
-        event.diags = &diags;
-        emit(event);
-        result.status = failed.status;
-        dropPlans();
-        return result;
-    }
-    if (ownJobDir) {
-        std::error_code ec;
-        fs::remove_all(e.jobDir, ec);
-    }
-    for (size_t i = 0; i < planned.size(); ++i) {
-        PlannedJob& p = planned[i];
-        Diagnostics diags;
-        if (!finishPlan(*p.plan, outputs, false, false, true, p.outcome, diags)) p.outcome.status = JobStatus::BadInput;
-        SweepEvent event{SweepEvent::Kind::Finished, i + 1, combos.size(), labelOf(combos[i])};
-        event.outcome = &p.outcome;
-        event.diags = &diags;
-        emit(event);
-        if (p.outcome.status != JobStatus::Ok) {
-            result.status = p.outcome.status;
-            dropPlans();
-            return result;
-        }
-        result.tiles.push_back({p.outcome.paths.png, fmt::format("{}\n{}", labelOf(combos[i]), p.outcome.compiled->certified)});
-    }
-    const int columns = request.columns > 0 ? request.columns
-                        : request.variations.empty()
-                            ? 1
-                            : static_cast<int>(request.variations[0].values.size());
-    std::vector<Tile> staged = result.tiles;
-    for (auto& t : staged) t.image = outputs.staged(t.image);
-    try {
-        result.sheetMessage = writeContactSheet(staged, columns, request.scenePath.filename().string(),
-                                                outputs.add(request.sheet, "the contact sheet", true));
-        result.sheetWritten = result.sheetMessage.empty() || result.sheetMessage.rfind("warning", 0) == 0;
-        if (result.sheetWritten) outputs.commit();
-    } catch (const std::runtime_error& e) {
-        result.sheetMessage = e.what();
-        result.sheetWritten = false;
-    }
-    dropPlans();
+    SweepRun run(request, onEvent);
+    if (run.checkAll(result) && run.planAll(result) && run.renderAll(result) && run.finishAll(result))
+        run.writeSheet(result);
     return result;
 }
 

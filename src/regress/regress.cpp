@@ -267,6 +267,16 @@ bool checkUpdatable(const Manifest& m, Diagnostics& diags) {
 
 namespace {
 
+// A case's plan once the case is decided: the report travels, so no .pov or
+// tile of a plan is left in it; and the plan's descriptors (its lock, its set)
+// go with it, so that a long suite holds only those of cases not yet rendered.
+void dropPlan(PlannedJob& p) {
+    std::error_code ec;
+    if (p.plan) fs::remove_all(p.plan->dir, ec);
+    p.lock.reset();
+    p.ownOutputs.reset();
+}
+
 // Every case compiled into its plan, `jobs` at once (compiling runs here); a
 // case that cannot be compiled is an error now.
 std::vector<PlannedJob> planCases(const Manifest& m, const RunOptions& o, std::vector<CaseResult>& results,
@@ -327,19 +337,19 @@ std::vector<CaseResult> runCases(const Manifest& m, const RunOptions& o, const C
         if (!error.empty()) {
             r.status = CaseStatus::Error;
             r.message = "POV-Ray failed: " + error;
-            std::error_code ec;  // the report is copied elsewhere: no .pov or PNGs of a plan left in it
-            fs::remove_all(planned[i].plan->dir, ec);
         } else if (!finishPlan(*planned[i].plan, planned[i].outputs(), true, true, false, planned[i].outcome, diags)) {
             r.status = CaseStatus::Error;
             r.message = errorsOf(diags);
         } else {
             compareCase(m.cases[i], o, r);
         }
+        dropPlan(planned[i]);
         finished(i);
     };
     const execute::Result run = execute::run(tasks, e, {});
     if (!run.ok && tasks.size() > 0 && run.taskErrors.empty())  // nothing ran: Slurm missing, say
         for (size_t i : caseOf) {
+            dropPlan(planned[i]);
             results[i].status = CaseStatus::Error;
             results[i].message = run.error;
             finished(i);

@@ -12,6 +12,7 @@
 #include "compare/compare_images.h"
 #include "execute/execute.h"
 #include "core/diagnostics.h"
+#include "core/output_set.h"
 
 namespace relief::regress {
 
@@ -71,6 +72,27 @@ using CaseDoneFn = std::function<void(const CaseResult&, size_t done, size_t tot
 /// are in manifest order.
 std::vector<CaseResult> runCases(const Manifest& manifest, const RunOptions& options,
                                  const CaseDoneFn& done);
+
+/// Where a run's report is made: a private folder beside `dir`, moved into
+/// place whole by publish(), so that an interrupted or failed run leaves the
+/// report before it as it was (and a new report holds only this run's
+/// images). `dir` may be absent, empty, or a report relief wrote; anything
+/// else (a folder of the user's) is refused, since publishing replaces it.
+class ReportFolder {
+public:
+    /// The refusal, when `dir` is not one relief may replace: "" if it may.
+    static std::string refusal(const std::filesystem::path& dir);
+    /// Throws std::runtime_error when the folder beside `dir` cannot be made.
+    explicit ReportFolder(const std::filesystem::path& dir);
+    /// Where runCases and writeReport write (RunOptions::reportDir).
+    std::filesystem::path staged() const { return staging_.path() / "report"; }
+    /// Replaces `dir` with the staged report; throws std::runtime_error.
+    void publish();
+
+private:
+    std::filesystem::path dir_;
+    PrivateFolder staging_;
+};
 
 /// Writes index.html (failed cases first; new, reference and difference images
 /// side by side; hover the new image to see the reference), summary.json and

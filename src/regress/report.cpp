@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <set>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -34,6 +35,48 @@ bool failed(CaseStatus s) { return s == CaseStatus::Fail || s == CaseStatus::Err
 std::string number(double v) { return std::isfinite(v) ? fmt::format("{:.6g}", v) : "inf"; }
 
 }  // namespace
+
+std::string ReportFolder::refusal(const fs::path& dir) {
+    std::error_code ec;
+    const auto status = fs::symlink_status(dir, ec);
+    if (!fs::exists(status)) return "";
+    if (!fs::is_directory(status))
+        return fmt::format("--report {}: is not a folder; name a folder for the report", dir.string());
+    // What a report of relief's holds; a folder with anything else is the user's.
+    static const std::set<std::string> kReportEntries = {"index.html", "summary.json", "junit.xml", "images",
+                                                         "slurm"};
+    const bool empty = fs::is_empty(dir, ec);
+    const bool report = fs::exists(dir / "summary.json", ec) && fs::exists(dir / "index.html", ec);
+    bool onlyReport = true;
+    for (const auto& entry : fs::directory_iterator(dir, ec))
+        onlyReport = onlyReport && kReportEntries.count(entry.path().filename().string()) > 0;
+    if (empty || (report && onlyReport && !ec)) return "";
+    return fmt::format("--report {}: holds files that are not a relief test report, and a new report replaces "
+                       "the folder; name a new folder (or an old report's)",
+                       dir.string());
+}
+
+namespace {
+fs::path madeParent(const fs::path& dir) {
+    fs::create_directories(dir.parent_path());
+    removeAbandonedFolders(dir.parent_path());  // reports of runs killed before they were published
+    return dir.parent_path();
+}
+}  // namespace
+
+ReportFolder::ReportFolder(const fs::path& dir) : dir_(fs::absolute(dir)), staging_(madeParent(dir_), "report") {
+    fs::create_directory(staged());
+}
+
+void ReportFolder::publish() {
+    std::error_code ec;
+    if (fs::exists(fs::symlink_status(dir_, ec))) {
+        fs::rename(dir_, staging_.path() / "previous", ec);  // removed with the private folder
+        if (ec) throw std::runtime_error(fmt::format("cannot replace the report {}: {}", dir_.string(), ec.message()));
+    }
+    fs::rename(staged(), dir_, ec);
+    if (ec) throw std::runtime_error(fmt::format("cannot move the report into {}: {}", dir_.string(), ec.message()));
+}
 
 void writeReport(const Manifest& m, const std::vector<CaseResult>& results, const RunOptions& o,
                  double wallSeconds) {
