@@ -7,22 +7,10 @@
 #include "core/number_format.h"
 #include "core/text_escape.h"
 #include "emit/geometry_kind.h"
+#include "scene/enum_names.h"
 #include "relief/version.h"
 
 namespace relief {
-
-namespace {
-
-const char* name(scene::Gridding g) {
-    switch (g) {
-        case scene::Gridding::Linear: return "linear";
-        case scene::Gridding::InverseDistance: return "invdist";
-        case scene::Gridding::Nearest: return "nearest";
-    }
-    return "?";
-}
-
-}  // namespace
 
 emit::ParameterList sceneHeader(const scene::SceneSpec& s, const geo::ControlNet& net,
                                 const subdiv::ResolvedScheme& scheme, int depth, const CompileResult& compiled) {
@@ -44,7 +32,7 @@ emit::ParameterList sceneHeader(const scene::SceneSpec& s, const geo::ControlNet
     add("net.size", fmt::format("{} rows x {} cols", net.grid.rows, net.grid.cols));
     add("net.spacing_m", fmt::format("{} x {}", formatShortest(net.dx), formatShortest(net.dy)));
     add("net.origin_m", fmt::format("{}, {}", formatShortest(net.x0), formatShortest(net.y0)));
-    if (net.raster.empty()) add("net.gridding", name(s.net.gridding));
+    if (net.raster.empty()) add("net.gridding", scene::nameOf(s.net.gridding));
     else add("samples.raster", net.raster);
     if (net.filledNodata > 0) add("net.filled_nodata", std::to_string(net.filledNodata));
     else if (!net.masked.empty()) add("net.masked_nodata", std::to_string(net.maskedCount()));
@@ -66,7 +54,7 @@ emit::ParameterList sceneHeader(const scene::SceneSpec& s, const geo::ControlNet
     add("refined.size", fmt::format("{} rows x {} cols", est.rows, est.cols));
     add("refined.vertices", fmt::format("{:.0f}", est.vertices));
     add("refined.triangles", fmt::format("{:.0f}", est.triangles));
-    add("geometry", fmt::format("{} ({})", emit::geometryKindName(compiled.geometry.kind), compiled.geometry.reason));
+    add("geometry", fmt::format("{} ({})", scene::nameOf(compiled.geometry.kind), compiled.geometry.reason));
     if (compiled.geometry.kind == scene::GeometryKind::HeightField)
         add("geometry.height_field", fmt::format("{}, 16-bit, one level = {:.3g} m", compiled.heightPng.filename().string(),
                                                  compiled.heightStepM));
@@ -91,7 +79,7 @@ emit::ParameterList sceneHeader(const scene::SceneSpec& s, const geo::ControlNet
     if (look.colouring == Colouring::Image) add("texture.image", look.drapeImageText);
     if (look.colouring == Colouring::Slope || look.colouring == Colouring::Blend)
         add("texture.mode", fmt::format("{}: rock from {} to {} degrees of slope",
-                                        look.colouring == Colouring::Slope ? "slope" : "blend",
+                                        scene::nameOf(look.colouring),
                                         formatShortest(look.rockFromDeg), formatShortest(look.rockToDeg)));
     if (compiled.sun.fromDatetime)
         add("lighting.sun", fmt::format("azimuth {:.2f} deg (true), altitude {:.2f} deg, at {} over lon {:.4f} lat {:.4f}",
@@ -100,7 +88,7 @@ emit::ParameterList sceneHeader(const scene::SceneSpec& s, const geo::ControlNet
     else
         add("lighting.sun", fmt::format("azimuth {} deg, altitude {} deg", formatShortest(look.sunAzimuthDeg),
                                         formatShortest(look.sunAltitudeDeg)));
-    const char* projection = camera.projection == scene::Projection::Perspective ? "perspective" : "orthographic";
+    const char* projection = scene::nameOf(camera.projection);
     const auto lonLatH = [](const std::array<double, 3>& p) {
         return fmt::format("lon {} lat {} height {} m", formatShortest(p[0]), formatShortest(p[1]), formatShortest(p[2]));
     };

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include "emit/geometry_kind.h"
+#include "scene/enum_names.h"
 #include "measure/auto_depth.h"
 #include "relief/version.h"
 
@@ -81,7 +82,7 @@ ordered_json sidecarJson(const CompileResult& c, const OutputPaths& paths) {
                    {"distance_m", c.cameraDistanceM},
                    {"placed_by", c.scene.look.camera.position ? "position" : "orbit"}};
     j["seconds"] = times;
-    j["geometry"] = {{"kind", emit::geometryKindName(c.geometry.kind)}, {"reason", c.geometry.reason}};
+    j["geometry"] = {{"kind", scene::nameOf(c.geometry.kind)}, {"reason", c.geometry.reason}};
     if (!c.heightPng.empty()) j["geometry"]["height_step_m"] = c.heightStepM;
     if (c.geometry.kind == scene::GeometryKind::Adaptive) {
         j["geometry"]["tolerance_m"] = c.adaptiveToleranceM;

@@ -6,16 +6,6 @@
 
 namespace relief::emit {
 
-const char* geometryKindName(scene::GeometryKind kind) {
-    switch (kind) {
-        case scene::GeometryKind::Auto: return "auto";
-        case scene::GeometryKind::Mesh2: return "mesh2";
-        case scene::GeometryKind::Adaptive: return "adaptive";
-        case scene::GeometryKind::HeightField: return "height_field";
-    }
-    return "?";
-}
-
 std::optional<GeometryChoice> chooseGeometry(const scene::GeometrySpec& spec, const GeometryFacts& facts,
                                              Diagnostics& diags) {
     using scene::GeometryKind;

@@ -44,7 +44,4 @@ inline constexpr double kQuickParseSeconds = 1.0;
 std::optional<GeometryChoice> chooseGeometry(const scene::GeometrySpec& spec, const GeometryFacts& facts,
                                              Diagnostics& diags);
 
-/// "mesh2", "height_field".
-const char* geometryKindName(scene::GeometryKind kind);
-
 }  // namespace relief::emit

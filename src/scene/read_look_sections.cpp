@@ -1,0 +1,261 @@
+// The sections that say how the terrain looks: its exaggeration, colours,
+// light, camera, block, water, haze and the report's overlays.
+#include <cmath>
+#include <cstdlib>
+
+#include <fmt/format.h>
+
+#include "core/input_file.h"
+#include "core/number_format.h"
+#include "core/text_escape.h"
+#include "scene/color_ramp.h"
+#include "scene/cpt_palette.h"
+#include "scene/read_sections.h"
+
+namespace relief::scene {
+
+void readVertical(Section& s, const SceneFile&, SceneSpec& scene) {
+    if (auto e = s.number("exaggeration", 0, 100, "(unitless factor)", true)) scene.look.exaggeration = *e;
+}
+
+namespace {
+
+// texture.cpt: a GMT palette file beside the scene, in place of a ramp.
+void readCpt(Section& s, const SceneFile& f, ColorRamp& ramp) {
+    const auto c = s.string("cpt");
+    if (!c) return;
+    const std::filesystem::path cptPath = f.path.parent_path() / *c;
+    std::optional<std::string> cptText;
+    std::string problem;
+    if (s.find("ramp"))
+        s.error("cpt", "give either texture.ramp or texture.cpt, not both");
+    else if (!(cptText = readInputFile(cptPath, kMaxPaletteBytes, problem)))
+        s.error("cpt", problem == "no such file" ? fmt::format("texture.cpt: file \"{}\" not found (looked for {})",
+                                                                printableExcerpt(*c), printableExcerpt(cptPath.string(), 200))
+                                                  : fmt::format("texture.cpt = \"{}\": {}", printableExcerpt(*c), problem));
+    else if (auto stops = parseCpt(*cptText, cptPath.string(), f.diags)) {
+        ramp.preset = "custom";
+        ramp.stops = std::move(*stops);
+        ramp.cptPath = *c;
+    }
+}
+
+// texture.mode and the rock's colour and slopes.
+void readColouring(Section& s, LookSpec& look) {
+    using Colouring = LookSpec::Colouring;
+    // texture.mode names the first three colourings; an image is texture.image's.
+    const auto modes = std::span(EnumNames<Colouring>::rows).first(3);
+    if (auto m = s.named<Colouring>("mode", modes)) look.colouring = *m;
+    if (auto v = s.string("rock_color"); v && !parseHexColor(*v, look.rockColour))
+        s.error("rock_color", fmt::format("texture.rock_color = \"{}\" must be a colour \"#rrggbb\"", printableExcerpt(*v)));
+    if (auto v = s.number("rock_from_deg", 0, 90, "degrees of slope", false, true)) look.rockFromDeg = *v;
+    if (auto v = s.number("rock_to_deg", 0, 90, "degrees of slope", true)) look.rockToDeg = *v;
+    if (!(look.rockToDeg > look.rockFromDeg))
+        s.error(s.find("rock_to_deg") ? "rock_to_deg" : "rock_from_deg",
+                fmt::format("texture.rock_to_deg ({}) must be above texture.rock_from_deg ({})",
+                            formatShortest(look.rockToDeg), formatShortest(look.rockFromDeg)));
+}
+
+// texture.image: a georeferenced image draped on the surface.
+void readDrapeImage(Section& s, const SceneFile& f, LookSpec& look) {
+    if (auto v = s.text("image_attribution")) look.drapeImageAttribution = *v;
+    const auto v = s.string("image");
+    if (!v) return;
+    const std::filesystem::path image = f.path.parent_path() / *v;
+    const std::string problem = inputFileProblem(image);
+    if (s.find("mode") && look.colouring != LookSpec::Colouring::Elevation)
+        s.error("image", "texture.image colours the surface by itself: leave out texture.mode");
+    else if (problem == "no such file")
+        s.error("image", fmt::format("texture.image: file \"{}\" not found (looked for {})", printableExcerpt(*v),
+                                     printableExcerpt(image.string(), 200)));
+    else if (!problem.empty())
+        s.error("image", fmt::format("texture.image = \"{}\": {}", printableExcerpt(*v), problem));
+    else {
+        look.colouring = LookSpec::Colouring::Image;
+        look.drapeImage = image;
+        look.drapeImageText = *v;
+    }
+}
+
+// One entry of texture.stops, { elev_m = <metres>, color = "#rrggbb" }, above the one before.
+void readStop(const toml::node& item, const SceneFile& f, ColorRamp& ramp) {
+    const toml::table* st = item.as_table();
+    ColorStop stop{};
+    auto elev = st ? st->get("elev_m") : nullptr;
+    auto color = st ? st->get("color") : nullptr;
+    std::optional<double> e = elev ? elev->value<double>() : std::nullopt;
+    std::optional<std::string> c = color ? color->value_exact<std::string>() : std::nullopt;
+    if (!e || !c || !parseHexColor(*c, stop)) {
+        f.diags.error(locOf(f.name, item.source()),
+                      "each texture.stops entry must be { elev_m = <metres>, color = \"#rrggbb\" }");
+        return;
+    }
+    stop.elevM = *e;
+    if (!ramp.stops.empty() && stop.elevM <= ramp.stops.back().elevM)
+        f.diags.error(locOf(f.name, item.source()),
+                      fmt::format("texture.stops: elev_m = {} m must be above the previous stop ({} m); list stops "
+                                  "bottom to top",
+                                  formatShortest(stop.elevM), formatShortest(ramp.stops.back().elevM)));
+    ramp.stops.push_back(stop);
+}
+
+// texture.stops: the colours of ramp = "custom".
+void readStops(Section& s, const SceneFile& f, ColorRamp& ramp) {
+    s.markKnown("stops");
+    const toml::node* stopsNode = s.find("stops");
+    if (stopsNode && !ramp.cptPath.empty()) {
+        s.error("stops", "texture.stops and texture.cpt both give the colours: keep one");
+    } else if (!ramp.cptPath.empty()) {
+        // the palette file's stops
+    } else if (stopsNode && ramp.preset != "custom") {
+        s.error("stops", "texture.stops is only used with ramp = \"custom\"; add "
+                         "ramp = \"custom\" or remove the stops");
+    } else if (ramp.preset == "custom") {
+        const toml::array* a = stopsNode ? stopsNode->as_array() : nullptr;
+        if (!a || a->size() < 2)
+            f.diags.error(stopsNode ? locOf(f.name, stopsNode->source()) : s.loc(),
+                          "ramp = \"custom\" needs texture.stops = [{ elev_m = 0, color = "
+                          "\"#rrggbb\" }, ...] with at least 2 stops");
+        else
+            for (const toml::node& item : *a) readStop(item, f, ramp);
+    }
+}
+
+}  // namespace
+
+void readTexture(Section& s, const SceneFile& f, SceneSpec& scene) {
+    LookSpec& look = scene.look;
+    std::vector<std::string> ramps = rampPresetNames();
+    ramps.push_back("custom");
+    if (auto r = s.choice("ramp", ramps)) look.ramp.preset = *r;
+    readCpt(s, f, look.ramp);
+    readColouring(s, look);
+    readDrapeImage(s, f, look);
+    readStops(s, f, look.ramp);
+}
+
+namespace {
+
+// lighting.datetime: a string, or TOML's own offset date-time (written without quotes).
+std::optional<std::string> dateTimeText(const toml::node& n) {
+    std::optional<std::string> text = n.value_exact<std::string>();
+    if (const auto* native = n.as_date_time()) {
+        const toml::date_time& t = native->get();
+        text = fmt::format("{:04}-{:02}-{:02}T{:02}:{:02}:{:02}", t.date.year, t.date.month, t.date.day, t.time.hour,
+                           t.time.minute, t.time.second);
+        if (t.offset)
+            *text += t.offset->minutes == 0
+                         ? std::string("Z")
+                         : fmt::format("{}{:02}:{:02}", t.offset->minutes < 0 ? '-' : '+',
+                                       std::abs(t.offset->minutes) / 60, std::abs(t.offset->minutes) % 60);
+    }
+    return text;
+}
+
+}  // namespace
+
+void readLighting(Section& s, const SceneFile&, SceneSpec& scene) {
+    LookSpec& look = scene.look;
+    if (auto v = s.number("sun_azimuth_deg", 0, 360, "degrees (compass bearing)", false, true)) look.sunAzimuthDeg = *v;
+    if (auto v = s.number("sun_altitude_deg", 0, 90, "degrees", true)) look.sunAltitudeDeg = *v;
+    s.markKnown("datetime");
+    const toml::node* n = s.find("datetime");
+    if (!n) return;
+    const std::optional<std::string> text = dateTimeText(*n);
+    std::string why = "it must be a date and time with its UTC offset";
+    if (text) look.sunTime = parseOffsetDateTime(*text, why);
+    if (!look.sunTime)
+        s.error("datetime",
+                fmt::format("lighting.datetime{}: {}", text ? " = \"" + printableExcerpt(*text) + "\"" : "", why));
+    else
+        look.sunTimeText = *text;
+    for (const char* angle : {"sun_azimuth_deg", "sun_altitude_deg"})
+        if (look.locs.has(std::string("lighting.") + angle))
+            s.warning(angle, fmt::format("lighting.{} is not used: lighting.datetime places the sun", angle));
+}
+
+void readCamera(Section& s, const SceneFile&, SceneSpec& scene) {
+    CameraSpec& camera = scene.look.camera;
+    if (auto v = s.number("azimuth_deg", 0, 360, "degrees (compass bearing)", false, true)) camera.azimuthDeg = *v;
+    if (auto v = s.number("elevation_deg", 0, 90, "degrees", true)) camera.elevationDeg = *v;
+    if (auto v = s.number("distance_m", 0, 1e8, "m", true)) camera.distanceM = *v;
+    if (auto v = s.number("fov_deg", 1, 170, "degrees")) camera.fovDeg = *v;
+    if (auto p = s.named<Projection>("projection")) camera.projection = *p;
+    camera.position = s.lonLatHeight("position");
+    camera.lookAt = s.lonLatHeight("look_at");
+    if (camera.lookAt && !camera.position)
+        s.error("look_at", "camera.look_at needs camera.position (the eye, [lon, lat, height_m])");
+    for (const char* orbit : {"azimuth_deg", "elevation_deg", "distance_m"})
+        if (camera.position && scene.look.locs.has(std::string("camera.") + orbit))
+            s.warning(orbit, fmt::format("camera.{} is not used: camera.position places the eye", orbit));
+}
+
+void readBase(Section& s, const SceneFile&, SceneSpec& scene) {
+    s.markKnown("thickness_m");
+    const toml::node* n = s.find("thickness_m");
+    if (!n) return;
+    if (auto b = n->value_exact<bool>()) scene.look.base.enabled = *b;
+    else if (auto v = s.number("thickness_m", 0, 1e5, "metres (or false: no block)", true))
+        scene.look.base.thicknessM = *v;
+}
+
+void readWater(Section& s, const SceneFile&, SceneSpec& scene) {
+    WaterSpec& water = scene.look.water;
+    if (auto v = s.number("level_m", kLowestElevationM, kHighestElevationM, "metres above sea level")) water.levelM = *v;
+    if (auto v = s.string("color"); v && !parseHexColor(*v, water.colour))
+        s.error("color", fmt::format("water.color = \"{}\" must be a colour \"#rrggbb\"", printableExcerpt(*v)));
+    if (auto v = s.number("transparency", 0, 1, "0 (opaque) to 1 (clear)")) water.transparency = *v;
+}
+
+void readAtmosphere(Section& s, const SceneFile&, SceneSpec& scene) {
+    if (auto v = s.number("haze", 0, 1, "0 (none) to 1 (thick)")) scene.look.haze = *v;
+}
+
+namespace {
+
+// overlay.contours: an inline table, { interval_m = 50, index_every = 5, color = "#3e3426" }.
+std::optional<ContourSpec> contoursOf(const toml::node& n) {
+    const toml::table* t = n.as_table();
+    ContourSpec contours;
+    bool ok = t != nullptr && t->contains("interval_m");
+    for (auto&& [k, v] : t ? *t : toml::table{}) {
+        const std::string key(k.str());
+        if (key == "interval_m") {
+            const auto d = v.value<double>();
+            ok = ok && d && *d > 0 && std::isfinite(*d);
+            if (d) contours.intervalM = *d;
+        } else if (key == "index_every") {
+            const auto i = v.value_exact<int64_t>();
+            ok = ok && i && *i >= 0 && *i <= 100;
+            if (i) contours.indexEvery = static_cast<int>(*i);
+        } else if (key == "color") {
+            const auto c = v.value_exact<std::string>();
+            ok = ok && c && parseHexColor(*c, contours.colour);
+        } else {
+            ok = false;
+        }
+    }
+    return ok ? std::optional(contours) : std::nullopt;
+}
+
+}  // namespace
+
+void readOverlay(Section& s, const SceneFile&, SceneSpec& scene) {
+    OverlaySpec& overlay = scene.overlay;
+    if (auto v = s.boolean("enabled")) overlay.enabled = *v ? OverlaySpec::Enabled::On : OverlaySpec::Enabled::Off;
+    if (auto v = s.text("title")) overlay.title = *v;
+    if (auto v = s.text("subtitle")) overlay.subtitle = *v;
+    if (auto v = s.text("credits")) overlay.credits = *v;
+    if (auto v = s.boolean("legend")) overlay.legend = *v;
+    if (auto v = s.boolean("scale_bar")) overlay.scaleBar = *v;
+    if (auto v = s.boolean("north_arrow")) overlay.northArrow = *v;
+    s.markKnown("contours");
+    const toml::node* n = s.find("contours");
+    if (!n) return;
+    if (auto contours = contoursOf(*n)) overlay.contours = contours;
+    else
+        s.error("contours", "overlay.contours must be { interval_m = <metres> } with optional index_every "
+                            "= <n> (every n-th line heavier, 0: none) and color = \"#rrggbb\"");
+}
+
+}  // namespace relief::scene
