@@ -33,10 +33,11 @@ std::optional<emit::CameraPoints> cameraPoints(const scene::LookSpec& look, cons
     const auto toFrame = [&](const std::array<double, 3>& lonLatH, const char* key) -> std::optional<Vec3> {
         Vec3 p;
         if (geo::geodeticToFrame(frame, lonLatH[1], lonLatH[0], lonLatH[2], p)) return p;
-        diags.error(look.locs.at(key), fmt::format("{} = [{}, {}, {}] cannot be placed in the scene's frame ({}): "
-                                                   "put it nearer the terrain, or use frame.kind = \"local\"",
-                                                   key, formatShortest(lonLatH[0]), formatShortest(lonLatH[1]),
-                                                   formatShortest(lonLatH[2]), frame.describe()));
+        diags.error(look.camera.locs.at(key),
+                    fmt::format("{} = [{}, {}, {}] cannot be placed in the scene's frame ({}): "
+                                "put it nearer the terrain, or use frame.kind = \"local\"",
+                                key, formatShortest(lonLatH[0]), formatShortest(lonLatH[1]), formatShortest(lonLatH[2]),
+                                frame.describe()));
         return std::nullopt;
     };
     emit::CameraPoints points;
@@ -44,8 +45,9 @@ std::optional<emit::CameraPoints> cameraPoints(const scene::LookSpec& look, cons
     if (camera.position && !(points.eyeM = toFrame(*camera.position, "camera.position"))) return std::nullopt;
     if (camera.lookAt && !(points.targetM = toFrame(*camera.lookAt, "camera.look_at"))) return std::nullopt;
     if (points.eyeM && points.targetM && length(*points.eyeM - *points.targetM) < 1e-3) {
-        diags.error(look.locs.at("camera.look_at"), "camera.look_at is where camera.position is: a camera must "
-                                                    "look at a point away from itself");
+        diags.error(look.camera.locs.at("camera.look_at"),
+                    "camera.look_at is where camera.position is: a camera must "
+                    "look at a point away from itself");
         return std::nullopt;
     }
     return points;
@@ -56,31 +58,34 @@ std::optional<emit::CameraPoints> cameraPoints(const scene::LookSpec& look, cons
 // the meridian convergence away from true north.
 std::optional<std::pair<emit::SunDirection, CompileResult::Sun>> sunOf(const scene::LookSpec& look,
                                                                         const geo::ControlNet& net, Diagnostics& diags) {
-    const emit::SunDirection given{look.sunAzimuthDeg, look.sunAltitudeDeg};
-    if (!look.sunTime) return std::pair{given, CompileResult::Sun{given.azimuthDeg, given.altitudeDeg, false, {}, 0, 0}};
+    const emit::SunDirection given{look.lighting.sunAzimuthDeg, look.lighting.sunAltitudeDeg};
+    if (!look.lighting.sunTime)
+        return std::pair{given, CompileResult::Sun{given.azimuthDeg, given.altitudeDeg, false, {}, 0, 0}};
     const double cx = (net.x0 + net.xMax()) / 2, cy = (net.y0 + net.yMax()) / 2;
     double lat = 0, lon = 0, h = 0;
     if (!geo::frameToGeodetic(net.frame, Vec3{cx, cy, 0}, lat, lon, h)) {
-        diags.error(look.locs.at("lighting.datetime"), "lighting.datetime: the terrain's centre has no longitude and "
-                                                       "latitude in its frame; give sun_azimuth_deg and "
-                                                       "sun_altitude_deg instead");
+        diags.error(look.lighting.locs.at("lighting.datetime"),
+                    "lighting.datetime: the terrain's centre has no longitude and "
+                    "latitude in its frame; give sun_azimuth_deg and "
+                    "sun_altitude_deg instead");
         return std::nullopt;
     }
-    const geo::SunPosition sun = geo::sunPosition(lon, lat, look.sunTime->utcSeconds);
+    const geo::SunPosition sun = geo::sunPosition(lon, lat, look.lighting.sunTime->utcSeconds);
     if (!(sun.altitudeDeg > 0)) {
-        diags.error(look.locs.at("lighting.datetime"),
+        diags.error(look.lighting.locs.at("lighting.datetime"),
                     fmt::format("lighting.datetime = \"{}\"{}: the sun is {:.1f} degrees below the horizon at the "
                                 "terrain's centre (lon {:.4f}, lat {:.4f}); choose a time in daylight, or give "
                                 "sun_azimuth_deg and sun_altitude_deg",
-                                printableExcerpt(look.sunTimeText),
-                                look.sunTime->offsetMinutes != 0 ? " (" + formatUtc(look.sunTime->utcSeconds) + ")"
-                                                                 : std::string(),
+                                printableExcerpt(look.lighting.sunTimeText),
+                                look.lighting.sunTime->offsetMinutes != 0
+                                    ? " (" + formatUtc(look.lighting.sunTime->utcSeconds) + ")"
+                                    : std::string(),
                                 -sun.altitudeDeg, lon, lat));
         return std::nullopt;
     }
     const double convergenceDeg = geo::gridConvergenceDeg(net.frame, cx, cy);
     return std::pair{emit::SunDirection{std::fmod(sun.azimuthDeg - convergenceDeg + 360, 360), sun.altitudeDeg},
-                     CompileResult::Sun{sun.azimuthDeg, sun.altitudeDeg, true, look.sunTimeText, lon, lat}};
+                     CompileResult::Sun{sun.azimuthDeg, sun.altitudeDeg, true, look.lighting.sunTimeText, lon, lat}};
 }
 
 // Where the terrain sits in the scene, where the camera is and where the
@@ -133,7 +138,7 @@ bool buildMeshes(const LoadedScene& loaded, const Surface& surface, const View& 
         // nearest the camera, in true (not exaggerated) metres.
         const scene::GeometrySpec& g = spec.geometry;
         const double pixelM = emit::finestMetresPerPixel(view.camera, view.where, spec.render.width);
-        const double exaggeration = spec.look.exaggeration;
+        const double exaggeration = spec.look.vertical.exaggeration;
         t.adaptiveToleranceM = g.toleranceM > 0 ? g.toleranceM : g.tolerancePx * pixelM / exaggeration;
         t.adaptiveTolerancePx = t.adaptiveToleranceM * exaggeration / pixelM;
         t.mesh = emit::buildAdaptiveMesh(refined, view.where, t.adaptiveToleranceM);
@@ -153,8 +158,8 @@ bool writeTerrainPngs(const scene::SceneSpec& spec, const Surface& surface, cons
                       const CompileOptions& options, Terrain& t, Diagnostics& diags) {
     const geo::GeoGrid& refined = surface.refined;
     const std::filesystem::path& pov = options.povPath;
-    if (spec.look.colouring == scene::LookSpec::Colouring::Image) {
-        t.image = geo::imageOnGrid(spec.look.drapeImage, spec.look.drapeImageText, refined, diags);
+    if (spec.look.texture.colouring == scene::TextureSpec::Colouring::Image) {
+        t.image = geo::imageOnGrid(spec.look.texture.drapeImage, spec.look.texture.drapeImageText, refined, diags);
         if (!t.image) return false;
     }
     std::string error;
@@ -242,7 +247,8 @@ void describeView(const scene::SceneSpec& spec, const geo::ControlNet& net, cons
 void creditImage(const scene::SceneSpec& spec, const Terrain& t, CompileResult& r) {
     if (!t.image) return;
     r.drapeImageCoverage = double(t.image->coveredCount) / double(t.image->covered.size());
-    r.imageAttribution = !spec.look.drapeImageAttribution.empty() ? spec.look.drapeImageAttribution : t.image->attribution;
+    r.imageAttribution = !spec.look.texture.drapeImageAttribution.empty() ? spec.look.texture.drapeImageAttribution
+                                                                          : t.image->attribution;
     if (!spec.overlay.credits && !r.imageAttribution.empty())
         r.overlayFacts.credits += (r.overlayFacts.credits.empty() ? "" : " ") + r.imageAttribution;
     if (!r.imageAttribution.empty()) r.parameters.emplace_back("texture.image_attribution", r.imageAttribution);

@@ -59,8 +59,9 @@ void declareOutputs(const SceneJob& job, const LoadedScene& loaded, const Output
     const scene::SceneSpec& s = loaded.scene;
     outputs.addInput(job.scenePath, "the scene file");
     outputs.addInput(s.samples.path, "samples.path");
-    if (!s.look.drapeImage.empty()) outputs.addInput(s.look.drapeImage, "texture.image");
-    if (!s.look.ramp.cptPath.empty()) outputs.addInput(job.scenePath.parent_path() / s.look.ramp.cptPath, "texture.cpt");
+    if (!s.look.texture.drapeImage.empty()) outputs.addInput(s.look.texture.drapeImage, "texture.image");
+    if (!s.look.texture.ramp.cptPath.empty())
+        outputs.addInput(job.scenePath.parent_path() / s.look.texture.ramp.cptPath, "texture.cpt");
 }
 
 // The scene's own output name stays in the current folder, links resolved too.

@@ -241,7 +241,7 @@ std::optional<Surface> buildSurface(const LoadedScene& loaded, Diagnostics& diag
         for (const Vec3& p : net->grid.points) zmin = std::min(zmin, p.z), zmax = std::max(zmax, p.z);
         facts.zRangeM = zmax - zmin;
         facts.extentM = std::max(net->xMax() - net->x0, net->yMax() - net->y0);
-        facts.exaggeration = spec.look.exaggeration;
+        facts.exaggeration = spec.look.vertical.exaggeration;
         facts.widthPx = spec.render.width;
         facts.rough = s.depth > 0 && loaded.resolved.report.holder < 1;
         auto geometry = emit::chooseGeometry(spec.geometry, facts, diags);
@@ -257,7 +257,7 @@ std::optional<Surface> buildSurface(const LoadedScene& loaded, Diagnostics& diag
     // The colours held beside the grid: a height field's drape (16-bit RGBA, a
     // node each); an image drape's too on any kind, and the image on the grid (RGB and coverage).
     const bool heightField = s.geometry.kind == scene::GeometryKind::HeightField;
-    const bool image = spec.look.colouring == scene::LookSpec::Colouring::Image;
+    const bool image = spec.look.texture.colouring == scene::TextureSpec::Colouring::Image;
     s.estimate.memoryBytes += s.estimate.vertices * ((heightField || image ? 8 : 0) + (image ? 4 : 0));
     if (!subdiv::checkBudget(s.estimate, budget,
                              sub.locs.at(sub.depthAuto ? "subdivision.depth" : "subdivision.scheme"),

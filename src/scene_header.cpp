@@ -37,7 +37,7 @@ emit::ParameterList sceneHeader(const scene::SceneSpec& s, const geo::ControlNet
     if (net.filledNodata > 0) add("net.filled_nodata", std::to_string(net.filledNodata));
     else if (!net.masked.empty()) add("net.masked_nodata", std::to_string(net.maskedCount()));
     else add("net.filled_outside_hull", std::to_string(net.filledOutsideHull));
-    add("vertical.exaggeration", formatShortest(look.exaggeration));
+    add("vertical.exaggeration", formatShortest(look.vertical.exaggeration));
     std::string params;
     for (const auto& [k, v] : scheme.params)
         params += fmt::format("{}{} = {}", params.empty() ? "" : ", ", k, formatShortest(v));
@@ -74,20 +74,21 @@ emit::ParameterList sceneHeader(const scene::SceneSpec& s, const geo::ControlNet
     if (compiled.baseFloorM)
         add("base", fmt::format("a block: walls down to a floor at {:.2f} m, {:.2f} m below the lowest point",
                                 *compiled.baseFloorM, compiled.zRangeM[0] - *compiled.baseFloorM));
-    add("texture.ramp", look.ramp.cptPath.empty() ? look.ramp.preset : "cpt " + look.ramp.cptPath);
-    using Colouring = scene::LookSpec::Colouring;
-    if (look.colouring == Colouring::Image) add("texture.image", look.drapeImageText);
-    if (look.colouring == Colouring::Slope || look.colouring == Colouring::Blend)
-        add("texture.mode", fmt::format("{}: rock from {} to {} degrees of slope",
-                                        scene::nameOf(look.colouring),
-                                        formatShortest(look.rockFromDeg), formatShortest(look.rockToDeg)));
+    add("texture.ramp",
+        look.texture.ramp.cptPath.empty() ? look.texture.ramp.preset : "cpt " + look.texture.ramp.cptPath);
+    using Colouring = scene::TextureSpec::Colouring;
+    if (look.texture.colouring == Colouring::Image) add("texture.image", look.texture.drapeImageText);
+    if (look.texture.colouring == Colouring::Slope || look.texture.colouring == Colouring::Blend)
+        add("texture.mode",
+            fmt::format("{}: rock from {} to {} degrees of slope", scene::nameOf(look.texture.colouring),
+                        formatShortest(look.texture.rockFromDeg), formatShortest(look.texture.rockToDeg)));
     if (compiled.sun.fromDatetime)
         add("lighting.sun", fmt::format("azimuth {:.2f} deg (true), altitude {:.2f} deg, at {} over lon {:.4f} lat {:.4f}",
                                         compiled.sun.azimuthDeg, compiled.sun.altitudeDeg,
                                         oneLineText(compiled.sun.datetime), compiled.sun.lonDeg, compiled.sun.latDeg));
     else
-        add("lighting.sun", fmt::format("azimuth {} deg, altitude {} deg", formatShortest(look.sunAzimuthDeg),
-                                        formatShortest(look.sunAltitudeDeg)));
+        add("lighting.sun", fmt::format("azimuth {} deg, altitude {} deg", formatShortest(look.lighting.sunAzimuthDeg),
+                                        formatShortest(look.lighting.sunAltitudeDeg)));
     const char* projection = scene::nameOf(camera.projection);
     const auto lonLatH = [](const std::array<double, 3>& p) {
         return fmt::format("lon {} lat {} height {} m", formatShortest(p[0]), formatShortest(p[1]), formatShortest(p[2]));

@@ -93,7 +93,7 @@ ordered_json sidecarJson(const CompileResult& c, const OutputPaths& paths) {
     if (!c.heightPng.empty()) j["outputs"]["height_png"] = c.heightPng.string();
     if (!c.drapePng.empty()) j["outputs"]["drape_png"] = c.drapePng.string();
     if (c.drapeImageCoverage)
-        j["texture"] = {{"image", c.scene.look.drapeImageText},
+        j["texture"] = {{"image", c.scene.look.texture.drapeImageText},
                         {"image_covers", *c.drapeImageCoverage},
                         {"image_attribution", c.imageAttribution}};
     if (!paths.png.empty()) j["outputs"]["png"] = paths.png.string();

@@ -469,15 +469,15 @@ OverlayFacts overlayFacts(const scene::LookSpec& look, const emit::ScenePlacemen
                      where.paletteColors.begin() + std::min<size_t>(emit::kPaletteSize, where.paletteColors.size()));
     f.zMinM = where.zMinM;
     f.zMaxM = where.zMaxM;
-    using Colouring = scene::LookSpec::Colouring;
-    if (look.colouring == Colouring::Image) {
+    using Colouring = scene::TextureSpec::Colouring;
+    if (look.texture.colouring == Colouring::Image) {
         f.palette.clear();  // an image's colours are its own: no elevation legend
-    } else if (look.colouring == Colouring::Slope) {
+    } else if (look.texture.colouring == Colouring::Slope) {
         f.legendTitle = "Slope (\u00b0)";
         f.zMinM = 0;
         f.zMaxM = emit::kSlopePaletteMaxDeg;
-    } else if (look.colouring == Colouring::Blend) {
-        f.legendNote = fmt::format("rock on slopes over {}\u00b0", formatShortest(look.rockFromDeg));
+    } else if (look.texture.colouring == Colouring::Blend) {
+        f.legendNote = fmt::format("rock on slopes over {}\u00b0", formatShortest(look.texture.rockFromDeg));
     }
     f.exaggeration = where.exaggeration;
     f.perspective = view.perspective;

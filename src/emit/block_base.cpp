@@ -133,7 +133,7 @@ void writeBlockBase(std::FILE* out, const geo::GeoGrid& refined, const ScenePlac
     const auto shade = [&](std::uint32_t v) {
         const auto& vertex = block.vertices[v];
         // Slope colouring: a wall is the steepest ground there is.
-        if (where.colouring == scene::LookSpec::Colouring::Slope) return kPaletteSize - 1;
+        if (where.colouring == scene::TextureSpec::Colouring::Slope) return kPaletteSize - 1;
         return vertex.floor ? 0 : int(paletteIndex(where, where.elevation(points[vertex.node])));
     };
     fmt::format_to(std::back_inserter(sdl), "\n  }}\n  face_indices {{\n    {}", block.faces.size());

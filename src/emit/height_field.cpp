@@ -109,7 +109,7 @@ Drape elevationDrape(const geo::GeoGrid& refined, const ScenePlacement& where) {
         std::uint16_t* row = drape.pixels.data() + static_cast<size_t>(g.rows - 1 - r) * g.cols * n;
         for (int c = 0; c < g.cols; ++c) {
             // The mesh2's palette entry for this node, and its colour.
-            using C = scene::LookSpec::Colouring;
+            using C = scene::TextureSpec::Colouring;
             const double e = where.elevation(g.at(r, c));
             const bool slope = where.colouring == C::Slope || where.colouring == C::Blend;
             const auto& colour =

@@ -10,7 +10,7 @@ namespace relief::emit {
 ScenePlacement placeTerrain(const geo::GeoGrid& refined, const scene::LookSpec& look) {
     const Grid& g = refined.grid;
     ScenePlacement where;
-    where.exaggeration = look.exaggeration;
+    where.exaggeration = look.vertical.exaggeration;
     if (refined.frame.kind == scene::FrameKind::Local)
         where.curvature = std::make_shared<geo::CurvatureDrop>(refined.frame, refined.x0, refined.y0, refined.xMax(),
                                                                refined.yMax());
@@ -61,25 +61,25 @@ ScenePlacement placeTerrain(const geo::GeoGrid& refined, const scene::LookSpec& 
             }
 
     // Palette over the true (not exaggerated) elevation range.
-    const auto stops = scene::resolveRamp(look.ramp, zmin, zmax);
+    const auto stops = scene::resolveRamp(look.texture.ramp, zmin, zmax);
     const double span = zmax > zmin ? zmax - zmin : 1.0;
     where.paletteColors.resize(kPaletteSize);
     for (int k = 0; k < kPaletteSize; ++k)
         where.paletteColors[k] = scene::sampleRamp(stops, zmin + span * k / (kPaletteSize - 1));
-    where.colouring = look.colouring;
-    where.rockFromDeg = look.rockFromDeg;
-    where.rockToDeg = look.rockToDeg;
-    const scene::ColorStop& rock = look.rockColour;
+    where.colouring = look.texture.colouring;
+    where.rockFromDeg = look.texture.rockFromDeg;
+    where.rockToDeg = look.texture.rockToDeg;
+    const scene::ColorStop& rock = look.texture.rockColour;
     const auto mix = [](const scene::ColorStop& a, const scene::ColorStop& b, double t) {
         return scene::ColorStop{0, a.r + t * (b.r - a.r), a.g + t * (b.g - a.g), a.b + t * (b.b - a.b)};
     };
-    using C = scene::LookSpec::Colouring;
-    if (look.colouring == C::Blend) {
+    using C = scene::TextureSpec::Colouring;
+    if (look.texture.colouring == C::Blend) {
         const std::vector<scene::ColorStop> ground = where.paletteColors;
         for (int k = 1; k < kBlendClasses; ++k)
             for (const auto& colour : ground)
                 where.paletteColors.push_back(mix(colour, rock, double(k) / (kBlendClasses - 1)));
-    } else if (look.colouring == C::Slope) {
+    } else if (look.texture.colouring == C::Slope) {
         // Pale on the flat, tan where rock begins, the rock colour where it has
         // taken over, darker on cliffs.
         const scene::ColorStop pale{0, 0.90, 0.87, 0.79}, tan{0, 0.58, 0.52, 0.40};
@@ -87,10 +87,13 @@ ScenePlacement placeTerrain(const geo::GeoGrid& refined, const scene::LookSpec& 
         for (int k = 0; k < kPaletteSize; ++k) {
             const double slope = kSlopePaletteMaxDeg * k / (kPaletteSize - 1);
             where.paletteColors[k] =
-                slope < look.rockFromDeg ? mix(pale, tan, slope / look.rockFromDeg)
-                : slope < look.rockToDeg ? mix(tan, rock, (slope - look.rockFromDeg) / (look.rockToDeg - look.rockFromDeg))
-                                         : mix(rock, cliff, std::min(1.0, (slope - look.rockToDeg) /
-                                                                               std::max(kSlopePaletteMaxDeg - look.rockToDeg, 1.0)));
+                slope < look.texture.rockFromDeg ? mix(pale, tan, slope / look.texture.rockFromDeg)
+                : slope < look.texture.rockToDeg
+                    ? mix(tan, rock,
+                          (slope - look.texture.rockFromDeg) / (look.texture.rockToDeg - look.texture.rockFromDeg))
+                    : mix(rock, cliff,
+                          std::min(1.0, (slope - look.texture.rockToDeg) /
+                                            std::max(kSlopePaletteMaxDeg - look.texture.rockToDeg, 1.0)));
         }
     }
     return where;

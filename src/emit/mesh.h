@@ -40,7 +40,7 @@ struct ScenePlacement {
     /// copies of the elevation entries, each mixed further towards the rock
     /// colour; Image, the elevation entries (the walls' colours), the surface
     /// coloured by its drape.
-    scene::LookSpec::Colouring colouring = scene::LookSpec::Colouring::Elevation;
+    scene::TextureSpec::Colouring colouring = scene::TextureSpec::Colouring::Elevation;
     double rockFromDeg = 30, rockToDeg = 45;
     /// The block model's floor ([base]), as a true elevation in metres; unset:
     /// a floating surface. Bounds and outline include the floor.
@@ -99,7 +99,7 @@ inline double rockWeight(const ScenePlacement& where, double slopeDeg) {
 /// The palette entry of a point of the surface, by its true elevation and
 /// slope (degrees), as where.colouring lays the palette out.
 inline unsigned paletteEntry(const ScenePlacement& where, double elevationM, double slopeDeg) {
-    using C = scene::LookSpec::Colouring;
+    using C = scene::TextureSpec::Colouring;
     switch (where.colouring) {
         case C::Slope:
             return static_cast<unsigned>(
@@ -158,7 +158,7 @@ struct Mesh : ScenePlacement {
     /// (and its slope, when the colouring uses it).
     unsigned palette(size_t node) const {
         const double e = elevation(grid->grid.points[node]);
-        using C = scene::LookSpec::Colouring;
+        using C = scene::TextureSpec::Colouring;
         if (colouring != C::Slope && colouring != C::Blend) return paletteIndex(*this, e);
         return paletteEntry(*this, e, slopeDeg(*grid, *this, static_cast<int>(node / static_cast<size_t>(cols)),
                                                 static_cast<int>(node % static_cast<size_t>(cols))));

@@ -111,7 +111,7 @@ size_t writeMesh2(const Mesh& mesh, std::FILE* out, const WriteProgressFn& progr
     vectorSection("mesh2 {\n  vertex_vectors {\n    ", [&](size_t i) { return mesh.position(i); }, kPositionDecimals, 0);
     vectorSection("\n  }\n  normal_vectors {\n    ", [&](size_t i) { return mesh.normal(i); }, kNormalDecimals, 0.25);
     // An image drape colours the mesh as a whole (drapeTextureSdl): no texture per vertex.
-    const bool perVertex = mesh.colouring != scene::LookSpec::Colouring::Image;
+    const bool perVertex = mesh.colouring != scene::TextureSpec::Colouring::Image;
     if (perVertex) {
         w->put("\n  }\n  texture_list {\n    ");
         char* p = w->reserve(24);
@@ -376,9 +376,9 @@ Bindings sceneBindings(const ScenePlacement& where, const CameraView& view, cons
     // centre of the view keeps e^-0.3 = 74 % of its light and a ridge a
     // terrain's radius beyond it about 65 %: far reads as far, near stays clear.
     b["atmosphere"].text = "";
-    if (look.haze > 0)
+    if (look.atmosphere.haze > 0)
         b["atmosphere"].text = fmt::format("fog {{ fog_type 1 distance {} color rgb <0.78, 0.85, 0.93> }}",
-                                           num(length(view.eye - view.target) / (0.3 * look.haze)));
+                                           num(length(view.eye - view.target) / (0.3 * look.atmosphere.haze)));
     b["terrain"].writer = std::move(writers.terrain);
     if (writers.base) b["base"].writer = std::move(writers.base);
     else b["base"].text = "";

@@ -52,11 +52,11 @@ struct EnumNames<NodataPolicy> {
 };
 /// texture.mode names the first three; Image is what texture.image chooses.
 template <>
-struct EnumNames<LookSpec::Colouring> {
-    static constexpr NameRow<LookSpec::Colouring> rows[] = {{LookSpec::Colouring::Elevation, "elevation"},
-                                                            {LookSpec::Colouring::Slope, "slope"},
-                                                            {LookSpec::Colouring::Blend, "blend"},
-                                                            {LookSpec::Colouring::Image, "image"}};
+struct EnumNames<TextureSpec::Colouring> {
+    static constexpr NameRow<TextureSpec::Colouring> rows[] = {{TextureSpec::Colouring::Elevation, "elevation"},
+                                                               {TextureSpec::Colouring::Slope, "slope"},
+                                                               {TextureSpec::Colouring::Blend, "blend"},
+                                                               {TextureSpec::Colouring::Image, "image"}};
 };
 template <>
 struct EnumNames<GeometryKind> {

@@ -15,7 +15,7 @@
 namespace relief::scene {
 
 void readVertical(Section& s, const SceneFile&, SceneSpec& scene) {
-    if (auto e = s.number("exaggeration", 0, 100, "(unitless factor)", true)) scene.look.exaggeration = *e;
+    if (auto e = s.number("exaggeration", 0, 100, "(unitless factor)", true)) scene.look.vertical.exaggeration = *e;
 }
 
 namespace {
@@ -41,29 +41,29 @@ void readCpt(Section& s, const SceneFile& f, ColorRamp& ramp) {
 }
 
 // texture.mode and the rock's colour and slopes.
-void readColouring(Section& s, LookSpec& look) {
-    using Colouring = LookSpec::Colouring;
+void readColouring(Section& s, TextureSpec& texture) {
+    using Colouring = TextureSpec::Colouring;
     // texture.mode names the first three colourings; an image is texture.image's.
     const auto modes = std::span(EnumNames<Colouring>::rows).first(3);
-    if (auto m = s.named<Colouring>("mode", modes)) look.colouring = *m;
-    if (auto v = s.string("rock_color"); v && !parseHexColor(*v, look.rockColour))
+    if (auto m = s.named<Colouring>("mode", modes)) texture.colouring = *m;
+    if (auto v = s.string("rock_color"); v && !parseHexColor(*v, texture.rockColour))
         s.error("rock_color", fmt::format("texture.rock_color = \"{}\" must be a colour \"#rrggbb\"", printableExcerpt(*v)));
-    if (auto v = s.number("rock_from_deg", 0, 90, "degrees of slope", false, true)) look.rockFromDeg = *v;
-    if (auto v = s.number("rock_to_deg", 0, 90, "degrees of slope", true)) look.rockToDeg = *v;
-    if (!(look.rockToDeg > look.rockFromDeg))
+    if (auto v = s.number("rock_from_deg", 0, 90, "degrees of slope", false, true)) texture.rockFromDeg = *v;
+    if (auto v = s.number("rock_to_deg", 0, 90, "degrees of slope", true)) texture.rockToDeg = *v;
+    if (!(texture.rockToDeg > texture.rockFromDeg))
         s.error(s.find("rock_to_deg") ? "rock_to_deg" : "rock_from_deg",
                 fmt::format("texture.rock_to_deg ({}) must be above texture.rock_from_deg ({})",
-                            formatShortest(look.rockToDeg), formatShortest(look.rockFromDeg)));
+                            formatShortest(texture.rockToDeg), formatShortest(texture.rockFromDeg)));
 }
 
 // texture.image: a georeferenced image draped on the surface.
-void readDrapeImage(Section& s, const SceneFile& f, LookSpec& look) {
-    if (auto v = s.text("image_attribution")) look.drapeImageAttribution = *v;
+void readDrapeImage(Section& s, const SceneFile& f, TextureSpec& texture) {
+    if (auto v = s.text("image_attribution")) texture.drapeImageAttribution = *v;
     const auto v = s.string("image");
     if (!v) return;
     const std::filesystem::path image = f.path.parent_path() / *v;
     const std::string problem = inputFileProblem(image);
-    if (s.find("mode") && look.colouring != LookSpec::Colouring::Elevation)
+    if (s.find("mode") && texture.colouring != TextureSpec::Colouring::Elevation)
         s.error("image", "texture.image colours the surface by itself: leave out texture.mode");
     else if (problem == "no such file")
         s.error("image", fmt::format("texture.image: file \"{}\" not found (looked for {})", printableExcerpt(*v),
@@ -71,9 +71,9 @@ void readDrapeImage(Section& s, const SceneFile& f, LookSpec& look) {
     else if (!problem.empty())
         s.error("image", fmt::format("texture.image = \"{}\": {}", printableExcerpt(*v), problem));
     else {
-        look.colouring = LookSpec::Colouring::Image;
-        look.drapeImage = image;
-        look.drapeImageText = *v;
+        texture.colouring = TextureSpec::Colouring::Image;
+        texture.drapeImage = image;
+        texture.drapeImageText = *v;
     }
 }
 
@@ -124,14 +124,14 @@ void readStops(Section& s, const SceneFile& f, ColorRamp& ramp) {
 }  // namespace
 
 void readTexture(Section& s, const SceneFile& f, SceneSpec& scene) {
-    LookSpec& look = scene.look;
+    TextureSpec& texture = scene.look.texture;
     std::vector<std::string> ramps = rampPresetNames();
     ramps.push_back("custom");
-    if (auto r = s.choice("ramp", ramps)) look.ramp.preset = *r;
-    readCpt(s, f, look.ramp);
-    readColouring(s, look);
-    readDrapeImage(s, f, look);
-    readStops(s, f, look.ramp);
+    if (auto r = s.choice("ramp", ramps)) texture.ramp.preset = *r;
+    readCpt(s, f, texture.ramp);
+    readColouring(s, texture);
+    readDrapeImage(s, f, texture);
+    readStops(s, f, texture.ramp);
 }
 
 namespace {
@@ -155,22 +155,23 @@ std::optional<std::string> dateTimeText(const toml::node& n) {
 }  // namespace
 
 void readLighting(Section& s, const SceneFile&, SceneSpec& scene) {
-    LookSpec& look = scene.look;
-    if (auto v = s.number("sun_azimuth_deg", 0, 360, "degrees (compass bearing)", false, true)) look.sunAzimuthDeg = *v;
-    if (auto v = s.number("sun_altitude_deg", 0, 90, "degrees", true)) look.sunAltitudeDeg = *v;
+    LightingSpec& lighting = scene.look.lighting;
+    if (auto v = s.number("sun_azimuth_deg", 0, 360, "degrees (compass bearing)", false, true))
+        lighting.sunAzimuthDeg = *v;
+    if (auto v = s.number("sun_altitude_deg", 0, 90, "degrees", true)) lighting.sunAltitudeDeg = *v;
     s.markKnown("datetime");
     const toml::node* n = s.find("datetime");
     if (!n) return;
     const std::optional<std::string> text = dateTimeText(*n);
     std::string why = "it must be a date and time with its UTC offset";
-    if (text) look.sunTime = parseOffsetDateTime(*text, why);
-    if (!look.sunTime)
+    if (text) lighting.sunTime = parseOffsetDateTime(*text, why);
+    if (!lighting.sunTime)
         s.error("datetime",
                 fmt::format("lighting.datetime{}: {}", text ? " = \"" + printableExcerpt(*text) + "\"" : "", why));
     else
-        look.sunTimeText = *text;
+        lighting.sunTimeText = *text;
     for (const char* angle : {"sun_azimuth_deg", "sun_altitude_deg"})
-        if (look.locs.has(std::string("lighting.") + angle))
+        if (lighting.locs.has(std::string("lighting.") + angle))
             s.warning(angle, fmt::format("lighting.{} is not used: lighting.datetime places the sun", angle));
 }
 
@@ -186,7 +187,7 @@ void readCamera(Section& s, const SceneFile&, SceneSpec& scene) {
     if (camera.lookAt && !camera.position)
         s.error("look_at", "camera.look_at needs camera.position (the eye, [lon, lat, height_m])");
     for (const char* orbit : {"azimuth_deg", "elevation_deg", "distance_m"})
-        if (camera.position && scene.look.locs.has(std::string("camera.") + orbit))
+        if (camera.position && camera.locs.has(std::string("camera.") + orbit))
             s.warning(orbit, fmt::format("camera.{} is not used: camera.position places the eye", orbit));
 }
 
@@ -208,7 +209,7 @@ void readWater(Section& s, const SceneFile&, SceneSpec& scene) {
 }
 
 void readAtmosphere(Section& s, const SceneFile&, SceneSpec& scene) {
-    if (auto v = s.number("haze", 0, 1, "0 (none) to 1 (thick)")) scene.look.haze = *v;
+    if (auto v = s.number("haze", 0, 1, "0 (none) to 1 (thick)")) scene.look.atmosphere.haze = *v;
 }
 
 namespace {

@@ -4,13 +4,18 @@
 // of every key kept in the spec that holds it, so the stage that finds a
 // problem reports it at the key that caused it.
 //
-//   [samples]                  -> SamplesSpec      geo::readSamples
-//   [frame]                    -> FrameSpec        geo::normalize
-//   [net]                      -> NetSpec          geo::normalize
+// One section, one spec (and one reader, scene/read_sections.h):
+//   [samples]                  -> SamplesSpec      geo (the control net)
+//   [frame]                    -> FrameSpec        geo
+//   [net]                      -> NetSpec          geo
 //   [subdivision]              -> SubdivisionSpec  subdiv::resolveScheme, the depth
-//   [vertical] [texture] [lighting] [camera] -> LookSpec   emit
-//   [render]                   -> RenderSpec       emit (aspect), render
 //   [limits]                   -> LimitsSpec       the output budget
+//   [vertical] [texture] [lighting] [camera] [base] [water] [atmosphere]
+//                              -> VerticalSpec ... AtmosphereSpec, read together by emit as LookSpec
+//   [geometry]                 -> GeometrySpec     emit (the terrain's kind)
+//   [render]                   -> RenderSpec       emit (aspect), render
+//   [overlay]                  -> OverlaySpec      annotate
+// The names of the enums' values are in scene/enum_names.h.
 #include <array>
 #include <filesystem>
 #include <map>
@@ -164,6 +169,7 @@ struct CameraSpec {
     /// Placed by geography instead: [lon, lat, height above sea level in m]
     /// for the eye and (optional; else the terrain's centre) the point looked at.
     std::optional<std::array<double, 3>> position, lookAt;
+    KeyLocations locs;
 };
 
 /// [base]: the terrain as a solid block, side walls down to a flat floor
@@ -171,6 +177,7 @@ struct CameraSpec {
 struct BaseSpec {
     bool enabled = true;
     std::optional<double> thicknessM;  ///< below the lowest elevation, true metres; unset: a tenth of the relief
+    KeyLocations locs;
 };
 
 /// [water]: a water surface over the terrain's extent.
@@ -178,14 +185,19 @@ struct WaterSpec {
     std::optional<double> levelM;  ///< unset: no water
     ColorStop colour{0, 0.05, 0.18, 0.32};  ///< linear RGB (#3f7699 in sRGB)
     double transparency = 0.35;             ///< 0 opaque .. 1 clear
+    KeyLocations locs;
 };
 
-/// How the terrain looks: [vertical], [texture], [lighting], [camera],
-/// [base], [water], [atmosphere].
-struct LookSpec {
+/// [vertical]
+struct VerticalSpec {
     double exaggeration = 1.0;
+    KeyLocations locs;
+};
+
+/// [texture]: what colours the surface.
+struct TextureSpec {
     ColorRamp ramp{"terrain", {}, {}};
-    /// [texture] mode and image: what colours the surface.
+    /// [texture] mode and image.
     enum class Colouring {
         Elevation,  ///< the ramp over elevation
         Slope,      ///< pale on flat ground to rock on steep
@@ -198,17 +210,36 @@ struct LookSpec {
     std::filesystem::path drapeImage;               ///< Colouring::Image: the raster, resolved against the scene
     std::string drapeImageText;                     ///< as written
     std::string drapeImageAttribution;              ///< [texture] image_attribution: the image's credit line
-    double sunAzimuthDeg = 315;   ///< compass bearing the light comes from
+    KeyLocations locs;
+};
+
+/// [lighting]
+struct LightingSpec {
+    double sunAzimuthDeg = 315;  ///< compass bearing the light comes from
     double sunAltitudeDeg = 45;
-    /// [lighting] datetime: the sun is placed where it was then, over the
-    /// terrain's centre (compileScene), in place of the two angles.
+    /// datetime: the sun is placed where it was then, over the terrain's
+    /// centre (compileScene), in place of the two angles.
     std::optional<OffsetDateTime> sunTime;
     std::string sunTimeText;  ///< as written in the scene
+    KeyLocations locs;
+};
+
+/// [atmosphere]
+struct AtmosphereSpec {
+    double haze = 0;  ///< in [0, 1]: distance fog, 0 none
+    KeyLocations locs;
+};
+
+/// How the terrain looks: the specs of [vertical], [texture], [lighting],
+/// [camera], [base], [water] and [atmosphere], which emit/ reads together.
+struct LookSpec {
+    VerticalSpec vertical;
+    TextureSpec texture;
+    LightingSpec lighting;
     CameraSpec camera;
     BaseSpec base;
     WaterSpec water;
-    double haze = 0;  ///< [atmosphere] haze in [0, 1]: distance fog, 0 none
-    KeyLocations locs;
+    AtmosphereSpec atmosphere;
 };
 
 /// What is behind the terrain: the sky gradient, one colour, or nothing (a

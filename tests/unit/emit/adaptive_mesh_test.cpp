@@ -79,7 +79,7 @@ Checked check(const Mesh& m, const geo::GeoGrid& g) {
 // A grey ramp is linear in height, so only the geometry decides.
 scene::LookSpec grey() {
     scene::LookSpec look;
-    look.ramp.preset = "grey";
+    look.texture.ramp.preset = "grey";
     return look;
 }
 

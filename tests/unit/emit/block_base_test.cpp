@@ -117,7 +117,7 @@ std::string written(const geo::GeoGrid& grid, const ScenePlacement& where) {
 TEST(BlockBase, TheFloorIsATenthOfTheReliefBelowTheLowestPointByDefault) {
     const geo::GeoGrid grid = rampGrid(3, 4);  // 50 m to 86 m
     scene::LookSpec look;
-    look.exaggeration = 2;
+    look.vertical.exaggeration = 2;
     const ScenePlacement where = placeTerrain(grid, look);
     ASSERT_TRUE(where.baseElevationM);
     EXPECT_DOUBLE_EQ(*where.baseElevationM, 50 - 3.6);

@@ -71,7 +71,7 @@ Grid tiltedPlane() {
 
 TEST(Mesh, NormalsOfATiltedPlaneAndSceneUnits) {
     scene::LookSpec look;
-    look.exaggeration = 2;
+    look.vertical.exaggeration = 2;
     const geo::GeoGrid grid{{}, tiltedPlane(), 300000, 5900000, 100, 100, {}};
     const Mesh m = buildMesh(grid, look);
     EXPECT_EQ(m.metresPerUnit, 10.0);  // 300 m extent -> 10 m per unit
@@ -170,7 +170,7 @@ TEST(Mesh, LocalFrameExaggeratesElevationNotCurvature) {
         }
     EXPECT_LT(grid.grid.at(0, 0).z, -6000);  // the fall at the corner, 283 km out: about 6.3 km
     scene::LookSpec look;
-    look.exaggeration = 10;
+    look.vertical.exaggeration = 10;
     const Mesh m = buildMesh(grid, look);
     EXPECT_NEAR(m.zMinM, 100, 0.5);
     EXPECT_NEAR(m.zMaxM, 500, 0.5);

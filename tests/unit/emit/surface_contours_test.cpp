@@ -23,7 +23,7 @@ TEST(SurfaceContours, RingsOnAConeLieOnItsCircles) {
             grid.grid.points.push_back({grid.x0 + c, grid.y0 + r, 100 - std::hypot(x, y)});
         }
     scene::LookSpec look;
-    look.exaggeration = 2;
+    look.vertical.exaggeration = 2;
     const ScenePlacement where = placeTerrain(grid, look);
     scene::ContourSpec spec;
     spec.intervalM = 10;
@@ -40,7 +40,7 @@ TEST(SurfaceContours, RingsOnAConeLieOnItsCircles) {
         ASSERT_TRUE(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z));
         const double x = v.x * where.metresPerUnit + where.originM.x - 500000;
         const double y = v.z * where.metresPerUnit + where.originM.y - 5000000;
-        const double r = std::hypot(x, y), height = v.y * where.metresPerUnit / look.exaggeration;
+        const double r = std::hypot(x, y), height = v.y * where.metresPerUnit / look.vertical.exaggeration;
         // The nearest level's circle: within the (index line's) half width and the simplification's quarter width.
         const double level = std::round((100 - r) / 10) * 10;
         EXPECT_NEAR(r, 100 - level, widthM + 0.25 * widthM + 0.05) << x << "," << y;

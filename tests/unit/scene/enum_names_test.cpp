@@ -34,7 +34,7 @@ TEST(EnumNames, EveryValueHasOneName) {
     expectOneNameEach(Projection::Orthographic);
     expectOneNameEach(Resample::Nearest);
     expectOneNameEach(NodataPolicy::Error);
-    expectOneNameEach(LookSpec::Colouring::Image);
+    expectOneNameEach(TextureSpec::Colouring::Image);
     expectOneNameEach(GeometryKind::HeightField);
     EXPECT_STREQ(nameOf(Gridding::InverseDistance), "invdist");
     EXPECT_STREQ(nameOf(GeometryKind::HeightField), "height_field");

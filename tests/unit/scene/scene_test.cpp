@@ -39,7 +39,7 @@ TEST(ReadScene, MinimalSceneGetsDefaults) {
     EXPECT_EQ(s->subdivision.scheme.name, "dlg4");
     EXPECT_EQ(s->subdivision.depth, 3);
     EXPECT_EQ(s->render.width, 800);
-    EXPECT_EQ(s->look.ramp.preset, "terrain");
+    EXPECT_EQ(s->look.texture.ramp.preset, "terrain");
     std::filesystem::remove_all(dir);
 }
 
@@ -54,9 +54,10 @@ TEST(ReadScene, EveryKeyTheStagesLookUpIsASceneKey) {
     const auto s = readScene(dir / "s.toml", diags);
     ASSERT_TRUE(s);
     std::set<std::string> known;
-    for (const KeyLocations* locs : {&s->samples.locs, &s->frame.locs, &s->net.locs, &s->subdivision.locs,
-                                     &s->look.locs, &s->geometry.locs, &s->render.locs, &s->overlay.locs,
-                                     &s->limits.locs})
+    for (const KeyLocations* locs :
+         {&s->samples.locs, &s->frame.locs, &s->net.locs, &s->subdivision.locs, &s->look.vertical.locs,
+          &s->look.texture.locs, &s->look.lighting.locs, &s->look.camera.locs, &s->look.base.locs, &s->look.water.locs,
+          &s->look.atmosphere.locs, &s->geometry.locs, &s->render.locs, &s->overlay.locs, &s->limits.locs})
         known.insert(locs->known.begin(), locs->known.end());
     ASSERT_GT(known.size(), 50u);
     const std::regex lookup(R"re(locs\.(?:at|has)\("([a-z_]+\.[a-z_.]+)"\))re");
@@ -97,7 +98,7 @@ TEST(ReadScene, EachSpecKeepsTheLocationOfEveryKey) {
     expectAt(s->net.locs.at("net.gridding"), 3, 1);            // absent: the [net] header
     expectAt(s->subdivision.scheme.locs.at("subdivision.scheme"), 6, 10);
     expectAt(s->subdivision.scheme.locs.at("subdivision.omega"), 7, 3);  // a parameter: its key
-    expectAt(s->look.locs.at("camera.fov_deg"), 9, 11);
+    expectAt(s->look.camera.locs.at("camera.fov_deg"), 9, 11);
     expectAt(s->render.locs.at("render.width"), 0, 0);         // no [render]: the file
     EXPECT_DOUBLE_EQ(s->subdivision.scheme.params.at("omega"), 3.0 / 64);
     std::filesystem::remove_all(dir);
@@ -118,12 +119,12 @@ TEST(ReadScene, ReportKeysFromTheFileAndFromOverrides) {
     ASSERT_FALSE(diags.hasErrors());
     EXPECT_TRUE(s->look.base.enabled);
     EXPECT_EQ(s->look.base.thicknessM, 40.0);
-    EXPECT_EQ(s->look.colouring, LookSpec::Colouring::Blend);
-    EXPECT_DOUBLE_EQ(s->look.rockFromDeg, 30);
-    EXPECT_DOUBLE_EQ(s->look.rockToDeg, 50);
-    EXPECT_NEAR(s->look.rockColour.r, 0.2158605, 1e-6);  // #80 made linear
+    EXPECT_EQ(s->look.texture.colouring, TextureSpec::Colouring::Blend);
+    EXPECT_DOUBLE_EQ(s->look.texture.rockFromDeg, 30);
+    EXPECT_DOUBLE_EQ(s->look.texture.rockToDeg, 50);
+    EXPECT_NEAR(s->look.texture.rockColour.r, 0.2158605, 1e-6);  // #80 made linear
     EXPECT_FALSE(s->overlay.contours);
-    EXPECT_FALSE(s->look.sunTime);
+    EXPECT_FALSE(s->look.lighting.sunTime);
 
     s = readScene(dir / "s.toml", diags,
                   {{"base.thickness_m", "false"},
@@ -136,10 +137,10 @@ TEST(ReadScene, ReportKeysFromTheFileAndFromOverrides) {
     ASSERT_TRUE(s->overlay.contours);
     EXPECT_DOUBLE_EQ(s->overlay.contours->intervalM, 25);
     EXPECT_EQ(s->overlay.contours->indexEvery, 4);
-    ASSERT_TRUE(s->look.sunTime);
-    EXPECT_EQ(s->look.sunTime->utcSeconds, 1781989200);  // 2026-06-20T21:00:00Z
-    EXPECT_EQ(s->look.sunTimeText, "2026-06-21T09:00:00+12:00");
-    EXPECT_EQ(s->look.colouring, LookSpec::Colouring::Slope);
+    ASSERT_TRUE(s->look.lighting.sunTime);
+    EXPECT_EQ(s->look.lighting.sunTime->utcSeconds, 1781989200);  // 2026-06-20T21:00:00Z
+    EXPECT_EQ(s->look.lighting.sunTimeText, "2026-06-21T09:00:00+12:00");
+    EXPECT_EQ(s->look.texture.colouring, TextureSpec::Colouring::Slope);
 
     // Each wrong value: an error at its key.
     for (const auto& [key, value] : std::vector<std::pair<std::string, std::string>>{
