@@ -53,7 +53,7 @@ start() {
     || { echo "FAIL: munged did not start"; cat "$munge/munged.log" 2>/dev/null; exit 1; }
   cat > "$conf" <<EOF
 ClusterName=relief-test
-SlurmctldHost=$host
+SlurmctldHost=$host(127.0.0.1)
 SlurmctldPort=$(free_port)
 SlurmdPort=$(free_port)
 SlurmUser=$user
@@ -78,18 +78,21 @@ JobCompLoc=$dir/jobcomp.txt
 MpiDefault=none
 ReturnToService=2
 MinJobAge=300
-NodeName=$host CPUs=$(nproc) State=UNKNOWN
+NodeName=$host NodeAddr=127.0.0.1 CPUs=$(nproc) State=UNKNOWN
 PartitionName=test Nodes=$host Default=YES MaxTime=INFINITE State=UP
 EOF
   export SLURM_CONF="$conf"
   slurmctld || { echo "FAIL: slurmctld did not start"; tail -20 "$dir/slurmctld.log"; exit 1; }
   slurmd || { echo "FAIL: slurmd did not start"; tail -20 "$dir/slurmd.log"; exit 1; }
-  for _ in $(seq 100); do
-    state=$(sinfo -h -o %T 2>/dev/null | head -1)
+  # A deadline, not a count: sinfo waits out its own timeout when slurmctld does not answer.
+  local deadline=$((SECONDS + 30)) state=
+  while [ "$SECONDS" -lt "$deadline" ]; do
+    state=$(timeout 5 sinfo -h -o %T 2>/dev/null | head -1)
     [ "$state" = idle ] && { echo "slurm: node $host idle (SLURM_CONF=$conf)"; exit 0; }
     sleep 0.1
   done
-  echo "FAIL: the node is not idle after 10 s (state: ${state:-none})"; tail -5 "$dir/slurmctld.log" "$dir/slurmd.log"
+  echo "FAIL: the node is not idle after 30 s (state: ${state:-none})"
+  for log in "$dir/slurmctld.log" "$dir/slurmd.log"; do echo "-- $log"; tail -n 10 "$log"; done
   stop; exit 1
 }
 
