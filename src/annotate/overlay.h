@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "core/png_file.h"
-#include "emit/write_scene.h"
+#include "emit/camera.h"
 #include "scene/scene_spec.h"
 
 namespace relief::annotate {

@@ -74,14 +74,6 @@ std::string num(double v, int decimals = 6) {
     return std::string(buf, writeFixed(buf, v, decimals));
 }
 
-constexpr double kDeg = std::numbers::pi / 180.0;
-
-// Unit vector (scene axes) towards compass bearing `azimuthDeg` at `altitudeDeg` above the horizon.
-Vec3 direction(double azimuthDeg, double altitudeDeg) {
-    const double a = azimuthDeg * kDeg, e = altitudeDeg * kDeg;
-    return {std::sin(a) * std::cos(e), std::sin(e), std::cos(a) * std::cos(e)};
-}
-
 }  // namespace
 
 size_t writeMesh2(const Mesh& mesh, std::FILE* out, const WriteProgressFn& progress) {
@@ -180,129 +172,6 @@ size_t writeMesh2(const Mesh& mesh, std::FILE* out, const WriteProgressFn& progr
     return w->total();
 }
 
-CameraView placeCamera(const ScenePlacement& where, const scene::CameraSpec& camera, const CameraPoints& points,
-                       const scene::RenderSpec& render) {
-    const Vec3 lo = where.boundsMin, hi = where.boundsMax;
-    const Vec3 target{0.5 * (lo.x + hi.x), 0.5 * (lo.y + hi.y), 0.5 * (lo.z + hi.z)};
-    const double radius = 0.5 * length(hi - lo);
-    const double aspect = static_cast<double>(render.width) / render.height;
-    const Vec3 back = direction(camera.azimuthDeg, camera.elevationDeg);
-    // Camera basis: `right` is horizontal, `up` completes it (POV-Ray's `angle`
-    // is the horizontal field of view).
-    const Vec3 right = {back.z, 0, -back.x};
-    const double rightLen = length(right);
-    const Vec3 r = (1.0 / rightLen) * right;
-    const Vec3 u = cross(r, back);  // left-handed axes: this points up
-    const double tanH = std::tan(0.5 * camera.fovDeg * kDeg);
-    const double tanV = tanH / aspect;
-    // Nearest distance at which all eight corners of the bounding box are in view,
-    // plus a 6 % margin.
-    double fitDistance = 0;
-    for (int corner = 0; corner < 8; ++corner) {
-        const Vec3 c{corner & 1 ? hi.x : lo.x, corner & 2 ? hi.y : lo.y, corner & 4 ? hi.z : lo.z};
-        const Vec3 v = c - target;
-        fitDistance = std::max({fitDistance, dot(v, back) + std::fabs(dot(v, r)) / tanH,
-                                dot(v, back) + std::fabs(dot(v, u)) / tanV});
-    }
-    fitDistance *= 1.06;
-    const double distance =
-        camera.distanceM > 0 ? camera.distanceM / where.metresPerUnit : fitDistance;
-    CameraView view;
-    view.eye = target + distance * back;
-    view.target = target;
-    view.orthoHeight = 2.1 * radius;
-    if (camera.distanceM <= 0 && !points.eyeM && !where.outline.empty()) {
-        // A tight fit: the terrain's own outline, not its bounding box, fills
-        // the frame with a small margin, centred (the target moves across the
-        // view, the eye back or forth); a few rounds settle a perspective view.
-        const Vec3 screenRight = (-1.0 / rightLen) * right, screenUp = (-1.0 / length(u)) * u;
-        const Vec3 forward = -1.0 * back;
-        constexpr double kMargin = 0.04;  // of the half-frame, on the widest side
-        Vec3 t = target;
-        double d = distance;
-        for (int round = 0; round < 40; ++round) {
-            const Vec3 eye = t + d * back;
-            double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300;
-            bool behind = false;
-            for (const Vec3& p : where.outline) {
-                const Vec3 v = p - eye;
-                double x = dot(v, screenRight), y = dot(v, screenUp);
-                if (camera.projection == scene::Projection::Perspective) {
-                    const double z = dot(v, forward);
-                    if (z <= 1e-9 * d) {
-                        behind = true;
-                        break;
-                    }
-                    x /= z * tanH, y /= z * tanV;
-                } else {
-                    x /= view.orthoHeight * aspect / 2, y /= view.orthoHeight / 2;
-                }
-                xmin = std::min(xmin, x), xmax = std::max(xmax, x), ymin = std::min(ymin, y), ymax = std::max(ymax, y);
-            }
-            if (behind) {
-                d *= 2;
-                continue;
-            }
-            const double cx = 0.5 * (xmin + xmax), cy = 0.5 * (ymin + ymax);
-            const double half = std::max(0.5 * (xmax - xmin), 0.5 * (ymax - ymin));
-            if (camera.projection == scene::Projection::Perspective) {
-                t = t + (cx * d * tanH) * screenRight + (cy * d * tanV) * screenUp;
-                d *= half / (1 - kMargin);
-            } else {
-                t = t + (cx * view.orthoHeight * aspect / 2) * screenRight + (cy * view.orthoHeight / 2) * screenUp;
-                view.orthoHeight *= half / (1 - kMargin);
-            }
-            if (std::abs(cx) < 1e-6 && std::abs(cy) < 1e-6 && std::abs(half - (1 - kMargin)) < 1e-6) break;
-        }
-        view.eye = t + d * back;
-        view.target = t;
-    }
-    // The image's axes as plain numbers (r and u above for the orbit).
-    Vec3 leftPlain = r, downPlain = u;
-    if (points.eyeM) {  // placed by geography: the eye and the target as given
-        view.eye = where.scenePoint(*points.eyeM);
-        if (points.targetM) view.target = where.scenePoint(*points.targetM);
-        const Vec3 toEye = view.eye - view.target;
-        const double d = length(toEye);
-        const Vec3 b = d > 0 ? (1.0 / d) * toEye : Vec3{0, 1, 0};
-        Vec3 side{b.z, 0, -b.x};  // looking straight down: east stays right
-        if (length(side) < 1e-9) side = {-1, 0, 0};
-        leftPlain = (1.0 / length(side)) * side;
-        downPlain = cross(leftPlain, b);
-    }
-    // As POV-Ray draws the image (left-handed: its right is cross(y, direction)
-    // taken as plain numbers), those point left and down.
-    view.right = (-1.0 / length(leftPlain)) * leftPlain;
-    view.up = (-1.0 / length(downPlain)) * downPlain;
-    view.radius = radius;
-    view.aspect = aspect;
-    view.tanHalfFov = tanH;
-    view.perspective = camera.projection == scene::Projection::Perspective;
-    return view;
-}
-
-std::array<double, 2> projectToImage(const CameraView& view, const Vec3& p, int widthPx, int heightPx) {
-    const Vec3 v = p - view.eye;
-    const double x = dot(v, view.right), y = dot(v, view.up);
-    if (!view.perspective) {
-        const double h = view.orthoHeight, w = h * view.aspect;
-        return {widthPx * (0.5 + x / w), heightPx * (0.5 - y / h)};
-    }
-    const double depth = std::max(dot(v, view.target - view.eye) / length(view.target - view.eye), 1e-12);
-    const double tanV = view.tanHalfFov / view.aspect;
-    return {widthPx * (0.5 + 0.5 * x / (depth * view.tanHalfFov)), heightPx * (0.5 - 0.5 * y / (depth * tanV))};
-}
-
-double finestMetresPerPixel(const CameraView& view, const ScenePlacement& where, int widthPx) {
-    if (!view.perspective) return view.orthoHeight * view.aspect * where.metresPerUnit / widthPx;
-    // The terrain's nearest point to the eye: there one pixel covers the least ground.
-    const Vec3 lo = where.boundsMin, hi = where.boundsMax;
-    const Vec3 nearest{std::clamp(view.eye.x, lo.x, hi.x), std::clamp(view.eye.y, lo.y, hi.y),
-                       std::clamp(view.eye.z, lo.z, hi.z)};
-    const double distance = std::max(length(view.eye - nearest), 1e-9);
-    return 2 * distance * view.tanHalfFov * where.metresPerUnit / widthPx;
-}
-
 Bindings sceneBindings(const ScenePlacement& where, const CameraView& view, const SunDirection& sun,
                        GeometryWriters writers, const scene::LookSpec& look, const scene::RenderSpec& render,
                        const ParameterList& header) {
@@ -328,7 +197,7 @@ Bindings sceneBindings(const ScenePlacement& where, const CameraView& view, cons
         b["camera_up"].text = fmt::format("y*{}", num(view.orthoHeight));
         b["camera_angle"].text = "";
     }
-    const Vec3 sunDir = direction(sun.azimuthDeg, sun.altitudeDeg);
+    const Vec3 sunDir = sceneDirection(sun.azimuthDeg, sun.altitudeDeg);
     b["sun_position"].text = vec(target + (100.0 * radius) * sunDir);
     b["scene_center"].text = vec(target);
     switch (render.background) {

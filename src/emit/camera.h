@@ -1,0 +1,53 @@
+#pragma once
+// The camera model, as POV-Ray's camera sees the scene: where relief puts the
+// camera (on an orbit fitted to the terrain, or at a geographic eye), and
+// where a scene point lands in the still. The SDL writer (write_scene.h)
+// writes this camera; annotate/ draws on the still it sees.
+#include <array>
+#include <optional>
+
+#include "core/types.h"
+#include "emit/mesh.h"
+#include "scene/scene_spec.h"
+
+namespace relief::emit {
+
+/// The unit vector, in scene axes, towards compass bearing `azimuthDeg` at
+/// `altitudeDeg` above the horizon: where the camera's orbit puts the eye,
+/// and where the sun's light comes from.
+Vec3 sceneDirection(double azimuthDeg, double altitudeDeg);
+
+/// Where relief puts the camera: on an orbit around the terrain's centre at
+/// the scene's azimuth and elevation, at the scene's distance or the nearest
+/// that keeps the terrain's bounding box in view (scene units and axes).
+struct CameraView {
+    Vec3 eye, target;
+    Vec3 right, up;         ///< unit vectors of the image's x (to the right) and y (up), scene axes
+    double radius = 0;      ///< of the bounding box
+    double aspect = 1;      ///< width / height
+    double tanHalfFov = 0;  ///< horizontal
+    bool perspective = true;
+    double orthoHeight = 0; ///< orthographic: the view's height
+};
+/// A camera placed by geography ([camera] position and look_at), in the
+/// frame's metres: the eye, and the point it looks at (unset: the terrain's
+/// centre). Both unset: on the orbit.
+struct CameraPoints {
+    std::optional<Vec3> eyeM, targetM;
+};
+CameraView placeCamera(const ScenePlacement& where, const scene::CameraSpec& camera, const CameraPoints& points,
+                       const scene::RenderSpec& render);
+/// The orbit camera of a look (no camera points): for tests and tools.
+inline CameraView placeCamera(const ScenePlacement& where, const scene::LookSpec& look, const scene::RenderSpec& render) {
+    return placeCamera(where, look.camera, {}, render);
+}
+
+/// Where a scene point lands in a still `widthPx` x `heightPx` as POV-Ray
+/// draws it: pixels, x to the right, y down, (0, 0) the top-left corner.
+std::array<double, 2> projectToImage(const CameraView& view, const Vec3& p, int widthPx, int heightPx);
+
+/// Metres of terrain one pixel of a still `widthPx` wide covers at the
+/// terrain's nearest point to the eye (the finest detail the still can show).
+double finestMetresPerPixel(const CameraView& view, const ScenePlacement& where, int widthPx);
+
+}  // namespace relief::emit
