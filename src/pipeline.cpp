@@ -2,7 +2,6 @@
 
 #include <chrono>
 #include <cmath>
-#include <mutex>
 #include <numbers>
 
 #include <fmt/format.h>
@@ -10,17 +9,14 @@
 
 #include "core/atomic_file.h"
 #include "core/date_time.h"
-#include "core/input_file.h"
 #include "core/number_format.h"
 #include "core/png_file.h"
-#include "core/text_escape.h"
 #include "emit/adaptive_mesh.h"
 #include "emit/block_base.h"
 #include "emit/surface_contours.h"
 #include "emit/height_field.h"
 #include "emit/mesh.h"
-#include "geo/raster.h"
-#include "geo/samples.h"
+#include "geo/control_net.h"
 #include "geo/sun_position.h"
 #include "measure/auto_depth.h"
 #include "relief/version.h"
@@ -103,77 +99,11 @@ std::optional<LoadedScene> loadScene(const std::filesystem::path& scenePath,
 
 namespace {
 
-// Scattered samples gridded onto the net, telling each percent of the gridding
-// (what takes long on real data).
-std::optional<geo::ControlNet> griddedSamples(const scene::SceneSpec& spec, Diagnostics& diags,
-                                              const ProgressFn& progress) {
-    // The samples held in memory take several times the file's bytes: a file
-    // over a quarter of the memory budget is refused before it is read.
-    const double budgetMB = budgetOf(spec.limits).maxMemoryMB;
-    const auto maxBytes = static_cast<std::uintmax_t>(budgetMB * 1e6 / 4);
-    std::error_code ec;
-    if (const auto bytes = std::filesystem::file_size(spec.samples.path, ec); !ec && bytes > maxBytes) {
-        diags.error(spec.limits.locs.has("limits.max_memory_mb") ? spec.limits.locs.at("limits.max_memory_mb")
-                                                                 : SourceLoc{spec.samples.pathAsWritten, 0, 0},
-                    fmt::format("the samples file is {}, more than a quarter of limits.max_memory_mb = {:.0f} "
-                                "(the samples in memory take several times the file): thin the samples, give them "
-                                "as a raster, or raise the limit",
-                                byteSize(bytes), budgetMB));
-        return std::nullopt;
-    }
-    const auto samples = geo::readSamples(spec.samples, diags, maxBytes);
-    if (diags.hasErrors()) return std::nullopt;
-    // A DEM exported as lon,lat,elev is a lattice in its own CRS: resampled as
-    // the raster it is. Tried: the scene's samples.crs, else degrees, Web
-    // Mercator and the UTM zone of the samples' first point.
-    std::vector<std::string> candidates{spec.samples.crs};
-    if (spec.samples.crs.empty()) {
-        const auto& s0 = samples.front();
-        const int zone = std::clamp(static_cast<int>(std::floor((s0.lonDeg + 180) / 6)) + 1, 1, 60);
-        candidates = {"EPSG:4326", "EPSG:3857", fmt::format("EPSG:{}", (s0.latDeg >= 0 ? 32600 : 32700) + zone)};
-    }
-    for (const auto& crs : candidates) {
-        const auto lattice = geo::findLattice(samples, crs);
-        if (!lattice) continue;
-        const std::string task = fmt::format("resampling the {} x {} lattice of samples in {}", lattice->cols,
-                                             lattice->rows, crs);
-        return geo::latticeNet(
-            *lattice, spec.samples, spec.frame, spec.net, diags,
-            [&](double fraction) {
-                if (progress) progress({ProgressEvent::Stage::Compiling, task, static_cast<int>(100 * fraction)});
-            },
-            netBudgetOf(spec.limits));
-    }
-    if (!spec.samples.crs.empty())
-        diags.warning(spec.samples.locs.at("samples.crs"),
-                      fmt::format("the {} samples are not one per node of a regular lattice in {}: gridded as "
-                                  "scattered samples",
-                                  samples.size(), spec.samples.crs));
-    const double griddingMB = samples.size() * subdiv::kGriddingBytesPerSample / 1e6;
-    if (griddingMB > budgetMB) {
-        diags.error(spec.limits.locs.has("limits.max_memory_mb") ? spec.limits.locs.at("limits.max_memory_mb")
-                                                                 : SourceLoc{spec.samples.pathAsWritten, 0, 0},
-                    fmt::format("gridding {} samples needs about {:.0f} MB of memory (2.2 kB each), more than "
-                                "limits.max_memory_mb = {:.0f}: thin the samples, or give them as a raster",
-                                samples.size(), griddingMB, budgetMB));
-        return std::nullopt;
-    }
-    geo::GridProgressFn gridding;
-    int lastPercent = -1;
-    std::mutex reporting;  // GDAL reports from its main thread; a guard costs nothing if not
-    const std::string task = fmt::format("gridding {} samples", samples.size());
-    if (progress) {
-        progress({ProgressEvent::Stage::Compiling, task, -1});  // before GDAL's triangulation, which tells nothing
-        gridding = [&](double fraction) {
-            const int percent = static_cast<int>(100 * fraction);
-            const std::lock_guard<std::mutex> lock(reporting);
-            if (percent == lastPercent) return;
-            lastPercent = percent;
-            progress({ProgressEvent::Stage::Compiling, task, percent});
-        };
-    }
-    return geo::normalize(spec.frame, spec.net, spec.samples.pathAsWritten, samples, diags, gridding,
-                          netBudgetOf(spec.limits));
+// What [limits] allow the control net, for geo.
+geo::NetLimits netLimitsOf(const scene::LimitsSpec& limits) {
+    geo::NetLimits l{netBudgetOf(limits), budgetOf(limits).maxMemoryMB, std::nullopt};
+    if (limits.locs.has("limits.max_memory_mb")) l.memoryKey = limits.locs.at("limits.max_memory_mb");
+    return l;
 }
 
 }  // namespace
@@ -184,27 +114,13 @@ std::optional<Surface> buildSurface(const LoadedScene& loaded, Diagnostics& diag
     const scene::SubdivisionSpec& sub = spec.subdivision;
     const subdiv::Scheme& scheme = loaded.resolved.scheme;
     auto t0 = Clock::now();
-    std::optional<geo::ControlNet> net;
-    if (geo::isRasterDem(spec.samples.path)) {
-        net = geo::rasterNet(
-            spec.samples, spec.frame, spec.net, diags,
-            [&](double fraction) {
-                if (progress)
-                    progress({ProgressEvent::Stage::Compiling, "resampling the raster", static_cast<int>(100 * fraction)});
-            },
-            netBudgetOf(spec.limits));
-        if (!net) return std::nullopt;
-    } else {
-        for (const char* key : {"samples.band", "samples.resample", "samples.nodata", "samples.vertical_unit"})
-            if (spec.samples.locs.has(key))
-                diags.error(spec.samples.locs.at(key),
-                            fmt::format("{} is only used with a raster DEM, and GDAL does not read {} as a "
-                                        "raster (relief takes it for a CSV of samples): remove it",
-                                        key, printableExcerpt(spec.samples.pathAsWritten, 200)));
-        if (diags.hasErrors()) return std::nullopt;
-        net = griddedSamples(spec, diags, progress);
-        if (!net) return std::nullopt;
-    }
+    geo::NetProgressFn netProgress;
+    if (progress)
+        netProgress = [&](const std::string& task, int percent) {
+            progress({ProgressEvent::Stage::Compiling, task, percent});
+        };
+    auto net = geo::controlNet(spec.samples, spec.frame, spec.net, netLimitsOf(spec.limits), diags, netProgress);
+    if (!net) return std::nullopt;
     Surface s;
     s.normalizeSeconds = secondsSince(t0);
     const subdiv::Budget budget = budgetOf(spec.limits);

@@ -3,7 +3,7 @@
 //
 //   scene file --scene::readScene--> SceneSpec (one spec per stage)
 //     SchemeSpec      --subdiv::resolveScheme--> ResolvedScheme   (loadScene)
-//     samples, FrameSpec, NetSpec --geo::normalize--> ControlNet (a GeoGrid)
+//     SamplesSpec, FrameSpec, NetSpec, limits --geo::controlNet--> ControlNet (a GeoGrid)
 //     ControlNet, depth --subdiv::refineGrid--> refined GeoGrid    (buildSurface)
 //     GeoGrid, LookSpec, GeometrySpec --emit::buildMesh or quantizeHeights--> Mesh or HeightField --emit::writeScene--> .pov
 //     .pov, RenderSpec --render::renderPov--> PNG                  (runSceneJob)

@@ -4,7 +4,11 @@
 // Output: ControlNet, as for scattered samples. Every net node (x, y in the
 // scene's frame) goes to WGS84 latitude and longitude with GeographicLib, then
 // to the raster's CRS with GDAL/PROJ, and is resampled there by GDAL's warper,
-// which reads only the blocks the net covers.
+// which reads only the blocks the net covers. controlNet (control_net.h)
+// decides when a scene's samples take this path. In phases: the raster checked
+// (raster_source.h), where the net goes (raster_footprint.h), the warp
+// (raster_warp.h), the heights and nodata (raster_heights.h), composed in
+// warped_net.cpp; lattices in lattice.cpp, drapes in image_on_grid.cpp.
 #include <cstdint>
 #include <filesystem>
 #include <optional>

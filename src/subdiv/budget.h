@@ -43,10 +43,6 @@ inline constexpr double kSdlBytesPerTriangle = 31;
 inline constexpr double kMemoryBytesPerVertex = 3 * 8 + 1 + 4;
 // The adaptive mesh's faces beside that: at most two a node, three node numbers each.
 inline constexpr double kAdaptiveFaceBytesPerVertex = 2 * 3 * 4;
-// GDAL's gridding of scattered samples (its Delaunay triangulation and search
-// structures) at its peak, per sample: 989 MB for 458,845 samples, measured
-// with /usr/bin/time on relief compile of holyroodpark.tif's cells as a CSV.
-inline constexpr double kGriddingBytesPerSample = 2200;
 
 // A height_field's .pov is its header, camera and 256-entry colour map; POV-Ray
 // parses the PNG at ~0.15 us per node (0.45 s for 2393 x 1285, measured), and

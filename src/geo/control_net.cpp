@@ -1,0 +1,43 @@
+// geo's front door: the table of sample sources, and the net made by the
+// first that recognises the scene's samples file.
+#include "geo/control_net.h"
+
+#include "geo/raster.h"
+
+namespace relief::geo {
+
+namespace {
+
+std::optional<ControlNet> resampledRaster(const NetRequest& request, Diagnostics& diags) {
+    return rasterNet(
+        request.samples, request.frame, request.net, diags,
+        [&](double fraction) {
+            if (request.progress) request.progress("resampling the raster", static_cast<int>(100 * fraction));
+        },
+        request.limits.nodes);
+}
+
+bool anyFile(const std::filesystem::path&) { return true; }
+
+// In the order they are tried: a raster is told by what GDAL makes of the
+// file, and what is not one is taken for scattered samples.
+constexpr SampleSource kSampleSources[] = {
+    {"a raster DEM", isRasterDem, resampledRaster},
+    {"a CSV of samples", anyFile,
+     [](const NetRequest& request, Diagnostics& diags) { return scatteredNet(request, readSamples, diags); }},
+};
+
+}  // namespace
+
+std::span<const SampleSource> sampleSources() { return kSampleSources; }
+
+std::optional<ControlNet> controlNet(const scene::SamplesSpec& samples, const scene::FrameSpec& frame,
+                                     const scene::NetSpec& net, const NetLimits& limits, Diagnostics& diags,
+                                     const NetProgressFn& progress) {
+    for (const SampleSource& source : sampleSources())
+        if (source.recognises(samples.path))
+            return source.read({source.name, samples, frame, net, limits, progress}, diags);
+    return std::nullopt;  // the last source recognises any file
+}
+
+}  // namespace relief::geo

@@ -1,0 +1,183 @@
+#include "geo/raster_footprint.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include <cpl_error.h>
+#include <fmt/format.h>
+
+#include "core/number_format.h"
+#include "geo/normalize.h"
+
+namespace relief::geo {
+
+namespace {
+
+// Whether the scan for the data's box costs little: a raster of at most 1e8
+// cells, or one with an overview (which GDAL then reads instead) of at most
+// 4e6. A larger raster's default box is all of it.
+bool dataBoxAffordable(GDALRasterBandH band, double cells) {
+    if (cells <= 1e8) return true;
+    for (int i = 0; i < GDALGetOverviewCount(band); ++i) {
+        GDALRasterBandH o = GDALGetOverview(band, i);
+        if (o && double(GDALGetRasterBandXSize(o)) * GDALGetRasterBandYSize(o) <= 4e6) return true;
+    }
+    return false;
+}
+
+// The box of cells that holds every cell with data, so that a raster with a
+// nodata border (a region, a coastline tile) defaults to its data, not to its
+// border. Read at most kScan cells across, and widened by one read cell;
+// nullopt when no read cell has data.
+std::optional<PixelBox> dataBox(GDALRasterBandH band, int width, int height, double noData) {
+    constexpr int kScan = 1024;
+    const int bw = std::min(width, kScan), bh = std::min(height, kScan);
+    std::vector<double> cells(static_cast<size_t>(bw) * bh);
+    CPLPushErrorHandler(CPLQuietErrorHandler);
+    const CPLErr err = GDALRasterIO(band, GF_Read, 0, 0, width, height, cells.data(), bw, bh, GDT_Float64, 0, 0);
+    CPLPopErrorHandler();
+    if (err != CE_None) return PixelBox{0, 0, double(width), double(height)};  // the warper will say why
+    int c0 = bw, c1 = -1, r0 = bh, r1 = -1;
+    for (int r = 0; r < bh; ++r)
+        for (int c = 0; c < bw; ++c) {
+            const double v = cells[static_cast<size_t>(r) * bw + c];
+            if (std::isnan(v) || v == noData) continue;
+            c0 = std::min(c0, c), c1 = std::max(c1, c), r0 = std::min(r0, r), r1 = std::max(r1, r);
+        }
+    if (c1 < 0) return std::nullopt;
+    const double sx = double(width) / bw, sy = double(height) / bh;
+    const int grow = bw < width || bh < height ? 1 : 0;
+    return PixelBox{std::max(0.0, (c0 - grow) * sx), std::max(0.0, (r0 - grow) * sy),
+                    std::min(double(width), (c1 + 1 + grow) * sx), std::min(double(height), (r1 + 1 + grow) * sy)};
+}
+
+bool hasWindow(const scene::NetSpec& net) { return net.extentM || net.extentLonLat; }
+
+constexpr int kEdgePoints = 64;
+
+// The footprint: points along the edges of `box`, in WGS84.
+std::vector<GeoSample> footprintEdge(const RasterPlace& place, const PixelBox& box) {
+    std::vector<GeoSample> edge;
+    auto addPixel = [&](double px, double py) {
+        double lon = 0, lat = 0;
+        if (place.toLonLat(px, py, lon, lat) && std::fabs(lat) <= 90) edge.push_back({lon, lat, 0, {}});
+    };
+    const double boxW = box.x1 - box.x0, boxH = box.y1 - box.y0;
+    for (int i = 0; i <= kEdgePoints; ++i) {
+        const double f = static_cast<double>(i) / kEdgePoints;
+        addPixel(box.x0 + f * boxW, box.y0), addPixel(box.x0 + f * boxW, box.y1);
+        addPixel(box.x0, box.y0 + f * boxH), addPixel(box.x1, box.y0 + f * boxH);
+    }
+    return edge;
+}
+
+bool framed(const RasterPlace& place, const Frame& frame, double px, double py, Vec3& p) {
+    double lon = 0, lat = 0;
+    return place.toLonLat(px, py, lon, lat) && geodeticToFrame(frame, lat, lon, 0, p);
+}
+
+// The largest axis-aligned box inside the footprint: the west edge's
+// easternmost point, the east edge's westernmost, and so on. `outside`
+// counts the edge's points that do not reach the frame.
+struct InnerBox {
+    double west = -1e300, east = 1e300, south = -1e300, north = 1e300;
+    int outside = 0;
+};
+InnerBox innerBox(const RasterPlace& place, const PixelBox& box, const Frame& frame) {
+    InnerBox in;
+    // Which pixel edge is which: rows usually run south (negative pixel height), but may run north.
+    const auto& geo = place.geo;
+    const double westPx = geo[1] > 0 ? box.x0 : box.x1, eastPx = geo[1] > 0 ? box.x1 : box.x0;
+    const double northPx = geo[5] < 0 ? box.y0 : box.y1, southPx = geo[5] < 0 ? box.y1 : box.y0;
+    const double boxW = box.x1 - box.x0, boxH = box.y1 - box.y0;
+    for (int i = 0; i <= kEdgePoints; ++i) {
+        const double f = static_cast<double>(i) / kEdgePoints;
+        Vec3 p;
+        if (framed(place, frame, westPx, box.y0 + f * boxH, p)) in.west = std::max(in.west, p.x); else ++in.outside;
+        if (framed(place, frame, eastPx, box.y0 + f * boxH, p)) in.east = std::min(in.east, p.x); else ++in.outside;
+        if (framed(place, frame, box.x0 + f * boxW, southPx, p)) in.south = std::max(in.south, p.y); else ++in.outside;
+        if (framed(place, frame, box.x0 + f * boxW, northPx, p)) in.north = std::min(in.north, p.y); else ++in.outside;
+    }
+    return in;
+}
+
+void reportTooWide(const std::vector<GeoSample>& edge, const Frame& frame, const SourceLoc& fileLoc,
+                   Diagnostics& diags) {
+    double lonMin = 180, lonMax = -180, latMin = 90, latMax = -90;
+    for (const auto& g : edge)
+        lonMin = std::min(lonMin, g.lonDeg), lonMax = std::max(lonMax, g.lonDeg),
+        latMin = std::min(latMin, g.latDeg), latMax = std::max(latMax, g.latDeg);
+    diags.error(fileLoc, fmt::format("the raster spans lon {:.2f}..{:.2f}, lat {:.2f}..{:.2f}, more than {} "
+                                     "can hold: choose a window of it with net.extent_m, or "
+                                     "frame.kind = \"local\"",
+                                     lonMin, lonMax, latMin, latMax, frame.describe()));
+}
+
+// The raster's cell on the ground (metres), at the centre of `box` or of the
+// scene's window; 0 when it cannot be carried to the frame.
+double groundCell(const RasterPlace& place, const PixelBox& box, const Frame& frame, const scene::NetSpec& net) {
+    double px = 0.5 * (box.x0 + box.x1), py = 0.5 * (box.y0 + box.y1);
+    if (hasWindow(net)) {
+        double lat = 0, lon = 0, h = 0;
+        if (net.extentLonLat) {
+            lon = 0.5 * ((*net.extentLonLat)[0] + (*net.extentLonLat)[2]);
+            lat = 0.5 * ((*net.extentLonLat)[1] + (*net.extentLonLat)[3]);
+        } else {
+            const auto& e = *net.extentM;
+            frameToGeodetic(frame, {0.5 * (e[0] + e[2]), 0.5 * (e[1] + e[3]), 0}, lat, lon, h);
+        }
+        place.toPixel(lon, lat, px, py);
+    }
+    Vec3 c0, c1, c2;
+    if (framed(place, frame, px, py, c0) && framed(place, frame, px + 1, py, c1) &&
+        framed(place, frame, px, py + 1, c2))
+        return std::min(length(c1 - c0), length(c2 - c0));
+    return 0;
+}
+
+}  // namespace
+
+std::optional<PixelBox> defaultPixelBox(const HeightBand& band, const RasterPlace& place,
+                                        std::optional<PixelBox> footprint, const scene::NetSpec& net,
+                                        const SourceLoc& fileLoc, Diagnostics& diags) {
+    if (footprint) return footprint;
+    const PixelBox all{0, 0, double(place.width), double(place.height)};
+    if (hasWindow(net) || !dataBoxAffordable(band.band, place.cells())) return all;
+    const auto data = dataBox(band.band, place.width, place.height, band.noData);
+    if (!data)
+        diags.error(fileLoc, fmt::format("every cell of band {} is nodata ({}): check the band and the "
+                                         "raster's nodata value",
+                                         band.number, band.hasNoData ? formatShortest(band.declaredNoData) : "NaN"));
+    return data;
+}
+
+std::optional<NetExtent> netExtent(const RasterPlace& place, const PixelBox& box, const scene::FrameSpec& frameSpec,
+                                   const scene::NetSpec& net, const SourceLoc& fileLoc, Diagnostics& diags) {
+    std::vector<GeoSample> edge = footprintEdge(place, box);
+    if (edge.size() < 4) {
+        diags.error(fileLoc, "the raster's corners cannot be carried to latitude and longitude: check its CRS");
+        return std::nullopt;
+    }
+    if (net.extentLonLat) {  // the frame of the window, not of the whole raster
+        const auto& w = *net.extentLonLat;
+        edge = {{w[0], w[1], 0, {}}, {w[2], w[1], 0, {}}, {w[0], w[3], 0, {}}, {w[2], w[3], 0, {}}};
+    }
+    auto frame = chooseFrame(frameSpec, edge, diags);
+    if (!frame) return std::nullopt;
+    InnerBox in = innerBox(place, box, *frame);
+    if (in.outside > 0 && !hasWindow(net)) {
+        reportTooWide(edge, *frame, fileLoc, diags);
+        return std::nullopt;
+    }
+    const double cell = groundCell(place, box, *frame, net);
+    if (hasWindow(net)) in.west = in.south = 0, in.east = in.north = 1;
+    if (!(in.east > in.west && in.north > in.south) || !(cell > 0)) {
+        diags.error(fileLoc, fmt::format("the raster's footprint cannot be laid out in {}: check its CRS",
+                                         frame->describe()));
+        return std::nullopt;
+    }
+    return NetExtent{*frame, {in.west, in.south, in.east, in.north}, cell};
+}
+
+}  // namespace relief::geo

@@ -1,0 +1,43 @@
+#pragma once
+// Inside geo: where a raster DEM's net goes. The cells the net covers by
+// default (those with data), the frame chosen for them, the largest box of
+// the frame inside their footprint, and the raster's cell on the ground, the
+// net's default spacing.
+#include <array>
+#include <optional>
+
+#include "core/diagnostics.h"
+#include "geo/geo_grid.h"
+#include "geo/raster_source.h"
+#include "scene/scene_spec.h"
+
+namespace relief::geo {
+
+/// A box of cells: pixel edges x0, y0 (the first row read) to x1, y1.
+struct PixelBox {
+    double x0, y0, x1, y1;
+};
+
+/// The cells whose box is the net's default extent: `footprint` when given
+/// (a lattice of samples: the nodes' centres), else with no window in the
+/// scene (net.extent_m, net.extent_lonlat) the cells with data when finding
+/// them costs little, else every cell. Nullopt, after an error, when no cell
+/// has data.
+std::optional<PixelBox> defaultPixelBox(const HeightBand& band, const RasterPlace& place,
+                                        std::optional<PixelBox> footprint, const scene::NetSpec& net,
+                                        const SourceLoc& fileLoc, Diagnostics& diags);
+
+/// Where the net goes: the frame (the scene's, for the raster's footprint or
+/// the scene's lon/lat window), the box (xmin, ymin, xmax, ymax, metres in the
+/// frame) inside the footprint of `box` (0, 0, 1, 1 with a window: layoutNet
+/// places the net there), and the raster's cell on the ground (metres), at
+/// its centre or the window's.
+struct NetExtent {
+    Frame frame;
+    std::array<double, 4> box;
+    double cellM = 0;
+};
+std::optional<NetExtent> netExtent(const RasterPlace& place, const PixelBox& box, const scene::FrameSpec& frameSpec,
+                                   const scene::NetSpec& net, const SourceLoc& fileLoc, Diagnostics& diags);
+
+}  // namespace relief::geo

@@ -1,0 +1,89 @@
+#pragma once
+// Inside geo: a raster as GDAL holds it, and the first phases of reading one
+// as a DEM (the file's header and its band of heights, the geotransform, the
+// CRS). warped_net.cpp composes these with the later phases.
+#include <array>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+
+#include <gdal.h>
+#include <ogr_srs_api.h>
+
+#include "core/diagnostics.h"
+#include "geo/normalize.h"
+#include "scene/scene_spec.h"
+
+namespace relief::geo {
+
+struct DatasetCloser {
+    void operator()(void* ds) const { GDALClose(ds); }
+};
+using Dataset = std::unique_ptr<void, DatasetCloser>;
+struct SrsDeleter {
+    void operator()(void* s) const { OSRDestroySpatialReference(static_cast<OGRSpatialReferenceH>(s)); }
+};
+struct TransformDeleter {
+    void operator()(void* t) const { OCTDestroyCoordinateTransformation(static_cast<OGRCoordinateTransformationH>(t)); }
+};
+using Srs = std::unique_ptr<void, SrsDeleter>;
+using Transform = std::unique_ptr<void, TransformDeleter>;
+
+/// The transformations from WGS84 (lon, lat) to `srs` and back; either is null
+/// when PROJ has none.
+std::pair<Transform, Transform> wgs84Transforms(OGRSpatialReferenceH srs);
+
+/// A raster a scene names, opened as GDAL reads it once relief has checked it
+/// (gdal_setup.h); null with `problem` saying why when GDAL must not open it
+/// (null with `problem` empty: GDAL cannot read it).
+Dataset openRaster(const std::filesystem::path& path, std::string& problem);
+
+/// The credit a raster's metadata carries (GeoTIFF's copyright tag, or a
+/// COPYRIGHT, LICENSE, LICENCE or ATTRIBUTION item), cut to what a still can
+/// show; "" when it has none.
+std::string rasterCredit(GDALDatasetH ds);
+
+/// A CRS and its transformations to and from WGS84 lon, lat.
+struct RasterCrs {
+    Srs srs;
+    Transform toRaster, toWgs84;
+};
+
+/// Where a raster's cells lie on the Earth: its size, its geotransform (pixel
+/// and line to its CRS) and the inverse, and its CRS.
+struct RasterPlace {
+    int width = 0, height = 0;
+    std::array<double, 6> geo{}, inverse{};
+    RasterCrs crs;
+
+    double cells() const { return double(width) * double(height); }
+    /// WGS84 lon, lat (degrees) to pixel and line; false (px, py untouched) when PROJ cannot.
+    bool toPixel(double lonDeg, double latDeg, double& px, double& py) const;
+    /// Pixel and line of a north-up raster to WGS84 lon, lat (degrees); false when PROJ cannot.
+    bool toLonLat(double px, double py, double& lonDeg, double& latDeg) const;
+    /// A raster in degrees: 360 degrees in its pixels, so that a point west of
+    /// the antimeridian finds the cells east of it (lon 181 = -179); 0 otherwise.
+    double wrapPixels() const;
+};
+
+/// The first phases of reading `src` as a DEM: its header within what relief
+/// reads and what `budget` allows at its own cell size (unless `net` gives
+/// the net's size), samples.band a band of heights, at least 2 x 2 cells, a
+/// north-up geotransform, and its CRS (samples.crs, else its own) carried to
+/// WGS84. Nullopt after an error.
+std::optional<RasterPlace> placeOfDem(GDALDatasetH src, const scene::SamplesSpec& samples,
+                                      const scene::NetSpec& net, const NetBudget& budget, Diagnostics& diags);
+
+/// The band of heights and its nodata value.
+struct HeightBand {
+    GDALRasterBandH band = nullptr;
+    int number = 1;
+    bool hasNoData = false;
+    double declaredNoData = 0;
+    double noData = 0;  ///< declaredNoData, or NaN when none is declared (NaN cells are no data still)
+};
+HeightBand heightBand(GDALDatasetH src, int number);
+
+}  // namespace relief::geo

@@ -1,0 +1,129 @@
+// A raster resampled onto the net, in phases that pass plain values: the
+// raster checked and placed (raster_source.h), the cells and where the net
+// goes (raster_footprint.h), the net laid out, the warp, the heights and the
+// nodes without data (raster_heights.h).
+#include "geo/warped_net.h"
+
+#include <vector>
+
+#include <cpl_conv.h>
+#include <cpl_error.h>
+#include <cpl_string.h>
+#include <fmt/format.h>
+
+#include "geo/raster.h"
+#include "geo/raster_heights.h"
+#include "geo/raster_warp.h"
+
+namespace relief::geo {
+
+namespace {
+
+// The net laid over the extent and described (what was read and how), without heights.
+std::optional<ControlNet> laidOutNet(GDALDatasetH src, const RasterPlace& place, const NetExtent& extent,
+                                     const scene::SamplesSpec& samples, const scene::NetSpec& netSpec,
+                                     Diagnostics& diags, const NetBudget& budget) {
+    ControlNet net;
+    net.frame = extent.frame;
+    net.sampleCount = static_cast<size_t>(place.width) * place.height;
+    const char* crsName = OSRGetName(place.crs.srs.get());
+    static constexpr const char* kResampling[] = {"bilinear", "cubic", "average", "nearest"};
+    net.attribution = rasterCredit(src);
+    net.raster = fmt::format("{} x {} cells, band {}, {}, {}", place.width, place.height, samples.band,
+                             crsName ? crsName : "unnamed CRS", kResampling[static_cast<int>(samples.resample)]);
+    if (!layoutNet(netSpec, extent.box, extent.cellM, net, diags, budget)) return std::nullopt;
+    return net;
+}
+
+// The heights warped onto the net, row 0 north (kNetNoData where there are
+// none), and the net as the raster they were warped into, which the filling
+// of the nodes without data works on.
+struct WarpedHeights {
+    Dataset netRaster;
+    std::vector<double> z;
+};
+
+std::optional<WarpedHeights> warpHeights(const Dataset& src, const RasterPlace& place, const HeightBand& band,
+                                         const ControlNet& net, scene::Resample resample, Diagnostics& diags,
+                                         const GridProgressFn& progress, const SourceLoc& fileLoc) {
+    const int rows = net.rows(), cols = net.cols();
+    WarpedHeights out{memRaster(cols, rows, 1, GDT_Float64), {}};
+    if (!out.netRaster) {
+        diags.error(fileLoc, fmt::format("there is no memory for a net of {} x {} nodes: give net.spacing_m (a "
+                                         "coarser net), or lower limits.max_memory_mb to what this machine has",
+                                         rows, cols));
+        return std::nullopt;
+    }
+    GDALRasterBandH netBand = GDALGetRasterBand(out.netRaster.get(), 1);
+    GDALSetRasterNoDataValue(netBand, kNetNoData);
+    GDALWarpOptions* wo = warpOptions(src.get(), out.netRaster.get(), {band.number});
+    wo->eWorkingDataType = GDT_Float64;
+    wo->eResampleAlg = gdalResampling(resample);
+    wo->padfSrcNoDataReal = static_cast<double*>(CPLMalloc(sizeof(double)));
+    wo->padfSrcNoDataReal[0] = band.noData;
+    wo->padfDstNoDataReal = static_cast<double*>(CPLMalloc(sizeof(double)));
+    wo->padfDstNoDataReal[0] = kNetNoData;
+    wo->papszWarpOptions = CSLSetNameValue(wo->papszWarpOptions, "INIT_DEST", "NO_DATA");
+    // The exact chain costs two projections per net node; GDAL's approximating
+    // transformer interpolates it linearly along each row of the net wherever
+    // that stays within kMaxErrorPixels of it (checked at the row's ends and
+    // middle, and recursively), as gdalwarp does by default with 0.125 raster
+    // cells. Within 0.001 cells it is 8x faster on a 1000 x 1000 DEM
+    // (0.07 s against 0.59 s) and changes no height by more than 0.7 mm there.
+    constexpr double kMaxErrorCells = 0.001;
+    if (warpOntoNet(wo, netToRaster(net, place), kMaxErrorCells, progress) != CE_None) {
+        diags.error(fileLoc, fmt::format("GDAL could not resample the raster onto the net: {}",
+                                         CPLGetLastErrorMsg()));
+        return std::nullopt;
+    }
+    out.z.resize(static_cast<size_t>(rows) * cols);
+    if (GDALRasterIO(netBand, GF_Read, 0, 0, cols, rows, out.z.data(), cols, rows, GDT_Float64, 0, 0) != CE_None) {
+        diags.error(fileLoc, "reading the resampled net back failed");
+        return std::nullopt;
+    }
+    return out;
+}
+
+}  // namespace
+
+std::optional<ControlNet> warpedNet(const Dataset& src, const scene::SamplesSpec& samples,
+                                    const scene::FrameSpec& frameSpec, const scene::NetSpec& netSpec,
+                                    std::optional<PixelBox> footprint, Diagnostics& diags,
+                                    const GridProgressFn& progress, const NetBudget& budget) {
+    const SourceLoc fileLoc{samples.pathAsWritten, 0, 0};
+    const auto place = placeOfDem(src.get(), samples, netSpec, budget, diags);
+    if (!place) return std::nullopt;
+    const HeightBand band = heightBand(src.get(), samples.band);
+    const auto box = defaultPixelBox(band, *place, footprint, netSpec, fileLoc, diags);
+    if (!box) return std::nullopt;
+    const auto extent = netExtent(*place, *box, frameSpec, netSpec, fileLoc, diags);
+    if (!extent) return std::nullopt;
+    auto net = laidOutNet(src.get(), *place, *extent, samples, netSpec, diags, budget);
+    if (!net) return std::nullopt;
+    auto warped = warpHeights(src, *place, band, *net, samples.resample, diags, progress, fileLoc);
+    if (!warped) return std::nullopt;
+    const double scale = metresPerBandUnit(band, samples, diags);
+    if (!checkElevations(warped->z, scale, *net, *place, band, samples, diags) ||
+        !resolveNodata(warped->z, GDALGetRasterBand(warped->netRaster.get(), 1), *net, samples, netSpec, diags))
+        return std::nullopt;
+    setNodeHeights(*net, warped->z, scale);
+    return net;
+}
+
+std::optional<ControlNet> rasterNet(const scene::SamplesSpec& samples, const scene::FrameSpec& frameSpec,
+                                    const scene::NetSpec& netSpec, Diagnostics& diags,
+                                    const GridProgressFn& progress, const NetBudget& budget) {
+    std::string problem;
+    const Dataset src = openRaster(samples.path, problem);
+    if (!src) {
+        diags.error({samples.pathAsWritten, 0, 0},
+                    problem.empty() ? std::string("GDAL cannot read this raster (a truncated or damaged file?)")
+                                    : fmt::format("samples.path: relief does not read this raster: {} (what a scene's "
+                                                  "raster may bring with it: docs/security.md)",
+                                                  problem));
+        return std::nullopt;
+    }
+    return warpedNet(src, samples, frameSpec, netSpec, std::nullopt, diags, progress, budget);
+}
+
+}  // namespace relief::geo
