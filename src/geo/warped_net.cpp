@@ -14,6 +14,7 @@
 #include "geo/raster.h"
 #include "geo/raster_heights.h"
 #include "geo/raster_warp.h"
+#include "scene/enum_names.h"
 
 namespace relief::geo {
 
@@ -27,10 +28,9 @@ std::optional<ControlNet> laidOutNet(GDALDatasetH src, const RasterPlace& place,
     net.frame = extent.frame;
     net.sampleCount = static_cast<size_t>(place.width) * place.height;
     const char* crsName = OSRGetName(place.crs.srs.get());
-    static constexpr const char* kResampling[] = {"bilinear", "cubic", "average", "nearest"};
     net.attribution = rasterCredit(src);
     net.raster = fmt::format("{} x {} cells, band {}, {}, {}", place.width, place.height, samples.band,
-                             crsName ? crsName : "unnamed CRS", kResampling[static_cast<int>(samples.resample)]);
+                             crsName ? crsName : "unnamed CRS", scene::nameOf(samples.resample));
     if (!layoutNet(netSpec, extent.box, extent.cellM, net, diags, budget)) return std::nullopt;
     return net;
 }

@@ -32,7 +32,7 @@ private_left reports && fail "first run: a private folder is left in reports/: $
 cp -a reports/first first-copy
 
 # Interrupted: the report before it, as it was.
-manifest suite/big.toml 2 480 320
+manifest suite/big.toml 3 960 640
 "$relief" test suite/big.toml --jobs 1 --report reports/first > interrupted.txt 2>&1 &
 pid=$!
 for _ in $(seq 1 100); do pgrep -P "$pid" >/dev/null && break; sleep 0.1; done  # POV-Ray started
