@@ -13,13 +13,11 @@
 #     unchanged;
 #  8. relief sweep with a bad second value: exit 2 before any still is rendered, nothing written.
 # Usage: crash_safety.sh RELIEF SOURCE_DIR WORK_DIR
-set -u
-relief=$(realpath "$1") src=$2 work=$3
-command -v povray >/dev/null || { echo "SKIP: povray is not installed"; exit 77; }
-rm -rf "$work" && mkdir -p "$work/out" && cd "$work" || exit 1
+. "$(dirname "$0")/lib.sh" "$@"
+needs_povray
+enter_fresh_work
+mkdir -p out
 scene="$src/scenes/mountain-sharp.toml"   # a mesh2 of 258,048 triangles: ~2.5 s to render
-status=0
-fail() { echo "FAIL: $*"; status=1; }
 whole_png() { oiiotool --info "$1" >/dev/null 2>&1; }
 povray_of() { pgrep -f "relief-povray-.*-$1-" >/dev/null; }  # POV-Ray (or its sandbox) of relief process $1
 same_set() {  # PREFIX COPY: the still, .pov and sidecar at PREFIX are byte for byte those at COPY

@@ -4,11 +4,8 @@
 # a test's references) refuses it at once, in one line naming the file and what it is, with exit
 # code 2 (4 for relief diff) and nothing written; no reader blocks (each run has 20 s).
 # Usage: hostile_files.sh RELIEF SOURCE_DIR WORK_DIR
-set -u
-relief=$1 src=$2 work=$3
-rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
-status=0
-fail() { echo "FAIL: $*"; status=1; }
+. "$(dirname "$0")/lib.sh" "$@"
+enter_fresh_work
 cp "$src/tests/cli/bad/01-toml-syntax/samples.csv" samples.csv
 mkfifo fifo
 mkdir folder

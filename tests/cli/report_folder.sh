@@ -6,12 +6,9 @@
 #  - a suite of more cases than the soft limit of open files allows two each still runs
 #    (relief raises the soft limit to the hard one).
 # Usage: report_folder.sh RELIEF SOURCE_DIR WORK_DIR
-set -u
-relief=$1 src=$2 work=$3
-command -v povray >/dev/null || { echo "SKIP: povray is not installed"; exit 77; }
-rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
-status=0
-fail() { echo "FAIL: $*"; status=1; }
+. "$(dirname "$0")/lib.sh" "$@"
+needs_povray
+enter_fresh_work
 small="$src/tests/golden/small/scene.toml"
 manifest() {  # manifest FILE CASES WIDTH HEIGHT
   { printf '[defaults]\nwidth = %s\nheight = %s\n' "$3" "$4"

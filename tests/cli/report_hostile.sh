@@ -7,12 +7,9 @@
 #    is rendered, the PNG there untouched;
 #  - a manifest path with a space and a quote: the report's bless command is shell-quoted.
 # Usage: report_hostile.sh RELIEF SOURCE_DIR WORK_DIR
-set -u
-relief=$1 src=$2 work=$3
-command -v povray >/dev/null || { echo "SKIP: povray is not installed"; exit 77; }
-rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
-status=0
-fail() { echo "FAIL: $*"; status=1; }
+. "$(dirname "$0")/lib.sh" "$@"
+needs_povray
+enter_fresh_work
 small="$src/tests/golden/small/scene.toml"
 secret='root:$6$REPORTSECRET$Kc9yQvS1:19000:0:99999:7:::'
 

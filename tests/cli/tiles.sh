@@ -6,12 +6,9 @@
 # finishes it to the same bytes; a tile from another plan or another POV-Ray is refused by name;
 # a tile that fails stops the render naming the tile and POV-Ray's message.
 # Usage: tiles.sh RELIEF SOURCE_DIR WORK_DIR
-set -u
-relief=$1 src=$2 work=$3
-command -v povray >/dev/null || { echo "SKIP: povray is not installed"; exit 77; }
-rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
-status=0
-fail() { echo "FAIL: $*"; status=1; }
+. "$(dirname "$0")/lib.sh" "$@"
+needs_povray
+enter_fresh_work
 size=(--set render.width=480 --set render.height=320)   # overlays from 480 px on
 
 # 1. Tiles against the whole, scene by scene.
