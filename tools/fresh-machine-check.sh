@@ -62,8 +62,8 @@ tar -C "$root" -xf "$pristine"
 chmod 755 "$root"
 cp -L /etc/resolv.conf "$root/etc/resolv.conf" 2>/dev/null || true
 # The machine's own name resolves, as Debian's installer writes it (debootstrap writes no hosts file).
-printf '127.0.0.1\tlocalhost\n127.0.1.1\t%s\n::1\tlocalhost ip6-localhost ip6-loopback\n' "$(hostname)" \
-  > "$root/etc/hosts"
+printf '127.0.0.1\tlocalhost\n127.0.1.1\t%s\t%s\n::1\tlocalhost ip6-localhost ip6-loopback\n' \
+  "$(hostname -f 2>/dev/null || hostname)" "$(hostname -s)" > "$root/etc/hosts"
 
 # A clean clone of HEAD: what is committed, nothing of the work tree.
 head=$(git -C "$repo" rev-parse HEAD)

@@ -111,7 +111,6 @@ bool isImageCommand(const char* name) {
 }
 
 int runCommands(CLI::App& app, const std::vector<Command>& commands, int argc, char** argv) {
-    raiseOpenFileLimit();
     try {
         app.parse(argc, argv);
     } catch (const CLI::Success& e) {
@@ -136,9 +135,12 @@ int runCommands(CLI::App& app, const std::vector<Command>& commands, int argc, c
 }
 
 void raiseOpenFileLimit() {
+    // Capped: a child that closes every descriptor it might have (not POV-Ray, which relief
+    // starts with close_range) would loop over a hard limit of 2^30.
+    constexpr rlim_t kEnough = 65536;
     struct rlimit files {};
-    if (::getrlimit(RLIMIT_NOFILE, &files) != 0 || files.rlim_cur >= files.rlim_max) return;
-    files.rlim_cur = files.rlim_max;
+    if (::getrlimit(RLIMIT_NOFILE, &files) != 0 || files.rlim_cur >= std::min(files.rlim_max, kEnough)) return;
+    files.rlim_cur = std::min(files.rlim_max, kEnough);
     ::setrlimit(RLIMIT_NOFILE, &files);  // best effort: a refusal leaves the limit as it was
 }
 

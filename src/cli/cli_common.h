@@ -137,9 +137,9 @@ struct ExecutionOptions {
 void addExecutionOptions(CLI::App* app, ExecutionOptions& o, bool tiles, const char* jobsHelp);
 void addTilesOption(CLI::App* app, ExecutionOptions& o);  ///< --tiles alone (relief plan)
 
-/// Raises the soft limit of open files to the hard one: relief test and sweep
-/// hold a lock of each planned case or combination until it is rendered, and a
-/// default soft limit of 1024 would cap a suite at about 500 cases.
+/// Raises the soft limit of open files towards the hard one (at most 65536):
+/// relief test holds two descriptors for each planned case until it is
+/// rendered, and a default soft limit of 1024 would cap a suite at about 500.
 void raiseOpenFileLimit();
 /// As execute::Options, cancelled by Ctrl-C (interruptHandler).
 execute::Options executionOf(const ExecutionOptions& o);

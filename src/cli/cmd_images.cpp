@@ -135,11 +135,12 @@ int runTest(const TestOptions& o) {
         printDiagnostics(diags, false);
         return code(Exit::BadInput);
     }
-    if (const std::string refusal = relief::regress::ReportFolder::refusal(o.report); !refusal.empty()) {
+    if (const std::string refusal = relief::regress::ReportFolder::refusal(o.report, *manifest); !refusal.empty()) {
         std::cerr << "relief: error: " << terminalText(refusal, 1000) << '\n';
         return code(Exit::BadInput);
     }
-    relief::regress::ReportFolder report(o.report);
+    raiseOpenFileLimit();
+    relief::regress::ReportFolder report(o.report, *manifest);
     relief::regress::RunOptions ro;
     ro.reportDir = report.staged();
     ro.templatesDir = findTemplates(o.templates);
@@ -150,6 +151,8 @@ int runTest(const TestOptions& o) {
     installInterruptHandler();
     ro.execution = executionOf(o.execution);
     ro.execution.jobs = o.execution.executor == "slurm" ? o.jobs : 0;
+    // Slurm's job folder beside the report, where the paths its messages name stay true.
+    ro.execution.jobDir = report.path().parent_path() / (report.path().filename().string() + ".slurm");
     const auto t0 = std::chrono::steady_clock::now();
     std::cout << fmt::format("relief test: {} cases from {}, {} render{} at a time\n",
                              manifest->cases.size(), o.manifest, o.jobs, o.jobs == 1 ? "" : "s");
@@ -166,7 +169,12 @@ int runTest(const TestOptions& o) {
     }
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     relief::regress::writeReport(*manifest, results, ro, wall);
-    report.publish();
+    try {
+        report.publish();
+    } catch (const std::runtime_error& e) {
+        std::cerr << "relief: error: " << terminalText(e.what(), 1000) << '\n';
+        return code(Exit::BadInput);
+    }
     size_t failed = 0;
     for (const auto& r : results)
         failed += r.status == relief::regress::CaseStatus::Fail ||
@@ -189,6 +197,7 @@ struct SweepOptions {
 
 // `relief sweep`: one still per parameter combination, then a contact sheet.
 int runSweep(const SweepOptions& o) {
+    raiseOpenFileLimit();  // a lock for each combination until it is rendered
     std::vector<relief::figures::Variation> variations;
     for (const auto& v : o.vary) {
         const auto eq = v.find('=');

@@ -240,8 +240,8 @@ void addCommonSceneOptions(CLI::App* sub, SceneOptions& o, const char* outputHel
                     "lighting.datetime=2026-06-21T09:00:00+01:00); repeatable");
 }
 
-// `render` renders the plan it makes; `plan` only writes it (and keeps it), so where and how
-// many tiles run is not its to take.
+// `render` renders the plan it makes; `plan` only writes it (and keeps it): how many tiles it
+// has is its to say, where and how many at once are not.
 void addRenderOptions(CLI::App* sub, SceneOptions& o, bool renders) {
     sub->add_option("--dump-net", o.dumpNet, "also write the control net (.csv or .asc)");
     sub->add_flag("--no-sandbox", o.common.noSandbox,

@@ -143,7 +143,7 @@ public:
             Diagnostics diags;
             if (loadScene(request_.scenePath, diags, jobOf(request_, combos_[i], {}).overrides)) continue;
             const JobOutcome refused;
-            return stopped(i + 1, labelOf(combos_[i]), refused, diags, JobStatus::BadInput, result);
+            return reportStop(i + 1, labelOf(combos_[i]), refused, diags, JobStatus::BadInput, result);
         }
         return true;
     }
@@ -157,7 +157,7 @@ public:
             planned_.push_back(planJob(job, diags, {}));
             const JobOutcome& outcome = planned_.back().outcome;
             if (outcome.status != JobStatus::Ok)
-                return stopped(i + 1, labelOf(combos_[i]), outcome, diags, outcome.status, result);
+                return reportStop(i + 1, labelOf(combos_[i]), outcome, diags, outcome.status, result);
         }
         return true;
     }
@@ -188,7 +188,7 @@ public:
             failed.render.error = rendered.error;
             Diagnostics diags;
             if (rendered.badInput) diags.error({}, rendered.error);
-            return stopped(0, "renders", failed, diags, failed.status, result);
+            return reportStop(0, "renders", failed, diags, failed.status, result);
         }
         std::error_code ec;
         if (ownJobDir) fs::remove_all(e.jobDir, ec);
@@ -202,7 +202,7 @@ public:
             if (!finishPlan(*p.plan, outputs_, false, false, true, p.outcome, diags))
                 p.outcome.status = JobStatus::BadInput;
             if (p.outcome.status != JobStatus::Ok)
-                return stopped(i + 1, labelOf(combos_[i]), p.outcome, diags, p.outcome.status, result);
+                return reportStop(i + 1, labelOf(combos_[i]), p.outcome, diags, p.outcome.status, result);
             SweepEvent event{SweepEvent::Kind::Finished, i + 1, combos_.size(), labelOf(combos_[i])};
             event.outcome = &p.outcome;
             event.diags = &diags;
@@ -235,7 +235,7 @@ private:
     void emit(const SweepEvent& e) const {
         if (onEvent_) onEvent_(e);
     }
-    bool stopped(size_t index, const std::string& label, const JobOutcome& outcome, const Diagnostics& diags,
+    bool reportStop(size_t index, const std::string& label, const JobOutcome& outcome, const Diagnostics& diags,
                  JobStatus status, SweepResult& result) const {
         SweepEvent event{SweepEvent::Kind::Finished, index, combos_.size(), label};
         event.outcome = &outcome;

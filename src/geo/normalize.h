@@ -1,5 +1,6 @@
 #pragma once
-// Stage 2 of 6. Input: FrameSpec, NetSpec and the samples (WGS84
+// Part of stage 2 (its front door is geo/control_net.h): scattered samples
+// gridded onto the net. Input: FrameSpec, NetSpec and the samples (WGS84
 // lon/lat/elev, geo/samples.h). Output: ControlNet, a GeoGrid (metres,
 // x = east, y = north, z = up) ready for subdivision.
 #include <array>

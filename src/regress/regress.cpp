@@ -273,6 +273,7 @@ namespace {
 void dropPlan(PlannedJob& p) {
     std::error_code ec;
     if (p.plan) fs::remove_all(p.plan->dir, ec);
+    p.plan.reset();
     p.lock.reset();
     p.ownOutputs.reset();
 }
@@ -332,6 +333,7 @@ std::vector<CaseResult> runCases(const Manifest& m, const RunOptions& o, const C
     if (e.jobDir.empty()) e.jobDir = o.reportDir / "slurm";
     e.onTaskDone = [&](size_t task, const std::string& error) {
         const size_t i = caseOf[task];
+        if (!planned[i].plan) return;  // decided already (a case is one task: never twice)
         CaseResult& r = results[i];
         Diagnostics diags;
         if (!error.empty()) {

@@ -81,16 +81,21 @@ std::vector<CaseResult> runCases(const Manifest& manifest, const RunOptions& opt
 class ReportFolder {
 public:
     /// The refusal, when `dir` is not one relief may replace: "" if it may.
-    static std::string refusal(const std::filesystem::path& dir);
+    /// Refused too: a folder holding the manifest or any case's references.
+    static std::string refusal(const std::filesystem::path& dir, const Manifest& manifest);
     /// Throws std::runtime_error when the folder beside `dir` cannot be made.
-    explicit ReportFolder(const std::filesystem::path& dir);
+    ReportFolder(const std::filesystem::path& dir, const Manifest& manifest);
     /// Where runCases and writeReport write (RunOptions::reportDir).
     std::filesystem::path staged() const { return staging_.path() / "report"; }
-    /// Replaces `dir` with the staged report; throws std::runtime_error.
+    /// The report's folder, absolute.
+    const std::filesystem::path& path() const { return dir_; }
+    /// Replaces `dir` with the staged report (refusal() asked again first);
+    /// throws std::runtime_error, leaving the report before it in place.
     void publish();
 
 private:
     std::filesystem::path dir_;
+    const Manifest& manifest_;
     PrivateFolder staging_;
 };
 

@@ -36,24 +36,58 @@ std::string number(double v) { return std::isfinite(v) ? fmt::format("{:.6g}", v
 
 }  // namespace
 
-std::string ReportFolder::refusal(const fs::path& dir) {
+namespace {
+
+// `dir` as a name in its parent: absolute, "." and ".." resolved, no trailing slash.
+fs::path reportPath(const fs::path& dir) {
+    fs::path p = fs::absolute(dir.empty() ? fs::path(".") : dir).lexically_normal();
+    if (!p.has_filename()) p = p.parent_path();
+    return p;
+}
+
+bool within(const fs::path& inner, const fs::path& outer) {
+    const fs::path rel = fs::weakly_canonical(inner).lexically_relative(fs::weakly_canonical(outer));
+    return !rel.empty() && *rel.begin() != "..";
+}
+
+// What a report of relief's holds: its three pages, its images (PNGs) and a Slurm job's folder.
+bool holdsOnlyAReport(const fs::path& dir) {
+    static const std::set<std::string> kEntries = {"index.html", "summary.json", "junit.xml", "images", "slurm"};
+    std::error_code ec;
+    if (!fs::exists(dir / "summary.json", ec) || !fs::exists(dir / "index.html", ec)) return false;
+    for (const auto& entry : fs::directory_iterator(dir, ec))
+        if (!kEntries.count(entry.path().filename().string())) return false;
+    for (const auto& entry : fs::directory_iterator(dir / "images", ec))
+        if (entry.path().extension() != ".png") return false;
+    return !ec;
+}
+
+}  // namespace
+
+std::string ReportFolder::refusal(const fs::path& given, const Manifest& manifest) {
+    const fs::path dir = reportPath(given);
+    const std::string shown = given.string();
+    if (dir == dir.root_path()) return fmt::format("--report {}: a report cannot replace /", shown);
+    // The folder is replaced whole: never one holding the suite's own files.
+    for (const auto& c : manifest.cases)
+        if (within(c.referenceDir, dir))
+            return fmt::format("--report {}: holds the references of case \"{}\", and a new report replaces the "
+                               "folder; name a folder outside the suite's references",
+                               shown, c.name);
+    if (within(manifest.file, dir))
+        return fmt::format("--report {}: holds the manifest, and a new report replaces the folder; name a folder "
+                           "of its own",
+                           shown);
     std::error_code ec;
     const auto status = fs::symlink_status(dir, ec);
     if (!fs::exists(status)) return "";
-    if (!fs::is_directory(status))
-        return fmt::format("--report {}: is not a folder; name a folder for the report", dir.string());
-    // What a report of relief's holds; a folder with anything else is the user's.
-    static const std::set<std::string> kReportEntries = {"index.html", "summary.json", "junit.xml", "images",
-                                                         "slurm"};
-    const bool empty = fs::is_empty(dir, ec);
-    const bool report = fs::exists(dir / "summary.json", ec) && fs::exists(dir / "index.html", ec);
-    bool onlyReport = true;
-    for (const auto& entry : fs::directory_iterator(dir, ec))
-        onlyReport = onlyReport && kReportEntries.count(entry.path().filename().string()) > 0;
-    if (empty || (report && onlyReport && !ec)) return "";
+    if (fs::is_symlink(status))
+        return fmt::format("--report {}: is a symbolic link; name the folder itself", shown);
+    if (!fs::is_directory(status)) return fmt::format("--report {}: is not a folder; name a folder for the report", shown);
+    if (fs::is_empty(dir, ec) || holdsOnlyAReport(dir)) return "";
     return fmt::format("--report {}: holds files that are not a relief test report, and a new report replaces "
                        "the folder; name a new folder (or an old report's)",
-                       dir.string());
+                       shown);
 }
 
 namespace {
@@ -64,18 +98,27 @@ fs::path madeParent(const fs::path& dir) {
 }
 }  // namespace
 
-ReportFolder::ReportFolder(const fs::path& dir) : dir_(fs::absolute(dir)), staging_(madeParent(dir_), "report") {
+ReportFolder::ReportFolder(const fs::path& dir, const Manifest& manifest)
+    : dir_(reportPath(dir)), manifest_(manifest), staging_(madeParent(dir_), "report") {
     fs::create_directory(staged());
 }
 
 void ReportFolder::publish() {
+    // Checked again: the run may have taken hours, and the folder may have changed meanwhile.
+    if (const std::string refused = refusal(dir_, manifest_); !refused.empty())
+        throw std::runtime_error(fmt::format("the report is not moved into place: {}", refused));
     std::error_code ec;
-    if (fs::exists(fs::symlink_status(dir_, ec))) {
-        fs::rename(dir_, staging_.path() / "previous", ec);  // removed with the private folder
+    const fs::path previous = staging_.path() / "previous";
+    const bool replacing = fs::exists(fs::symlink_status(dir_, ec));
+    if (replacing) {
+        fs::rename(dir_, previous, ec);  // removed with the private folder
         if (ec) throw std::runtime_error(fmt::format("cannot replace the report {}: {}", dir_.string(), ec.message()));
     }
     fs::rename(staged(), dir_, ec);
-    if (ec) throw std::runtime_error(fmt::format("cannot move the report into {}: {}", dir_.string(), ec.message()));
+    if (!ec) return;
+    std::error_code back;  // the report before it, put back
+    if (replacing) fs::rename(previous, dir_, back);
+    throw std::runtime_error(fmt::format("cannot move the report into {}: {}", dir_.string(), ec.message()));
 }
 
 void writeReport(const Manifest& m, const std::vector<CaseResult>& results, const RunOptions& o,

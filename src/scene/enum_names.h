@@ -65,6 +65,12 @@ struct EnumNames<GeometryKind> {
                                                      {GeometryKind::Adaptive, "adaptive"},
                                                      {GeometryKind::HeightField, "height_field"}};
 };
+/// texture.mode's choices: the ramp's colourings (an image is texture.image's).
+inline constexpr NameRow<TextureSpec::Colouring> kTextureModeNames[] = {
+    {TextureSpec::Colouring::Elevation, "elevation"},
+    {TextureSpec::Colouring::Slope, "slope"},
+    {TextureSpec::Colouring::Blend, "blend"}};
+
 /// The name of `value` in the scene file.
 template <class E>
 constexpr const char* nameOf(E value) {

@@ -43,9 +43,7 @@ void readCpt(Section& s, const SceneFile& f, ColorRamp& ramp) {
 // texture.mode and the rock's colour and slopes.
 void readColouring(Section& s, TextureSpec& texture) {
     using Colouring = TextureSpec::Colouring;
-    // texture.mode names the first three colourings; an image is texture.image's.
-    const auto modes = std::span(EnumNames<Colouring>::rows).first(3);
-    if (auto m = s.named<Colouring>("mode", modes)) texture.colouring = *m;
+    if (auto m = s.named<Colouring>("mode", kTextureModeNames)) texture.colouring = *m;
     if (auto v = s.string("rock_color"); v && !parseHexColor(*v, texture.rockColour))
         s.error("rock_color", fmt::format("texture.rock_color = \"{}\" must be a colour \"#rrggbb\"", printableExcerpt(*v)));
     if (auto v = s.number("rock_from_deg", 0, 90, "degrees of slope", false, true)) texture.rockFromDeg = *v;

@@ -51,6 +51,22 @@ grep -q "^relief: error: --report mine: holds files that are not a relief test r
   { fail "a user's folder:"; cat mine.txt; }
 [ "$(cat mine/notes.txt)" = notes ] && [ "$(ls -A mine)" = notes.txt ] || fail "a user's folder was changed"
 
+# A trailing slash is the same folder.
+"$relief" test suite/manifest.toml --report reports/first/ > slash.txt 2>&1
+code=$?
+[ "$code" = 0 ] || { fail "--report reports/first/: exit $code, expected 0"; cat slash.txt; }
+[ -s reports/first/index.html ] && [ ! -e reports/first/report ] || fail "--report reports/first/: not the same folder"
+private_left reports && fail "--report reports/first/: a private folder is left in reports/"
+
+# A folder holding the suite's references (it would be replaced, blessed images and all).
+mkdir -p blessing && manifest blessing/manifest.toml 1 48 32
+"$relief" test blessing/manifest.toml --update --report blessing/refs > refs.txt 2>&1
+code=$?
+[ "$code" = 2 ] || fail "--report over the references: exit $code, expected 2"
+grep -q "^relief: error: --report blessing/refs: holds the references of case \"c01\"" refs.txt ||
+  { fail "--report over the references:"; cat refs.txt; }
+[ -e blessing/refs ] && fail "--report over the references: something was written"
+
 # More cases than a soft limit of 40 open files allows at two each.
 mkdir -p many && manifest many/manifest.toml 24 16 16
 (ulimit -Sn 40 && "$relief" test many/manifest.toml --update --report reports/many) > many.txt 2>&1
