@@ -254,44 +254,58 @@ bool overlaysWanted(const scene::OverlaySpec& spec, int widthPx) {
     return spec.enabled == E::On || (spec.enabled == E::Auto && widthPx >= scene::OverlaySpec::kMinAutoWidthPx);
 }
 
-std::string drawOverlays(PngImage8& image, const scene::OverlaySpec& spec, const OverlayFacts& facts,
-                         OverlayRecord* record) {
-    const int W = image.width, H = image.height, n = image.channels;
-    if (n != 3 && n != 4) return "overlays need an RGB or RGBA image";
-    // Cairo's ARGB32: premultiplied, one native 32-bit word per pixel.
-    Owned<cairo_surface_t> surface(cairo_image_surface_create(CAIRO_FORMAT_ARGB32, W, H));
-    if (cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS) return "cannot make a drawing surface";
-    {
-        cairo_surface_flush(surface.get());
-        unsigned char* data = cairo_image_surface_get_data(surface.get());
-        const int stride = cairo_image_surface_get_stride(surface.get());
-        for (int y = 0; y < H; ++y)
-            for (int x = 0; x < W; ++x) {
-                const std::uint8_t* p = &image.pixels[(static_cast<size_t>(y) * W + x) * n];
-                const unsigned a = n == 4 ? p[3] : 255;
-                const auto pre = [&](unsigned c) { return (c * a + 127) / 255; };
-                reinterpret_cast<std::uint32_t*>(data + static_cast<size_t>(y) * stride)[x] =
-                    (a << 24) | (pre(p[0]) << 16) | (pre(p[1]) << 8) | pre(p[2]);
-            }
-        cairo_surface_mark_dirty(surface.get());
-    }
-    Owned<cairo_t> cr(cairo_create(surface.get()));
-    cairo_t* c = cr.get();
-    const double u = std::min(W, H * 4 / 3) / 100.0;  // sizes scale with the still
-    Painter paint(c, u);
-    OverlayRecord rec;
+namespace {
 
-    // Each overlay: its box where it goes by default, then moved (cairo_translate)
-    // to the place the placer chooses.
-    Placer placer(W, H, u, facts.terrain);
-    const auto placed = [&](const char* name, const Placer::Choice& choice) {
-        rec.drawn.push_back(name);
-        rec.placement[name] = choice.where;
-        if (choice.onTerrain) rec.onTerrain.push_back(name);
-    };
+// Cairo's ARGB32 (premultiplied, one native 32-bit word a pixel) holding the still's pixels.
+Owned<cairo_surface_t> surfaceOf(const PngImage8& image) {
+    const int W = image.width, H = image.height, n = image.channels;
+    Owned<cairo_surface_t> surface(cairo_image_surface_create(CAIRO_FORMAT_ARGB32, W, H));
+    if (cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS) return nullptr;
+    cairo_surface_flush(surface.get());
+    unsigned char* data = cairo_image_surface_get_data(surface.get());
+    const int stride = cairo_image_surface_get_stride(surface.get());
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            const std::uint8_t* p = &image.pixels[(static_cast<size_t>(y) * W + x) * n];
+            const unsigned a = n == 4 ? p[3] : 255;
+            const auto pre = [&](unsigned c) { return (c * a + 127) / 255; };
+            reinterpret_cast<std::uint32_t*>(data + static_cast<size_t>(y) * stride)[x] =
+                (a << 24) | (pre(p[0]) << 16) | (pre(p[1]) << 8) | pre(p[2]);
+        }
+    cairo_surface_mark_dirty(surface.get());
+    return surface;
+}
+
+// The drawn surface back into the still's pixels, unpremultiplied.
+void copyBack(cairo_surface_t* surface, PngImage8& image) {
+    const int W = image.width, H = image.height, n = image.channels;
+    cairo_surface_flush(surface);
+    const unsigned char* data = cairo_image_surface_get_data(surface);
+    const int stride = cairo_image_surface_get_stride(surface);
+    for (int yy = 0; yy < H; ++yy)
+        for (int x = 0; x < W; ++x) {
+            const std::uint32_t v = reinterpret_cast<const std::uint32_t*>(data + static_cast<size_t>(yy) * stride)[x];
+            const unsigned a = v >> 24;
+            const auto un = [&](unsigned pc) { return a ? std::min(255u, (pc * 255 + a / 2) / a) : 0u; };
+            std::uint8_t* p = &image.pixels[(static_cast<size_t>(yy) * W + x) * n];
+            p[0] = static_cast<std::uint8_t>(un((v >> 16) & 255));
+            p[1] = static_cast<std::uint8_t>(un((v >> 8) & 255));
+            p[2] = static_cast<std::uint8_t>(un(v & 255));
+            if (n == 4) p[3] = static_cast<std::uint8_t>(a);
+        }
+}
+
+// One still's overlays as they are drawn: the Cairo context over its pixels,
+// the unit the sizes scale with, and where each overlay went. Each overlay has
+// its box where it goes by default, then is moved (cairo_translate) to the
+// place the placer chooses.
+class OverlayDrawing {
+public:
+    OverlayDrawing(cairo_t* c, int W, int H, const OverlayFacts& facts)
+        : c(c), W(W), H(H), u(std::min(W, H * 4 / 3) / 100.0), paint(c, u), placer(W, H, u, facts.terrain) {}
 
     // Title and subtitle, top left.
-    if (!spec.title.empty() || !spec.subtitle.empty()) {
+    void title(const scene::OverlaySpec& spec) {
         double w = 0, h = 0;
         if (!spec.title.empty()) {
             const auto [tw, th] = paint.measure(spec.title, 3.6, true, 0.62 * W, 2);
@@ -321,7 +335,7 @@ std::string drawOverlays(PngImage8& image, const scene::OverlaySpec& spec, const
     }
 
     // North arrow, top right: an arrow pointing where true north lies.
-    if (spec.northArrow) {
+    void northArrow(const OverlayFacts& facts) {
         const double cx = W - 6 * u, cy = 7.5 * u, len = 3.6 * u;
         const Box box{cx - 1.9 * len, cy - 1.9 * len - 1.3 * u, cx + 1.9 * len, cy + 1.9 * len};
         const auto choice = placer.place(box, "top-right", {"top-left", "bottom-right", "bottom-left"});
@@ -345,11 +359,11 @@ std::string drawOverlays(PngImage8& image, const scene::OverlaySpec& spec, const
         paint.text("N", cx + std::sin(a) * 1.75 * len, cy - std::cos(a) * 1.75 * len - 1.3 * u, 2.4, true, 0.5);
         cairo_restore(c);
         placed("north_arrow", choice);
-        rec.northDeg = facts.northDeg;
+        record.northDeg = facts.northDeg;
     }
 
     // Credits, bottom right: whose data (CC BY and the OGL ask for it).
-    if (!facts.credits.empty()) {
+    void credits(const OverlayFacts& facts) {
         const auto [w, h] = paint.measure(facts.credits, 1.4, false, 0.55 * W, 4, 1);
         const Box box{W - 2 * u - w, H - 1.2 * u - h, W - 2 * u, H - 1.2 * u};
         const auto choice = placer.place(box, "bottom-right", {"bottom-left"});
@@ -361,7 +375,7 @@ std::string drawOverlays(PngImage8& image, const scene::OverlaySpec& spec, const
     }
 
     // Scale bar, bottom left: four alternating segments.
-    if (spec.scaleBar) {
+    void scaleBar(const OverlayFacts& facts) {
         const ScaleBar bar = chooseScaleBar(facts.metresPerPixel, W);
         if (bar.pixels > 0) {
             const double x0 = 3 * u, y0 = H - 7 * u, h = 0.9 * u;
@@ -375,29 +389,31 @@ std::string drawOverlays(PngImage8& image, const scene::OverlaySpec& spec, const
             cairo_set_line_width(c, 0.15 * u);
             for (int i = 0; i < 4; ++i) {
                 cairo_rectangle(c, x0 + i * bar.pixels / 4, y0, bar.pixels / 4, h);
-                if (i % 2 == 0) cairo_set_source_rgb(c, 0.08, 0.08, 0.08);
-                else cairo_set_source_rgb(c, 1, 1, 1);
+                if (i % 2 == 0)
+                    cairo_set_source_rgb(c, 0.08, 0.08, 0.08);
+                else
+                    cairo_set_source_rgb(c, 1, 1, 1);
                 cairo_fill_preserve(c);
                 cairo_set_source_rgb(c, 0.08, 0.08, 0.08);
                 cairo_stroke(c);
             }
             paint.text("0", x0, y0 - 2.6 * u, 1.7, false, 0.5);
             paint.text(bar.label, x0 + bar.pixels, y0 - 2.6 * u, 1.7, false, 0.5);
-            if (facts.perspective)
-                paint.text("at the centre of the view", x0, y0 + h + 0.6 * u, 1.4, false, 0);
+            if (facts.perspective) paint.text("at the centre of the view", x0, y0 + h + 0.6 * u, 1.4, false, 0);
             cairo_restore(c);
             placed("scale_bar", choice);
-            rec.scaleBar = bar;
+            record.scaleBar = bar;
         }
     }
 
     // Elevation legend, right: the ramp as a bar, ticks in true metres.
-    if (spec.legend && facts.palette.size() >= 2) {
+    void legend(const OverlayFacts& facts) {
         const double barW = 2.0 * u, barH = 0.38 * H, x0 = W - 13 * u, y0 = 17 * u;
         const bool exaggerated = std::abs(facts.exaggeration - 1) > 1e-9;
         const double titleW = paint.measure(facts.legendTitle, 1.9, true).first;
         const double noteW = facts.legendNote.empty() ? 0 : paint.measure(facts.legendNote, 1.6, false).first;
-        const double bottom = y0 + barH + 1.2 * u + (exaggerated ? 2.4 * u : 0) + (facts.legendNote.empty() ? 0 : 2.4 * u);
+        const double bottom =
+            y0 + barH + 1.2 * u + (exaggerated ? 2.4 * u : 0) + (facts.legendNote.empty() ? 0 : 2.4 * u);
         const Box box{std::min({x0 - 1.5 * u, x0 + barW - titleW / 2, W - 2 * u - noteW}), y0 - 3.6 * u,
                       std::max(W - 2 * u, x0 + barW + titleW / 2), bottom};
         // Down the right edge from below the north arrow, then down the left edge.
@@ -444,21 +460,38 @@ std::string drawOverlays(PngImage8& image, const scene::OverlaySpec& spec, const
         placed("legend", choice);
     }
 
-    cairo_surface_flush(surface.get());
-    const unsigned char* data = cairo_image_surface_get_data(surface.get());
-    const int stride = cairo_image_surface_get_stride(surface.get());
-    for (int yy = 0; yy < H; ++yy)
-        for (int x = 0; x < W; ++x) {
-            const std::uint32_t v = reinterpret_cast<const std::uint32_t*>(data + static_cast<size_t>(yy) * stride)[x];
-            const unsigned a = v >> 24;
-            const auto un = [&](unsigned pc) { return a ? std::min(255u, (pc * 255 + a / 2) / a) : 0u; };
-            std::uint8_t* p = &image.pixels[(static_cast<size_t>(yy) * W + x) * n];
-            p[0] = static_cast<std::uint8_t>(un((v >> 16) & 255));
-            p[1] = static_cast<std::uint8_t>(un((v >> 8) & 255));
-            p[2] = static_cast<std::uint8_t>(un(v & 255));
-            if (n == 4) p[3] = static_cast<std::uint8_t>(a);
-        }
-    if (record) *record = rec;
+    OverlayRecord record;
+
+private:
+    void placed(const char* name, const Placer::Choice& choice) {
+        record.drawn.push_back(name);
+        record.placement[name] = choice.where;
+        if (choice.onTerrain) record.onTerrain.push_back(name);
+    }
+
+    cairo_t* c;
+    const int W, H;
+    const double u;  // sizes scale with the still
+    Painter paint;
+    Placer placer;
+};
+
+}  // namespace
+
+std::string drawOverlays(PngImage8& image, const scene::OverlaySpec& spec, const OverlayFacts& facts,
+                         OverlayRecord* record) {
+    if (image.channels != 3 && image.channels != 4) return "overlays need an RGB or RGBA image";
+    const Owned<cairo_surface_t> surface = surfaceOf(image);
+    if (!surface) return "cannot make a drawing surface";
+    const Owned<cairo_t> cr(cairo_create(surface.get()));
+    OverlayDrawing drawing(cr.get(), image.width, image.height, facts);
+    if (!spec.title.empty() || !spec.subtitle.empty()) drawing.title(spec);
+    if (spec.northArrow) drawing.northArrow(facts);
+    if (!facts.credits.empty()) drawing.credits(facts);
+    if (spec.scaleBar) drawing.scaleBar(facts);
+    if (spec.legend && facts.palette.size() >= 2) drawing.legend(facts);
+    copyBack(surface.get(), image);
+    if (record) *record = drawing.record;
     return {};
 }
 
