@@ -227,36 +227,48 @@ std::vector<Foot> feet(const PiecewiseBezier& b, Point2 a, double slack) {
 
 double distanceToCurve(const PiecewiseBezier& b, Point2 a) { return SegmentIndex({&b, 1}).distance(a); }
 
-OneSided oneSidedHausdorff(std::span<const PiecewiseBezier> A, std::span<const PiecewiseBezier> B,
-                           const HausdorffOptions& options) {
-    OneSided result;
-    auto hasSegments = [](std::span<const PiecewiseBezier> set) {
-        return std::any_of(set.begin(), set.end(), [](const auto& c) { return !c.segments.empty(); });
-    };
-    if (!hasSegments(A)) return result;
-    if (!hasSegments(B)) {
-        result.value = std::numeric_limits<double>::infinity();
-        return result;
+namespace {
+
+// One search for sup over A of dist(., B): f(t) = dist(A(t), B) sampled on
+// each segment of A, bounded on intervals, the intervals split where the
+// bound could still beat the best value (branch and bound), the best
+// candidates polished, and the witness classified.
+class OneSidedSearch {
+public:
+    OneSidedSearch(std::span<const PiecewiseBezier> A, std::span<const PiecewiseBezier> B,
+                   const HausdorffOptions& options)
+        : A_(A), B_(B), indexB_(B), options_(options), size_(std::max({setSize(A), setSize(B), 1e-300})) {}
+
+    OneSided run() {
+        polish(branchAndBound(seeded()));
+        return witness();
     }
-    const SegmentIndex indexB(B);
-    const double size = std::max({setSize(A), setSize(B), 1e-300});
-    Point2 anyPoint{};
-    for (const auto& c : A)
-        if (!c.segments.empty()) anyPoint = c.segments[0].control[0];
-    const double scaleRef = std::max(size, std::fabs(anyPoint.x) + std::fabs(anyPoint.y));
-    long long queries = 0;
-    // f(t) = dist(A(t), B) and the B segment the nearest foot is on.
+
+private:
+    // f at t on one segment of A, and the B segment the nearest foot is on.
     struct Sample {
         double t, f;
         unsigned footPiece, footSeg;
     };
-    auto sample = [&](size_t piece, size_t seg, double t) {
-        ++queries;
-        const auto fs = indexB.feet(evaluate(A[piece].segments[seg], t), 0.0);
+    struct Interval {
+        double upper;
+        unsigned piece, seg;
+        Sample s0, s1;
+        bool operator<(const Interval& o) const { return upper < o.upper; }
+    };
+    using Queue = std::priority_queue<Interval>;
+
+    Sample sample(size_t piece, size_t seg, double t) {
+        ++queries_;
+        const auto fs = indexB_.feet(evaluate(A_[piece].segments[seg], t), 0.0);
         return Sample{t, fs.front().distance, static_cast<unsigned>(fs.front().piece),
                       static_cast<unsigned>(fs.front().segment)};
-    };
-    auto f = [&](size_t piece, size_t seg, double t) { return sample(piece, seg, t).f; };
+    }
+    double f(size_t piece, size_t seg, double t) { return sample(piece, seg, t).f; }
+
+    void consider(double v, size_t piece, size_t seg, double t) {
+        if (v > best_) best_ = v, bestPiece_ = piece, bestSeg_ = seg, bestT_ = t;
+    }
 
     // An upper bound of f on [s0.t, s1.t]. Lipschitz: f changes no faster
     // than A moves (M bounds |A'|). Convexity, where A's piece and a foot's B
@@ -264,122 +276,154 @@ OneSided oneSidedHausdorff(std::span<const PiecewiseBezier> A, std::span<const P
     // line, so f <= max of that segment's distance at the two ends; where one
     // B segment is nearest at both ends this is max(f0, f1), exact, and
     // polylines need no splitting but around the kinks of f.
-    auto upperBound = [&](const Segment& a, double M, const Sample& s0, const Sample& s1) {
+    double upperBound(const Segment& a, double M, const Sample& s0, const Sample& s1) const {
         double u = 0.5 * (s0.f + s1.f + M * (s1.t - s0.t));
         if (a.control.size() != 2) return u;
         for (const Sample* s : {&s0, &s1}) {
-            const auto& b = B[s->footPiece].segments[s->footSeg].control;
+            const auto& b = B_[s->footPiece].segments[s->footSeg].control;
             if (b.size() > 2) continue;
             const Point2 q = evaluate(a, (s == &s0 ? s1 : s0).t);  // the interval's other end
-            const Point2 nearest = b.size() == 1 ? b[0] : lerp(b[0], b[1], std::clamp(projectOntoLine(b[0], b[1], q), 0.0, 1.0));
+            const Point2 nearest =
+                b.size() == 1 ? b[0] : lerp(b[0], b[1], std::clamp(projectOntoLine(b[0], b[1], q), 0.0, 1.0));
             u = std::min(u, std::max(s->f, dist(q, nearest)));
         }
         return u;
-    };
+    }
 
-    struct Interval {
-        double upper;
-        unsigned piece, seg;
-        Sample s0, s1;
-        bool operator<(const Interval& o) const { return upper < o.upper; }
-    };
-    double best = -1;
-    size_t bestPiece = 0, bestSeg = 0;
-    double bestT = 0;
-    auto consider = [&](double v, size_t piece, size_t seg, double t) {
-        if (v > best) best = v, bestPiece = piece, bestSeg = seg, bestT = t;
-    };
-    std::priority_queue<Interval> queue;
-    for (unsigned p = 0; p < A.size(); ++p)
-        for (unsigned s = 0; s < A[p].segments.size(); ++s) {
-            const Segment& seg = A[p].segments[s];
-            const double M = speedBound(seg);
-            // A straight piece needs only its ends to start: the bounds do the rest.
-            const int n = seg.control.size() <= 2 ? 1 : 8 * static_cast<int>(seg.control.size());
-            Sample prev = sample(p, s, 0);
-            consider(prev.f, p, s, 0);
-            for (int k = 1; k <= n && seg.control.size() > 1; ++k) {
-                const Sample next = sample(p, s, static_cast<double>(k) / n);
-                consider(next.f, p, s, next.t);
-                queue.push({upperBound(seg, M, prev, next), p, s, prev, next});
-                prev = next;
+    // Every segment of A sampled to start; a straight piece needs only its
+    // ends: the bounds do the rest.
+    Queue seeded() {
+        Queue queue;
+        for (unsigned p = 0; p < A_.size(); ++p)
+            for (unsigned s = 0; s < A_[p].segments.size(); ++s) {
+                const Segment& seg = A_[p].segments[s];
+                const double M = speedBound(seg);
+                const int n = seg.control.size() <= 2 ? 1 : 8 * static_cast<int>(seg.control.size());
+                Sample prev = sample(p, s, 0);
+                consider(prev.f, p, s, 0);
+                for (int k = 1; k <= n && seg.control.size() > 1; ++k) {
+                    const Sample next = sample(p, s, static_cast<double>(k) / n);
+                    consider(next.f, p, s, next.t);
+                    queue.push({upperBound(seg, M, prev, next), p, s, prev, next});
+                    prev = next;
+                }
             }
-        }
+        return queue;
+    }
+
     // Branch and bound: split intervals whose bound could still beat the best
     // value by more than the tolerance, down to intervals of `shortest`
     // (M * (t1 - t0)); where f is flat at its maximum (parallel or coincident
     // pieces) every interval would stay a candidate, and any is as good as
-    // another: the polish below takes the best candidates to full precision.
-    const double tolerance = options.tolerance > 0 ? options.tolerance : 1e-6 * size;
-    auto bar = [&] { return std::max(best, options.floor); };
-    const double shortest = std::min(1e-3 * size, 1e3 * tolerance);
-    std::vector<Interval> finalists;
-    while (!queue.empty()) {
-        Interval iv = queue.top();
-        queue.pop();
-        const Segment& seg = A[iv.piece].segments[iv.seg];
-        const double M = speedBound(seg);
-        if (iv.upper <= bar() + tolerance || M * (iv.s1.t - iv.s0.t) < shortest) {
-            if (iv.upper > bar() - tolerance) finalists.push_back(iv);
-            continue;
+    // another: the polish takes the best candidates to full precision.
+    std::vector<Interval> branchAndBound(Queue queue) {
+        const double tolerance = options_.tolerance > 0 ? options_.tolerance : 1e-6 * size_;
+        auto bar = [&] { return std::max(best_, options_.floor); };
+        const double shortest = std::min(1e-3 * size_, 1e3 * tolerance);
+        std::vector<Interval> finalists;
+        while (!queue.empty()) {
+            Interval iv = queue.top();
+            queue.pop();
+            const Segment& seg = A_[iv.piece].segments[iv.seg];
+            const double M = speedBound(seg);
+            if (iv.upper <= bar() + tolerance || M * (iv.s1.t - iv.s0.t) < shortest) {
+                if (iv.upper > bar() - tolerance) finalists.push_back(iv);
+                continue;
+            }
+            const Sample mid = sample(iv.piece, iv.seg, 0.5 * (iv.s0.t + iv.s1.t));
+            consider(mid.f, iv.piece, iv.seg, mid.t);
+            queue.push({upperBound(seg, M, iv.s0, mid), iv.piece, iv.seg, iv.s0, mid});
+            queue.push({upperBound(seg, M, mid, iv.s1), iv.piece, iv.seg, mid, iv.s1});
         }
-        const Sample mid = sample(iv.piece, iv.seg, 0.5 * (iv.s0.t + iv.s1.t));
-        consider(mid.f, iv.piece, iv.seg, mid.t);
-        queue.push({upperBound(seg, M, iv.s0, mid), iv.piece, iv.seg, iv.s0, mid});
-        queue.push({upperBound(seg, M, mid, iv.s1), iv.piece, iv.seg, mid, iv.s1});
+        return finalists;
     }
+
     // Polish: golden section on f around the best candidates (a local
     // maximum, or the kink where two feet are equally near, is unimodal
     // there), highest bound first: this takes the answer from the tolerance
     // to full precision. Where f is flat, the 24 highest bounds are enough.
-    std::sort(finalists.begin(), finalists.end(),
-              [](const Interval& x, const Interval& y) { return x.upper > y.upper; });
-    if (finalists.size() > 24) finalists.resize(24);
-    for (const Interval& iv : finalists) {
-        const double w = iv.s1.t - iv.s0.t;
-        double lo = std::max(0.0, iv.s0.t - w), hi = std::min(1.0, iv.s1.t + w);
-        const double g = 0.5 * (std::sqrt(5.0) - 1);
-        double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
-        double f1 = f(iv.piece, iv.seg, x1), f2 = f(iv.piece, iv.seg, x2);
-        for (int it = 0; it < 80 && hi - lo > 1e-15; ++it) {
-            if (f1 < f2) {
-                lo = x1, x1 = x2, f1 = f2, x2 = lo + g * (hi - lo), f2 = f(iv.piece, iv.seg, x2);
-            } else {
-                hi = x2, x2 = x1, f2 = f1, x1 = hi - g * (hi - lo), f1 = f(iv.piece, iv.seg, x1);
+    void polish(std::vector<Interval> finalists) {
+        std::sort(finalists.begin(), finalists.end(),
+                  [](const Interval& x, const Interval& y) { return x.upper > y.upper; });
+        if (finalists.size() > 24) finalists.resize(24);
+        for (const Interval& iv : finalists) {
+            const double w = iv.s1.t - iv.s0.t;
+            double lo = std::max(0.0, iv.s0.t - w), hi = std::min(1.0, iv.s1.t + w);
+            const double g = 0.5 * (std::sqrt(5.0) - 1);
+            double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
+            double f1 = f(iv.piece, iv.seg, x1), f2 = f(iv.piece, iv.seg, x2);
+            for (int it = 0; it < 80 && hi - lo > 1e-15; ++it) {
+                if (f1 < f2) {
+                    lo = x1, x1 = x2, f1 = f2, x2 = lo + g * (hi - lo), f2 = f(iv.piece, iv.seg, x2);
+                } else {
+                    hi = x2, x2 = x1, f2 = f1, x1 = hi - g * (hi - lo), f1 = f(iv.piece, iv.seg, x1);
+                }
             }
+            consider(f1, iv.piece, iv.seg, x1);
+            consider(f2, iv.piece, iv.seg, x2);
+            for (double t : {lo, hi}) consider(f(iv.piece, iv.seg, t), iv.piece, iv.seg, t);
         }
-        consider(f1, iv.piece, iv.seg, x1);
-        consider(f2, iv.piece, iv.seg, x2);
-        for (double t : {lo, hi}) consider(f(iv.piece, iv.seg, t), iv.piece, iv.seg, t);
     }
 
     // The witness and its case.
-    result.value = std::max(best, 0.0);
-    const Segment& sa = A[bestPiece].segments[bestSeg];
-    result.a = evaluate(sa, bestT);
-    result.pieceA = bestPiece;
-    result.paramA = sa.paramStart + bestT * (sa.paramEnd - sa.paramStart);
-    const auto fs = indexB.feet(result.a, 1e-7 * scaleRef);
-    result.foot = fs.front();
-    result.footQueries = queries;
-    if (result.value <= 1e-12 * scaleRef) {
-        result.kind = WitnessCase::Zero;
-    } else if (isEndpoint(A[bestPiece], bestSeg, bestT)) {
-        result.kind = WitnessCase::EndpointOfA;
-    } else {
-        // A second foot, as near, elsewhere on B: the witness is on B's medial axis.
-        for (size_t k = 1; k < fs.size(); ++k)
-            if (dist(fs[k].point, result.foot.point) > 1e-6 * size) {
-                result.secondFoot = fs[k];
-                result.kind = WitnessCase::OneToTwo;
-                break;
-            }
-        if (result.kind != WitnessCase::OneToTwo)
-            result.kind = isEndpoint(B[result.foot.piece], result.foot.segment, result.foot.t)
-                              ? WitnessCase::EndpointOfB
-                              : WitnessCase::Antipodal;
+    OneSided witness() const {
+        Point2 anyPoint{};
+        for (const auto& c : A_)
+            if (!c.segments.empty()) anyPoint = c.segments[0].control[0];
+        const double scaleRef = std::max(size_, std::fabs(anyPoint.x) + std::fabs(anyPoint.y));
+        OneSided result;
+        result.value = std::max(best_, 0.0);
+        const Segment& sa = A_[bestPiece_].segments[bestSeg_];
+        result.a = evaluate(sa, bestT_);
+        result.pieceA = bestPiece_;
+        result.paramA = sa.paramStart + bestT_ * (sa.paramEnd - sa.paramStart);
+        const auto fs = indexB_.feet(result.a, 1e-7 * scaleRef);
+        result.foot = fs.front();
+        result.footQueries = queries_;
+        if (result.value <= 1e-12 * scaleRef) {
+            result.kind = WitnessCase::Zero;
+        } else if (isEndpoint(A_[bestPiece_], bestSeg_, bestT_)) {
+            result.kind = WitnessCase::EndpointOfA;
+        } else {
+            // A second foot, as near, elsewhere on B: the witness is on B's medial axis.
+            for (size_t k = 1; k < fs.size(); ++k)
+                if (dist(fs[k].point, result.foot.point) > 1e-6 * size_) {
+                    result.secondFoot = fs[k];
+                    result.kind = WitnessCase::OneToTwo;
+                    break;
+                }
+            if (result.kind != WitnessCase::OneToTwo)
+                result.kind = isEndpoint(B_[result.foot.piece], result.foot.segment, result.foot.t)
+                                  ? WitnessCase::EndpointOfB
+                                  : WitnessCase::Antipodal;
+        }
+        return result;
     }
-    return result;
+
+    std::span<const PiecewiseBezier> A_, B_;
+    const SegmentIndex indexB_;
+    const HausdorffOptions& options_;
+    const double size_;
+    long long queries_ = 0;
+    double best_ = -1;
+    size_t bestPiece_ = 0, bestSeg_ = 0;
+    double bestT_ = 0;
+};
+
+}  // namespace
+
+OneSided oneSidedHausdorff(std::span<const PiecewiseBezier> A, std::span<const PiecewiseBezier> B,
+                           const HausdorffOptions& options) {
+    auto hasSegments = [](std::span<const PiecewiseBezier> set) {
+        return std::any_of(set.begin(), set.end(), [](const auto& c) { return !c.segments.empty(); });
+    };
+    OneSided result;
+    if (!hasSegments(A)) return result;
+    if (!hasSegments(B)) {
+        result.value = std::numeric_limits<double>::infinity();
+        return result;
+    }
+    return OneSidedSearch(A, B, options).run();
 }
 
 HausdorffResult hausdorff(std::span<const PiecewiseBezier> a, std::span<const PiecewiseBezier> b,
