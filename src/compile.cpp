@@ -27,32 +27,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
-// [camera] position and look_at, in the frame's metres.
-std::optional<emit::CameraPoints> cameraPoints(const scene::LookSpec& look, const geo::Frame& frame,
-                                               Diagnostics& diags) {
-    const auto toFrame = [&](const std::array<double, 3>& lonLatH, const char* key) -> std::optional<Vec3> {
-        Vec3 p;
-        if (geo::geodeticToFrame(frame, lonLatH[1], lonLatH[0], lonLatH[2], p)) return p;
-        diags.error(look.camera.locs.at(key),
-                    fmt::format("{} = [{}, {}, {}] cannot be placed in the scene's frame ({}): "
-                                "put it nearer the terrain, or use frame.kind = \"local\"",
-                                key, formatShortest(lonLatH[0]), formatShortest(lonLatH[1]), formatShortest(lonLatH[2]),
-                                frame.describe()));
-        return std::nullopt;
-    };
-    emit::CameraPoints points;
-    const scene::CameraSpec& camera = look.camera;
-    if (camera.position && !(points.eyeM = toFrame(*camera.position, "camera.position"))) return std::nullopt;
-    if (camera.lookAt && !(points.targetM = toFrame(*camera.lookAt, "camera.look_at"))) return std::nullopt;
-    if (points.eyeM && points.targetM && length(*points.eyeM - *points.targetM) < 1e-3) {
-        diags.error(look.camera.locs.at("camera.look_at"),
-                    "camera.look_at is where camera.position is: a camera must "
-                    "look at a point away from itself");
-        return std::nullopt;
-    }
-    return points;
-}
-
 // The sun: the scene's angles, or where it stood at [lighting] datetime over
 // the terrain's centre. The scene's axes are the frame's grid, whose north is
 // the meridian convergence away from true north.
@@ -98,7 +72,7 @@ struct View {
 };
 
 std::optional<View> resolveView(const scene::SceneSpec& spec, const Surface& surface, Diagnostics& diags) {
-    const auto points = cameraPoints(spec.look, surface.net.frame, diags);
+    const auto points = emit::cameraPointsInFrame(spec.look.camera, surface.net.frame, diags);
     if (!points) return std::nullopt;
     auto sun = sunOf(spec.look, surface.net, diags);
     if (!sun) return std::nullopt;
@@ -142,10 +116,9 @@ bool buildMeshes(const LoadedScene& loaded, const Surface& surface, const View& 
         t.adaptiveToleranceM = g.toleranceM > 0 ? g.toleranceM : g.tolerancePx * pixelM / exaggeration;
         t.adaptiveTolerancePx = t.adaptiveToleranceM * exaggeration / pixelM;
         t.mesh = emit::buildAdaptiveMesh(refined, view.where, t.adaptiveToleranceM);
-        const scene::SubdivisionSpec& sub = spec.subdivision;
-        if (!subdiv::checkBudget(subdiv::withBuiltMesh(surface.estimate, double(t.mesh->vertices), double(t.mesh->triangles)),
-                                 budgetOf(spec.limits), sub.locs.at(sub.depthAuto ? "subdivision.depth" : "subdivision.scheme"),
-                                 surface.depth, diags, true))
+        if (!subdiv::checkBudget(
+                subdiv::withBuiltMesh(surface.estimate, double(t.mesh->vertices), double(t.mesh->triangles)),
+                budgetOf(spec.limits), budgetKey(spec), surface.depth, diags, true))
             return false;
     }
     t.vertices = static_cast<long long>(t.mesh->vertices);
@@ -302,6 +275,7 @@ void recordSurface(CompileResult& r, const LoadedScene& loaded, const Surface& s
                    const CompileResult::Sun& sunRecord) {
     r.estimate = surface.estimate;
     r.depth = surface.depth;
+    r.depthReason = surface.depthReason;
     r.autoDepth = surface.autoDepth;
     r.geometry = surface.geometry;
     r.maskedNodes = surface.refined.maskedCount();

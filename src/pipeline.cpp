@@ -13,6 +13,7 @@
 #include "core/png_file.h"
 #include "emit/adaptive_mesh.h"
 #include "emit/block_base.h"
+#include "emit/camera.h"
 #include "emit/surface_contours.h"
 #include "emit/height_field.h"
 #include "emit/mesh.h"
@@ -21,6 +22,7 @@
 #include "measure/auto_depth.h"
 #include "relief/version.h"
 #include "scene/read_scene.h"
+#include "scene_for_data.h"
 #include "subdiv/refine.h"
 
 namespace relief {
@@ -35,8 +37,8 @@ double secondsSince(Clock::time_point t0) {
 }  // namespace
 
 std::string depthLabel(const scene::SubdivisionSpec& sub) {
-    return sub.depthAuto ? fmt::format("depth auto (tolerance_m = {})", formatShortest(sub.toleranceM))
-                         : fmt::format("depth {}", sub.depth);
+    if (sub.depthAuto) return fmt::format("depth auto (tolerance_m = {})", formatShortest(sub.toleranceM));
+    return sub.depthGiven ? fmt::format("depth {}", sub.depth) : std::string("depth for the still");
 }
 
 subdiv::Budget budgetOf(const scene::LimitsSpec& limits) {
@@ -87,8 +89,20 @@ OutputPaths outputPathsFor(const std::filesystem::path& png) {
 std::optional<LoadedScene> loadScene(const std::filesystem::path& scenePath,
                                      Diagnostics& diags, const scene::SceneOverrides& overrides) {
     const auto t0 = Clock::now();
-    auto spec = scene::readScene(scenePath, diags, overrides);
+    std::string why;
+    const InputKind kind = inputKindOf(scenePath, why);
+    if (kind == InputKind::Neither) {
+        diags.error({scenePath.string(), 0, 0},
+                    fmt::format("relief reads a scene file (TOML), a raster DEM GDAL opens (GeoTIFF, SRTM .hgt, ESRI "
+                                "ASCII grid, VRT, ...) or a CSV of lon,lat,elev samples, and this is none of them ({})",
+                                why));
+        return std::nullopt;
+    }
+    const std::string made = kind == InputKind::Scene ? std::string() : sceneTextForData(scenePath);
+    auto spec = made.empty() ? scene::readScene(scenePath, diags, overrides)
+                             : scene::readSceneText(made, scenePath, diags, overrides);
     if (!spec) return std::nullopt;
+    spec->madeForData = made;
     // The scene's own errors do not stop the scheme's checks: every problem is reported at once.
     auto resolved = subdiv::resolveScheme(spec->subdivision.scheme, diags);
     if (diags.hasErrors() || !resolved) return std::nullopt;
@@ -99,94 +113,203 @@ std::optional<LoadedScene> loadScene(const std::filesystem::path& scenePath,
 
 namespace {
 
-// What [limits] allow the control net, for geo.
-geo::NetLimits netLimitsOf(const scene::LimitsSpec& limits) {
-    geo::NetLimits l{netBudgetOf(limits), budgetOf(limits).maxMemoryMB, std::nullopt};
-    if (limits.locs.has("limits.max_memory_mb")) l.memoryKey = limits.locs.at("limits.max_memory_mb");
-    return l;
+// The cheapest geometry the scene allows, whose cost bounds the job's from below.
+subdiv::GeometryCost cheapestCost(scene::GeometryKind kind) {
+    switch (kind) {
+        case scene::GeometryKind::Mesh2:
+            return subdiv::GeometryCost::Mesh2;
+        case scene::GeometryKind::Adaptive:
+            return subdiv::GeometryCost::Adaptive;
+        default:
+            return subdiv::GeometryCost::HeightField;
+    }
 }
 
 }  // namespace
 
-std::optional<Surface> buildSurface(const LoadedScene& loaded, Diagnostics& diags, int threads,
-                                    const ProgressFn& progress) {
+SourceLoc budgetKey(const scene::SceneSpec& spec) {
+    const scene::SubdivisionSpec& sub = spec.subdivision;
+    if (sub.depthAuto) return sub.locs.at("subdivision.depth");
+    if (sub.depthGiven) return sub.locs.at("subdivision.scheme");
+    if (spec.net.locs.has("net.spacing_m")) return spec.net.locs.at("net.spacing_m");
+    return spec.net.locs.has("net.rows") ? spec.net.locs.at("net.rows") : SourceLoc{spec.samples.pathAsWritten, 0, 0};
+}
+
+namespace {
+
+// What [limits] and the still allow the control net, for geo: its nodes, a
+// default net no finer than the still, and a net whose refinement (at the
+// scene's depth, else at depth 0 in the cheapest geometry) is over [limits]
+// refused before a height is read.
+geo::NetLimits netLimitsOf(const LoadedScene& loaded) {
+    const scene::SceneSpec& spec = loaded.scene;
+    geo::NetLimits l{netBudgetOf(spec.limits), budgetOf(spec.limits).maxMemoryMB, std::nullopt};
+    if (spec.limits.locs.has("limits.max_memory_mb")) l.memoryKey = spec.limits.locs.at("limits.max_memory_mb");
+    l.nodes.stillWidthPx = spec.render.width;
+    l.nodes.fits = [&loaded](int rows, int cols, Diagnostics& diags) {
+        const scene::SceneSpec& spec = loaded.scene;
+        const int depth = spec.subdivision.depthGiven ? spec.subdivision.depth : 0;
+        const auto est =
+            subdiv::estimateOutput(loaded.resolved.scheme, rows, cols, depth, cheapestCost(spec.geometry.kind));
+        return subdiv::checkBudget(est, budgetOf(spec.limits), budgetKey(spec), depth, diags);
+    };
+    return l;
+}
+
+// What chooseGeometry weighs for the net refined to `triangles`.
+emit::GeometryFacts geometryFacts(const LoadedScene& loaded, const geo::ControlNet& net, int depth, double triangles) {
+    const scene::SceneSpec& spec = loaded.scene;
+    emit::GeometryFacts facts;
+    facts.triangles = triangles;
+    facts.masked = !net.masked.empty();
+    double zmin = 1e300, zmax = -1e300;
+    for (const Vec3& p : net.grid.points) zmin = std::min(zmin, p.z), zmax = std::max(zmax, p.z);
+    facts.zRangeM = zmax - zmin;
+    facts.extentM = std::max(net.xMax() - net.x0, net.yMax() - net.y0);
+    facts.exaggeration = spec.look.vertical.exaggeration;
+    facts.widthPx = spec.render.width;
+    facts.rough = depth > 0 && loaded.resolved.report.holder < 1;
+    return facts;
+}
+
+// The geometry the net refined `depth` times becomes, and what it costs.
+struct DepthCost {
+    emit::GeometryChoice geometry;
+    subdiv::OutputEstimate estimate;
+};
+std::optional<DepthCost> costAt(const LoadedScene& loaded, const geo::ControlNet& net, int depth, Diagnostics& diags) {
+    const scene::SceneSpec& spec = loaded.scene;
+    const subdiv::Scheme& scheme = loaded.resolved.scheme;
+    const auto mesh = subdiv::estimateOutput(scheme, net.rows(), net.cols(), depth);
+    auto geometry = emit::chooseGeometry(spec.geometry, geometryFacts(loaded, net, depth, mesh.triangles), diags);
+    if (!geometry) return std::nullopt;
+    DepthCost c{*geometry, mesh};
+    if (geometry->kind == scene::GeometryKind::HeightField)
+        c.estimate = subdiv::estimateOutput(scheme, net.rows(), net.cols(), depth, subdiv::GeometryCost::HeightField);
+    else if (geometry->kind == scene::GeometryKind::Adaptive)
+        c.estimate = subdiv::estimateOutput(scheme, net.rows(), net.cols(), depth, subdiv::GeometryCost::Adaptive);
+    // The colours held beside the grid: a height field's drape (16-bit RGBA, a
+    // node each); an image drape's too on any kind, and the image on the grid (RGB and coverage).
+    const bool heightField = geometry->kind == scene::GeometryKind::HeightField;
+    const bool image = spec.look.texture.colouring == scene::TextureSpec::Colouring::Image;
+    c.estimate.memoryBytes += c.estimate.vertices * ((heightField || image ? 8 : 0) + (image ? 4 : 0));
+    return c;
+}
+
+// The depth whose refined spacing is nearest one pixel of the still where the
+// terrain is nearest the camera (within a factor sqrt(arity) of it): no more
+// detail than the picture can show, and none less.
+int depthForStill(const LoadedScene& loaded, const geo::ControlNet& net, double& pixelM) {
+    const scene::SceneSpec& spec = loaded.scene;
+    Diagnostics quiet;  // a camera point that cannot be placed is reported once, with the view
+    const auto points = emit::cameraPointsInFrame(spec.look.camera, net.frame, quiet);
+    const emit::ScenePlacement where = emit::placeTerrain(net, spec.look);
+    const emit::CameraView camera =
+        emit::placeCamera(where, spec.look.camera, points.value_or(emit::CameraPoints{}), spec.render);
+    pixelM = emit::finestMetresPerPixel(camera, where, spec.render.width);
+    const double arity = loaded.resolved.scheme.arity, spacing = std::max(net.dx, net.dy);
+    int depth = 0;
+    while (depth < scene::kMaxDepth && spacing / std::pow(arity, depth) > pixelM * std::sqrt(arity)) ++depth;
+    return depth;
+}
+
+// depth = "auto": the smallest depth whose last level moves the terrain by at
+// most tolerance_m, searched up to the deepest the budget allows.
+bool chooseAutoDepth(const LoadedScene& loaded, const geo::ControlNet& net, int threads, Surface& s,
+                     Diagnostics& diags) {
+    const scene::SubdivisionSpec& sub = loaded.scene.subdivision;
+    const subdiv::Scheme& scheme = loaded.resolved.scheme;
+    // When not even level 1 fits, the budget check after says so.
+    const int maxDepth =
+        subdiv::deepestWithinBudget(scheme, net.rows(), net.cols(), budgetOf(loaded.scene.limits), scene::kMaxDepth);
+    s.depth = 1;
+    if (maxDepth <= 0) return true;
+    s.autoDepth = measure::chooseDepth(scheme, net, sub.toleranceM, maxDepth, threads);
+    const auto& last = s.autoDepth->levels.back();
+    if (!s.autoDepth->reached) {
+        diags.error(sub.locs.at("subdivision.tolerance_m"),
+                    fmt::format("subdivision.tolerance_m = {} m is not reached within the output "
+                                "budget: level {} (the deepest [limits] allow) still moves {} by "
+                                "{:.3g} m (per level: {}); raise tolerance_m or [limits], or set "
+                                "a fixed depth",
+                                formatShortest(sub.toleranceM), last.level, last.curve, last.distanceM,
+                                levelSeries(*s.autoDepth)));
+        return false;
+    }
+    s.depth = s.autoDepth->depth;
+    s.depthReason = autoDepthSummary(*s.autoDepth, sub.toleranceM);
+    return true;
+}
+
+// No depth in the scene: the still's (depthForStill), or the deepest below it
+// that [limits] allow; a default never refuses a scene that fits at depth 0.
+void chooseStillDepth(const LoadedScene& loaded, const geo::ControlNet& net, Surface& s) {
+    double pixelM = 0;
+    const int wanted = depthForStill(loaded, net, pixelM);
+    int depth = wanted;
+    for (; depth > 0; --depth) {
+        Diagnostics quiet;
+        const auto cost = costAt(loaded, net, depth, quiet);
+        if (cost && subdiv::withinBudget(cost->estimate, budgetOf(loaded.scene.limits))) break;
+    }
+    s.depth = depth;
+    const double refinedM = std::max(net.dx, net.dy) / std::pow(loaded.resolved.scheme.arity, depth);
+    s.depthReason = fmt::format(
+        "chosen for the still: the net's {:.3g} m refined to {:.3g} m, about the {:.3g} m "
+        "one pixel of the {} px wide still covers where the terrain is nearest the camera",
+        std::max(net.dx, net.dy), refinedM, pixelM, loaded.scene.render.width);
+    if (depth < wanted) s.depthReason += fmt::format(" (depth {} would be over [limits])", wanted);
+}
+
+}  // namespace
+
+std::optional<Surface> planSurface(const LoadedScene& loaded, Diagnostics& diags, int threads,
+                                   const ProgressFn& progress) {
     const scene::SceneSpec& spec = loaded.scene;
     const scene::SubdivisionSpec& sub = spec.subdivision;
-    const subdiv::Scheme& scheme = loaded.resolved.scheme;
     auto t0 = Clock::now();
     geo::NetProgressFn netProgress;
     if (progress)
         netProgress = [&](const std::string& task, int percent) {
             progress({ProgressEvent::Stage::Compiling, task, percent});
         };
-    auto net = geo::controlNet(spec.samples, spec.frame, spec.net, netLimitsOf(spec.limits), diags, netProgress);
+    auto net = geo::controlNet(spec.samples, spec.frame, spec.net, netLimitsOf(loaded), diags, netProgress);
     if (!net) return std::nullopt;
     Surface s;
     s.normalizeSeconds = secondsSince(t0);
-    const subdiv::Budget budget = budgetOf(spec.limits);
-    s.depth = sub.depth;
     t0 = Clock::now();
     if (sub.depthAuto) {
-        // The deepest level the budget allows bounds the search; when not
-        // even level 1 fits, the budget check below says so.
-        const int maxDepth = subdiv::deepestWithinBudget(scheme, net->rows(), net->cols(), budget,
-                                                         scene::kMaxDepth);
-        s.depth = 1;
-        if (maxDepth > 0) {
-            s.autoDepth = measure::chooseDepth(scheme, *net, sub.toleranceM, maxDepth, threads);
-            const auto& last = s.autoDepth->levels.back();
-            if (!s.autoDepth->reached) {
-                diags.error(sub.locs.at("subdivision.tolerance_m"),
-                            fmt::format("subdivision.tolerance_m = {} m is not reached within the output "
-                                        "budget: level {} (the deepest [limits] allow) still moves {} by "
-                                        "{:.3g} m (per level: {}); raise tolerance_m or [limits], or set "
-                                        "a fixed depth",
-                                        formatShortest(sub.toleranceM), last.level, last.curve,
-                                        last.distanceM, levelSeries(*s.autoDepth)));
-                return std::nullopt;
-            }
-            s.depth = s.autoDepth->depth;
-        }
+        if (!chooseAutoDepth(loaded, *net, threads, s, diags)) return std::nullopt;
+    } else if (sub.depthGiven) {
+        s.depth = sub.depth;
+        s.depthReason = "subdivision.depth";
+    } else {
+        chooseStillDepth(loaded, *net, s);
     }
-    s.estimate = subdiv::estimateOutput(scheme, net->rows(), net->cols(), s.depth);
-    {
-        emit::GeometryFacts facts;
-        facts.triangles = s.estimate.triangles;
-        facts.masked = !net->masked.empty();
-        double zmin = 1e300, zmax = -1e300;
-        for (const Vec3& p : net->grid.points) zmin = std::min(zmin, p.z), zmax = std::max(zmax, p.z);
-        facts.zRangeM = zmax - zmin;
-        facts.extentM = std::max(net->xMax() - net->x0, net->yMax() - net->y0);
-        facts.exaggeration = spec.look.vertical.exaggeration;
-        facts.widthPx = spec.render.width;
-        facts.rough = s.depth > 0 && loaded.resolved.report.holder < 1;
-        auto geometry = emit::chooseGeometry(spec.geometry, facts, diags);
-        if (!geometry) return std::nullopt;
-        s.geometry = *geometry;
-    }
-    if (s.geometry.kind == scene::GeometryKind::HeightField)
-        s.estimate = subdiv::estimateOutput(scheme, net->rows(), net->cols(), s.depth,
-                                            subdiv::GeometryCost::HeightField);
-    else if (s.geometry.kind == scene::GeometryKind::Adaptive)
-        s.estimate = subdiv::estimateOutput(scheme, net->rows(), net->cols(), s.depth,
-                                            subdiv::GeometryCost::Adaptive);
-    // The colours held beside the grid: a height field's drape (16-bit RGBA, a
-    // node each); an image drape's too on any kind, and the image on the grid (RGB and coverage).
-    const bool heightField = s.geometry.kind == scene::GeometryKind::HeightField;
-    const bool image = spec.look.texture.colouring == scene::TextureSpec::Colouring::Image;
-    s.estimate.memoryBytes += s.estimate.vertices * ((heightField || image ? 8 : 0) + (image ? 4 : 0));
-    if (!subdiv::checkBudget(s.estimate, budget,
-                             sub.locs.at(sub.depthAuto ? "subdivision.depth" : "subdivision.scheme"),
-                             s.depth, diags))
-        return std::nullopt;
-    if (progress)
-        progress({ProgressEvent::Stage::Compiling,
-                  fmt::format("subdividing to depth {} ({} x {} nodes)", s.depth, s.estimate.rows, s.estimate.cols),
-                  -1});
-    s.refined = net->refined(subdiv::refineGrid(scheme, net->grid, s.depth, threads),
-                             std::pow(scheme.arity, s.depth));
+    auto cost = costAt(loaded, *net, s.depth, diags);
+    if (!cost) return std::nullopt;
+    s.geometry = cost->geometry;
+    s.estimate = cost->estimate;
+    if (!subdiv::checkBudget(s.estimate, budgetOf(spec.limits), budgetKey(spec), s.depth, diags)) return std::nullopt;
     s.subdivideSeconds = secondsSince(t0);
     s.net = std::move(*net);
+    return s;
+}
+
+std::optional<Surface> buildSurface(const LoadedScene& loaded, Diagnostics& diags, int threads,
+                                    const ProgressFn& progress) {
+    auto s = planSurface(loaded, diags, threads, progress);
+    if (!s) return std::nullopt;
+    const auto t0 = Clock::now();
+    if (progress)
+        progress({ProgressEvent::Stage::Compiling,
+                  fmt::format("subdividing to depth {} ({} x {} nodes{})", s->depth, s->estimate.rows, s->estimate.cols,
+                              loaded.scene.subdivision.depthGiven ? std::string() : "; " + s->depthReason),
+                  -1});
+    const subdiv::Scheme& scheme = loaded.resolved.scheme;
+    s->refined =
+        s->net.refined(subdiv::refineGrid(scheme, s->net.grid, s->depth, threads), std::pow(scheme.arity, s->depth));
+    s->subdivideSeconds += secondsSince(t0);
     return s;
 }
 

@@ -64,6 +64,11 @@ std::string autoDepthSummary(const measure::DepthChoice& choice, double toleranc
 /// The output budget of a scene's [limits].
 subdiv::Budget budgetOf(const scene::LimitsSpec& limits);
 
+/// Where an error of the output budget belongs: subdivision.depth = "auto",
+/// the scheme (a depth the scene gives), else the key that sized the net (or
+/// the samples file, when relief chose both the net and the depth).
+SourceLoc budgetKey(const scene::SceneSpec& spec);
+
 /// The most nodes the control net may have under a scene's [limits].
 geo::NetBudget netBudgetOf(const scene::LimitsSpec& limits);
 
@@ -84,10 +89,21 @@ struct Surface {
     geo::GeoGrid refined;  ///< the net refined `depth` times: same frame and extent
     subdiv::OutputEstimate estimate;  ///< of the chosen geometry
     emit::GeometryChoice geometry;
-    int depth = 0;  ///< the scene's, or the one depth = "auto" chose
+    int depth = 0;            ///< the scene's, the one depth = "auto" chose, or the still's
+    std::string depthReason;  ///< "subdivision.depth", the auto summary, or how the still chose it
     std::optional<measure::DepthChoice> autoDepth;  ///< the change per level, for depth = "auto"
     double normalizeSeconds = 0, subdivideSeconds = 0;  ///< subdivide includes choosing the depth
 };
+/// What buildSurface will make, without refining: the net, the depth and why,
+/// the geometry and its cost, checked against [limits] (a net whose work is
+/// over them is refused before its heights are read). What `relief info`
+/// and `relief init` show; `refined` is empty.
+///
+/// The depth, when the scene gives none, is chosen for the still: the
+/// shallowest whose refined spacing is within sqrt(arity) of one pixel where
+/// the terrain is nearest the camera, lowered until [limits] allow it.
+std::optional<Surface> planSurface(const LoadedScene& loaded, Diagnostics& diags, int threads = 0,
+                                   const ProgressFn& progress = {});
 /// `progress` (may be empty) hears how far the gridding is.
 std::optional<Surface> buildSurface(const LoadedScene& loaded, Diagnostics& diags, int threads = 0,
                                     const ProgressFn& progress = {});
@@ -114,7 +130,8 @@ struct CompileResult {
     std::string certified;  ///< e.g. "C1 (Hölder ~1.68)"
     geo::ControlNet net;    ///< the control net (its grid is kept; it is small)
     subdiv::OutputEstimate estimate;  ///< the refined grid's size and its mesh's
-    int depth = 0;  ///< the scene's, or the one depth = "auto" chose
+    int depth = 0;                    ///< the scene's, the one depth = "auto" chose, or the still's
+    std::string depthReason;          ///< Surface::depthReason
     std::optional<measure::DepthChoice> autoDepth;
     int arity = 2;
     double holder = 0;  ///< the scheme's Hölder estimate, next to the observed rates

@@ -31,6 +31,7 @@ emit::ParameterList sceneHeader(const scene::SceneSpec& s, const geo::ControlNet
     add("frame", net.frame.describe());
     add("net.size", fmt::format("{} rows x {} cols", net.grid.rows, net.grid.cols));
     add("net.spacing_m", fmt::format("{} x {}", formatShortest(net.dx), formatShortest(net.dy)));
+    if (net.spacingReason.starts_with("about")) add("net.spacing_reason", net.spacingReason);
     add("net.origin_m", fmt::format("{}, {}", formatShortest(net.x0), formatShortest(net.y0)));
     if (net.raster.empty()) add("net.gridding", scene::nameOf(s.net.gridding));
     else add("samples.raster", net.raster);
@@ -48,9 +49,10 @@ emit::ParameterList sceneHeader(const scene::SceneSpec& s, const geo::ControlNet
     add("subdivision.params", params);
     add("subdivision.certified", subdiv::certifiedClass(scheme.report));
     add("subdivision.boundary", "point reflection");
-    add("subdivision.depth", sub.depthAuto ? fmt::format("{} (auto, tolerance_m = {})", depth,
-                                                         formatShortest(sub.toleranceM))
-                                         : std::to_string(depth));
+    add("subdivision.depth", sub.depthAuto
+                                 ? fmt::format("{} (auto, tolerance_m = {})", depth, formatShortest(sub.toleranceM))
+                             : sub.depthGiven ? std::to_string(depth)
+                                              : fmt::format("{} ({})", depth, compiled.depthReason));
     add("refined.size", fmt::format("{} rows x {} cols", est.rows, est.cols));
     add("refined.vertices", fmt::format("{:.0f}", est.vertices));
     add("refined.triangles", fmt::format("{:.0f}", est.triangles));

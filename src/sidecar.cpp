@@ -19,6 +19,7 @@ ordered_json sidecarJson(const CompileResult& c, const OutputPaths& paths) {
                    {"scene_sha1", c.scene.sceneSha1},
                    {"samples", c.scene.samples.path.string()},
                    {"sample_count", c.net.sampleCount}};
+    if (!c.scene.madeForData.empty()) j["inputs"]["scene_made_for_the_data"] = c.scene.madeForData;
     if (!c.dataAttribution.empty()) j["inputs"]["attribution"] = c.dataAttribution;
     ordered_json params = ordered_json::object();
     for (const auto& [k, v] : c.parameters) params[k] = v;
@@ -28,10 +29,13 @@ ordered_json sidecarJson(const CompileResult& c, const OutputPaths& paths) {
                 {"dx_m", c.net.dx},
                 {"dy_m", c.net.dy},
                 {"frame", c.net.frame.describe()},
+                {"spacing_reason", c.net.spacingReason},
                 {"filled_outside_hull", c.net.filledOutsideHull},
                 {"filled_nodata", c.net.filledNodata},
                 {"masked_nodata", c.net.maskedCount()}};
-    j["refined"] = {{"rows", c.estimate.rows},
+    j["refined"] = {{"depth", c.depth},
+                    {"depth_reason", c.depthReason},
+                    {"rows", c.estimate.rows},
                     {"cols", c.estimate.cols},
                     {"masked_nodata", c.maskedNodes},
                     {"vertices", c.meshVertices},

@@ -6,6 +6,11 @@
 #include <tuple>
 #include <utility>
 
+#include <fmt/format.h>
+
+#include "core/number_format.h"
+#include "geo/normalize.h"
+
 namespace relief::emit {
 
 namespace {
@@ -168,6 +173,29 @@ double finestMetresPerPixel(const CameraView& view, const ScenePlacement& where,
                        std::clamp(view.eye.z, lo.z, hi.z)};
     const double distance = std::max(length(view.eye - nearest), 1e-9);
     return 2 * distance * view.tanHalfFov * where.metresPerUnit / widthPx;
+}
+
+std::optional<CameraPoints> cameraPointsInFrame(const scene::CameraSpec& camera, const geo::Frame& frame,
+                                                Diagnostics& diags) {
+    const auto toFrame = [&](const std::array<double, 3>& lonLatH, const char* key) -> std::optional<Vec3> {
+        Vec3 p;
+        if (geo::geodeticToFrame(frame, lonLatH[1], lonLatH[0], lonLatH[2], p)) return p;
+        diags.error(camera.locs.at(key), fmt::format("{} = [{}, {}, {}] cannot be placed in the scene's frame ({}): "
+                                                     "put it nearer the terrain, or use frame.kind = \"local\"",
+                                                     key, formatShortest(lonLatH[0]), formatShortest(lonLatH[1]),
+                                                     formatShortest(lonLatH[2]), frame.describe()));
+        return std::nullopt;
+    };
+    CameraPoints points;
+    if (camera.position && !(points.eyeM = toFrame(*camera.position, "camera.position"))) return std::nullopt;
+    if (camera.lookAt && !(points.targetM = toFrame(*camera.lookAt, "camera.look_at"))) return std::nullopt;
+    if (points.eyeM && points.targetM && length(*points.eyeM - *points.targetM) < 1e-3) {
+        diags.error(camera.locs.at("camera.look_at"),
+                    "camera.look_at is where camera.position is: a camera must "
+                    "look at a point away from itself");
+        return std::nullopt;
+    }
+    return points;
 }
 
 }  // namespace relief::emit

@@ -6,6 +6,7 @@
 #include <array>
 #include <optional>
 
+#include "core/diagnostics.h"
 #include "core/types.h"
 #include "emit/mesh.h"
 #include "scene/scene_spec.h"
@@ -35,6 +36,10 @@ struct CameraView {
 struct CameraPoints {
     std::optional<Vec3> eyeM, targetM;
 };
+/// [camera] position and look_at in `frame`'s metres; nullopt, after an
+/// error at the key, when one cannot be placed there or both are one point.
+std::optional<CameraPoints> cameraPointsInFrame(const scene::CameraSpec& camera, const geo::Frame& frame,
+                                                Diagnostics& diags);
 CameraView placeCamera(const ScenePlacement& where, const scene::CameraSpec& camera, const CameraPoints& points,
                        const scene::RenderSpec& render);
 /// The orbit camera of a look (no camera points): for tests and tools.

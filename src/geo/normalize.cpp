@@ -266,6 +266,19 @@ std::optional<std::array<double, 4>> frameBoxInside(const Frame& frame, const st
     return std::array<double, 4>{west, south, east, north};
 }
 
+namespace {
+
+// About one pixel of a still `widthPx` wide that shows the extent across it,
+// rounded up to two significant digits (a spacing worth writing down); 0 without a still.
+double stillSpacingM(double width, double height, int widthPx) {
+    if (widthPx <= 0) return 0;
+    const double pixel = std::max(width, height) / widthPx;
+    const double unit = std::pow(10.0, std::floor(std::log10(pixel)) - 1);
+    return std::ceil(pixel / unit - 1e-9) * unit;
+}
+
+}  // namespace
+
 bool layoutNet(const scene::NetSpec& spec, std::array<double, 4> dataBox, double defaultSpacingM,
                GeoGrid& net, Diagnostics& diags, const NetBudget& budget) {
     if (spec.extentLonLat) {
@@ -284,7 +297,12 @@ bool layoutNet(const scene::NetSpec& spec, std::array<double, 4> dataBox, double
     const double width = xmax - xmin, height = ymax - ymin;
     int rows = spec.rows, cols = spec.cols;
     const bool countsGiven = spec.locs.has("net.rows") || spec.locs.has("net.cols");
-    const double spacing = spec.spacingM > 0 ? spec.spacingM : countsGiven ? 0 : defaultSpacingM;
+    double spacing = spec.spacingM > 0 ? spec.spacingM : countsGiven ? 0 : defaultSpacingM;
+    // Data with a spacing of their own (a raster, a lattice) finer than the still shows: a coarser net.
+    // (At least twice as fine: a net a few per cent coarser than the cells would lose them for nothing.)
+    if (const double still = stillSpacingM(width, height, budget.stillWidthPx);
+        spacing > 0 && spec.spacingM <= 0 && still >= 2 * spacing)
+        spacing = still;
     if (spacing > 0) {
         // The largest net with this spacing inside the extent, centred in it.
         const double across = std::floor(width / spacing + 1e-9) + 1, up = std::floor(height / spacing + 1e-9) + 1;
@@ -328,7 +346,18 @@ bool layoutNet(const scene::NetSpec& spec, std::array<double, 4> dataBox, double
     }
     net.grid.rows = rows;
     net.grid.cols = cols;
-    return true;
+    return !budget.fits || budget.fits(rows, cols, diags);
+}
+
+std::string netSpacingReason(const scene::NetSpec& spec, const GeoGrid& net, double dataSpacingM, int stillWidthPx) {
+    if (spec.spacingM > 0) return "net.spacing_m";
+    if (spec.locs.has("net.rows") || spec.locs.has("net.cols")) return "net.rows and net.cols";
+    if (dataSpacingM > 0 && net.dx > dataSpacingM * (1 + 1e-9))
+        return fmt::format(
+            "about one pixel of the {} px wide still, coarser than the data's {:.3g} m, which it cannot "
+            "show",
+            stillWidthPx, dataSpacingM);
+    return "the data's own spacing";
 }
 
 std::optional<ControlNet> gridSamples(const scene::NetSpec& spec, const std::string& samplesName,
@@ -350,6 +379,7 @@ std::optional<ControlNet> gridSamples(const scene::NetSpec& spec, const std::str
         ymin = std::min(ymin, fp.p.y), ymax = std::max(ymax, fp.p.y);
     }
     if (!layoutNet(spec, {xmin, ymin, xmax, ymax}, 0, net, diags, budget)) return std::nullopt;
+    net.spacingReason = spec.spacingM > 0 ? "net.spacing_m" : "net.rows and net.cols (64 x 64 when not given)";
     const int rows = net.grid.rows, cols = net.grid.cols;
 
     std::vector<double> xs, ys, zs;

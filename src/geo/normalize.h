@@ -31,6 +31,8 @@ struct ControlNet : GeoGrid {
                                    ///< "122 x 174 cells, band 1, NZGD2000 / New Zealand Transverse Mercator 2000, bilinear"
     size_t filledOutsideHull = 0;  ///< nodes set by the nearest-sample fill (linear gridding)
     std::string attribution;       ///< rasters: the credit their metadata carries (rasterCredit), if any
+    std::string spacingReason;     ///< why dx, dy are what they are (netSpacingReason)
+    scene::Resample resample = scene::Resample::Bilinear;  ///< rasters: how the cells were resampled onto the net
 };
 
 /// A frame point (metres) to WGS84 latitude, longitude (degrees) and height
@@ -79,14 +81,30 @@ inline constexpr double kNetBytesPerNode = 48;  ///< the net's nodes, the warp's
 struct NetBudget {
     double maxNodes = 1e9;
     std::string why = "the 1e9 a net may have";  ///< for the message: "limits.max_memory_mb = 200 (48 bytes a node)"
+    /// The still's width in pixels: a net the scene does not size (no
+    /// spacing_m, rows or cols) over data finer than the still can show is
+    /// laid at about one pixel, the extent's longer side over this (0: the
+    /// data's own spacing).
+    int stillWidthPx = 0;
+    /// Whether the work on a net of rows x cols fits (the refinement and the
+    /// geometry [limits] allow), asked once it is laid out and before any
+    /// height is read or gridded; false after an error. Empty: it fits.
+    std::function<bool(int rows, int cols, Diagnostics& diags)> fits;
 };
+
+/// Why a net has the spacing it has, for the header, `relief info` and
+/// `relief init`: "net.spacing_m", "the data's own spacing", or about one
+/// pixel of the still.
+std::string netSpacingReason(const scene::NetSpec& spec, const GeoGrid& net, double dataSpacingM, int stillWidthPx);
 
 /// Lays a net (origin, spacing, rows and cols; no heights) over net.extent_m,
 /// else the box inside net.extent_lonlat, else `dataBox` (xmin, ymin, xmax,
 /// ymax in net.frame, which must be set): rows x cols spanning
 /// it, or the largest net of net.spacing_m inside it, centred (or of
-/// `defaultSpacingM` when the scene gives neither; 0: rows and cols). False,
-/// with an error at [net], for fewer than 4 x 4 nodes or more than `budget`.
+/// `defaultSpacingM` when the scene gives neither, or coarser to suit the
+/// still: NetBudget::stillWidthPx; 0: rows and cols). False, with an error at
+/// [net], for fewer than 4 x 4 nodes, more than `budget` or work that
+/// NetBudget::fits refuses.
 bool layoutNet(const scene::NetSpec& spec, std::array<double, 4> dataBox, double defaultSpacingM,
                GeoGrid& net, Diagnostics& diags, const NetBudget& budget = {});
 

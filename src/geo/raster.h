@@ -26,6 +26,10 @@ namespace relief::geo {
 /// `lon,lat,elev` CSV stays a CSV of scattered samples.
 bool isRasterDem(const std::filesystem::path& path);
 
+/// The title a raster's metadata gives it (TIFFTAG_DOCUMENTNAME, TITLE or
+/// DESCRIPTION), cut to what a still can show; "" when none or unreadable.
+std::string rasterTitle(const std::filesystem::path& path);
+
 /// The raster resampled onto the net. The frame is the scene's (UTM: the zone
 /// of the raster's centre unless given); the net covers the raster's
 /// footprint in the frame (the largest axis-aligned box inside it) unless

@@ -166,6 +166,14 @@ std::optional<NetExtent> netExtent(const RasterPlace& place, const PixelBox& box
     auto frame = chooseFrame(frameSpec, edge, diags);
     if (!frame) return std::nullopt;
     InnerBox in = innerBox(place, box, *frame);
+    if (in.outside > 0 && !hasWindow(net) && !frameSpec.locs.has("frame.kind")) {
+        // More than a UTM zone holds, and the scene chose no frame: the tangent plane holds any extent.
+        scene::FrameSpec local = frameSpec;
+        local.kind = scene::FrameKind::Local;
+        frame = chooseFrame(local, edge, diags);
+        if (!frame) return std::nullopt;
+        in = innerBox(place, box, *frame);
+    }
     if (in.outside > 0 && !hasWindow(net)) {
         reportTooWide(edge, *frame, fileLoc, diags);
         return std::nullopt;

@@ -239,6 +239,21 @@ HeightBand heightBand(GDALDatasetH src, int number) {
     return b;
 }
 
+std::string rasterTitle(const std::filesystem::path& path) {
+    std::string problem;
+    const Dataset ds = openRaster(path, problem);
+    if (!ds) return {};
+    for (const char* key : {"TIFFTAG_DOCUMENTNAME", "TITLE", "DESCRIPTION"})
+        if (const char* v = GDALGetMetadataItem(ds.get(), key, nullptr); v && *v) {
+            std::string title = v;
+            if (title.size() <= scene::kMaxTextBytes) return title;
+            size_t cut = scene::kMaxTextBytes;
+            while (cut > 0 && (static_cast<unsigned char>(title[cut]) & 0xC0) == 0x80) --cut;
+            return title.substr(0, cut) + "\u2026";
+        }
+    return {};
+}
+
 bool isRasterDem(const std::filesystem::path& path) {
     std::string problem;
     if (openRaster(path, problem)) return true;

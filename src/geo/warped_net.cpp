@@ -20,6 +20,14 @@ namespace relief::geo {
 
 namespace {
 
+// The scene's resampling; by default, onto a net coarser than the cells
+// (one for the still, not for every cell), the average of the cells each node
+// stands for, as gdal_translate -r average makes an overview.
+scene::Resample resampleFor(const scene::SamplesSpec& samples, const ControlNet& net, double cellM) {
+    if (samples.locs.has("samples.resample") || std::max(net.dx, net.dy) < 1.5 * cellM) return samples.resample;
+    return scene::Resample::Average;
+}
+
 // The net laid over the extent and described (what was read and how), without heights.
 std::optional<ControlNet> laidOutNet(GDALDatasetH src, const RasterPlace& place, const NetExtent& extent,
                                      const scene::SamplesSpec& samples, const scene::NetSpec& netSpec,
@@ -27,11 +35,13 @@ std::optional<ControlNet> laidOutNet(GDALDatasetH src, const RasterPlace& place,
     ControlNet net;
     net.frame = extent.frame;
     net.sampleCount = static_cast<size_t>(place.width) * place.height;
-    const char* crsName = OSRGetName(place.crs.srs.get());
     net.attribution = rasterCredit(src);
-    net.raster = fmt::format("{} x {} cells, band {}, {}, {}", place.width, place.height, samples.band,
-                             crsName ? crsName : "unnamed CRS", scene::nameOf(samples.resample));
     if (!layoutNet(netSpec, extent.box, extent.cellM, net, diags, budget)) return std::nullopt;
+    net.spacingReason = netSpacingReason(netSpec, net, extent.cellM, budget.stillWidthPx);
+    net.resample = resampleFor(samples, net, extent.cellM);
+    const char* crsName = OSRGetName(place.crs.srs.get());
+    net.raster = fmt::format("{} x {} cells, band {}, {}, {}", place.width, place.height, samples.band,
+                             crsName ? crsName : "unnamed CRS", scene::nameOf(net.resample));
     return net;
 }
 
@@ -100,7 +110,7 @@ std::optional<ControlNet> warpedNet(const Dataset& src, const scene::SamplesSpec
     if (!extent) return std::nullopt;
     auto net = laidOutNet(src.get(), *place, *extent, samples, netSpec, diags, budget);
     if (!net) return std::nullopt;
-    auto warped = warpHeights(src, *place, band, *net, samples.resample, diags, progress, fileLoc);
+    auto warped = warpHeights(src, *place, band, *net, net->resample, diags, progress, fileLoc);
     if (!warped) return std::nullopt;
     const double scale = metresPerBandUnit(band, samples, diags);
     if (!checkElevations(warped->z, scale, *net, *place, band, samples, diags) ||

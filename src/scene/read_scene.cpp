@@ -142,16 +142,21 @@ void checkSections(const toml::table& root, const std::string& file, Diagnostics
 
 std::optional<SceneSpec> readScene(const std::filesystem::path& path, Diagnostics& diags,
                                    const SceneOverrides& overrides) {
-    const std::string file = path.string();
     std::string problem;
     const auto text = readInputFile(path, kMaxSceneBytes, problem);
     if (!text) {
-        diags.error({file, 0, 0}, fmt::format("cannot read the scene file: {}", problem));
+        diags.error({path.string(), 0, 0}, fmt::format("cannot read the scene file: {}", problem));
         return std::nullopt;
     }
+    return readSceneText(*text, path, diags, overrides);
+}
+
+std::optional<SceneSpec> readSceneText(const std::string& text, const std::filesystem::path& path, Diagnostics& diags,
+                                       const SceneOverrides& overrides) {
+    const std::string file = path.string();
     toml::table root;
     try {
-        root = toml::parse(*text, file);
+        root = toml::parse(text, file);
     } catch (const toml::parse_error& e) {
         diags.error(locOf(file, e.source()), fmt::format("invalid TOML: {}", e.description()));
         return std::nullopt;
@@ -161,7 +166,7 @@ std::optional<SceneSpec> readScene(const std::filesystem::path& path, Diagnostic
     SceneSpec scene;
     scene.sceneFile = path;
     scene.overrides = overrides;
-    scene.sceneSha1 = sha1Hex(*text);
+    scene.sceneSha1 = sha1Hex(text);
     checkSections(root, file, diags);
     const SceneFile sceneFile{path, file, root, diags};
     for (const auto& reader : sectionReaders()) {

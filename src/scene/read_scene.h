@@ -22,6 +22,12 @@ namespace relief::scene {
 std::optional<SceneSpec> readScene(const std::filesystem::path& path, Diagnostics& diags,
                                    const SceneOverrides& overrides = {});
 
+/// The same for a scene's text, as if read from `path` (which names it in
+/// messages and is the folder its paths are resolved against): the scene
+/// relief makes for a DEM (scene_for_data.h).
+std::optional<SceneSpec> readSceneText(const std::string& text, const std::filesystem::path& path, Diagnostics& diags,
+                                       const SceneOverrides& overrides = {});
+
 /// Parses a number written as a TOML float/integer or as a string fraction
 /// such as "7/32" or "-1/16". Returns nullopt if it is neither.
 std::optional<double> parseFraction(std::string_view text);

@@ -109,6 +109,7 @@ void readDepth(Section& s, const SceneFile& f, SubdivisionSpec& sub) {
                                          kMaxDepth));
     } else if (auto n = s.integer("depth", 0, kMaxDepth, "levels")) {
         sub.depth = *n;
+        sub.depthGiven = true;
     }
     if (auto t = s.number("tolerance_m", 0, 1e6, "m", true)) sub.toleranceM = *t;
     if (sub.depthAuto && sub.toleranceM <= 0 && !s.find("tolerance_m"))

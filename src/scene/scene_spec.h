@@ -143,7 +143,9 @@ struct SchemeSpec {
 /// [subdivision]: the scheme and how deep to refine.
 struct SubdivisionSpec {
     SchemeSpec scheme;
-    int depth = 3;                 ///< ignored when depthAuto
+    int depth = 0;                 ///< when depthGiven
+    bool depthGiven = false;       ///< an integer depth in the scene; neither it nor "auto":
+                                   ///< the depth is chosen for the still (buildSurface)
     bool depthAuto = false;        ///< depth = "auto": the smallest depth whose last
                                    ///< level moves the rows and columns by <= toleranceM
     double toleranceM = 0;
@@ -296,6 +298,7 @@ struct GeometrySpec {
 struct SceneSpec {
     std::filesystem::path sceneFile;  ///< as given
     std::string sceneSha1;            ///< hash of the scene file's bytes
+    std::string madeForData;          ///< the scene's text when sceneFile is elevation data (relief made it)
     SceneOverrides overrides;         ///< applied on top of the file
 
     SamplesSpec samples;

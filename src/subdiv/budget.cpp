@@ -31,6 +31,7 @@ OutputEstimate estimateOutput(const Scheme& scheme, int rows, int cols, int dept
         e.sdlBytes = kHeightFieldSdlBytes;
         e.parseSeconds = e.vertices * kParseSecondsPerHeightFieldNode;
         e.memoryBytes = e.vertices * (24 + 2) + 24 * coarser;
+        e.heightField = true;
     } else if (kind == GeometryCost::Adaptive) {
         // Beside the grid: the faces (at most the full mesh's), and the
         // RTIN's error per node of the 2^k + 1 square that holds the grid.
@@ -58,7 +59,7 @@ double defaultMemoryBudgetMB() {
 
 bool withinBudget(const OutputEstimate& est, const Budget& budget) {
     if (est.meshAfterBuild) return est.memoryBytes / 1e6 <= budget.maxMemoryMB;
-    return est.triangles <= budget.maxTriangles && est.sdlBytes / 1e6 <= budget.maxSdlMB &&
+    return (est.heightField || est.triangles <= budget.maxTriangles) && est.sdlBytes / 1e6 <= budget.maxSdlMB &&
            est.parseSeconds <= budget.maxParseS && est.memoryBytes / 1e6 <= budget.maxMemoryMB;
 }
 
@@ -74,7 +75,7 @@ bool checkBudget(const OutputEstimate& est, const Budget& budget, const SourceLo
     std::string over;
     auto add = [&](std::string s) { over += (over.empty() ? "" : "; ") + s; };
     const bool meshFigures = !est.meshAfterBuild;
-    if (meshFigures && est.triangles > budget.maxTriangles)
+    if (meshFigures && !est.heightField && est.triangles > budget.maxTriangles)
         add(fmt::format("{:.3g} triangles > limits.max_triangles = {:.3g}", est.triangles,
                         budget.maxTriangles));
     if (meshFigures && est.sdlBytes / 1e6 > budget.maxSdlMB)

@@ -17,6 +17,9 @@ struct OutputEstimate {
     /// The adaptive mesh: triangles, SDL and parse time are the full mesh2's (an
     /// upper bound) until the mesh is built; the budget checks them on the built one.
     bool meshAfterBuild = false;
+    /// A height field: no triangles to parse or write, so limits.max_triangles
+    /// does not apply; its own figures (the PNG's parse time, the memory) do.
+    bool heightField = false;
 };
 
 /// What the geometry of the refined grid costs depends on its kind.

@@ -343,7 +343,9 @@ TEST(NetBudget, RefusesANetTooLargeBeforeMakingIt) {
     scene::NetSpec spec;
     spec.rows = spec.cols = 100000;
     spec.locs.keys["net.rows"] = {"scene.toml", 3, 8};
-    NetBudget budget{1e6, "limits.max_memory_mb = 48 (48 bytes a node)"};
+    NetBudget budget;
+    budget.maxNodes = 1e6;
+    budget.why = "limits.max_memory_mb = 48 (48 bytes a node)";
     Diagnostics diags;
     EXPECT_FALSE(layoutNet(spec, {0, 0, 1000, 1000}, 0, net, diags, budget));
     EXPECT_EQ(formatDiagnostic(diags.all().at(0)),

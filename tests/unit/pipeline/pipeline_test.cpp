@@ -202,5 +202,61 @@ TEST(Pipeline, ARastersOwnCreditIsTheDefaultAttribution) {
     EXPECT_EQ(outcome.compiled->overlayFacts.credits, "Ours");
 }
 
+// A DEM given alone: relief makes the scene, and the depth suits the still.
+std::optional<Surface> planForStill(const std::string& width, const std::string& height, Diagnostics& diags,
+                                    scene::SceneOverrides more = {}) {
+    more.emplace_back("render.width", width);
+    more.emplace_back("render.height", height);
+    auto loaded = loadScene(kSource / "scenes/data/rasters/volcano2.tif", diags, more);
+    if (!loaded) return std::nullopt;
+    return planSurface(*loaded, diags, 1);
+}
+
+TEST(Pipeline, DefaultDepthIsChosenForTheStill) {
+    Diagnostics diags;
+    const auto thumbnail = planForStill("160", "120", diags);
+    const auto poster = planForStill("3840", "2160", diags);
+    ASSERT_TRUE(thumbnail && poster) << (diags.all().empty() ? "" : formatDiagnostic(diags.all().back()));
+    // The raster's own 5 m cells: 169 x 115 nodes either way (the thumbnail's pixel, ~5.3 m, is not twice as coarse).
+    EXPECT_EQ(thumbnail->net.rows(), 169);
+    EXPECT_EQ(poster->net.rows(), 169);
+    // A pixel of the thumbnail covers ~3.4 m where the terrain is nearest: one level (2.5 m); the poster's
+    // ~0.20 m: five (0.156 m).
+    EXPECT_EQ(thumbnail->depth, 1) << thumbnail->depthReason;
+    EXPECT_EQ(poster->depth, 5) << poster->depthReason;
+    EXPECT_TRUE(thumbnail->depthReason.starts_with("chosen for the still: the net's 5 m refined to 2.5 m"))
+        << thumbnail->depthReason;
+    EXPECT_TRUE(thumbnail->refined.grid.points.empty());  // planned, not refined
+}
+
+TEST(Pipeline, DefaultDepthIsLoweredToTheLimitsNotRefused) {
+    Diagnostics diags;
+    const auto capped =
+        planForStill("3840", "2160", diags, {{"geometry.kind", "\"mesh2\""}, {"limits.max_triangles", "2000000"}});
+    ASSERT_TRUE(capped) << (diags.all().empty() ? "" : formatDiagnostic(diags.all().back()));
+    // 169 x 115 refined 3 times is 1345 x 913 nodes, 2.45e6 triangles: over; twice, 673 x 457: within.
+    EXPECT_EQ(capped->depth, 2) << capped->depthReason;
+    EXPECT_NE(capped->depthReason.find("(depth 5 would be over [limits])"), std::string::npos) << capped->depthReason;
+    // A depth the scene gives is the scene's: over the limits, it is refused.
+    Diagnostics refused;
+    EXPECT_FALSE(planForStill(
+        "3840", "2160", refused,
+        {{"geometry.kind", "\"mesh2\""}, {"limits.max_triangles", "2000000"}, {"subdivision.depth", "5"}}));
+}
+
+TEST(Pipeline, AFineRasterGetsANetForTheStill) {
+    Diagnostics diags;
+    scene::SceneOverrides o{{"render.width", "160"}, {"render.height", "120"}};
+    auto loaded = loadScene(kSource / "scenes/data/rasters/volcano2hires.tif", diags, o);
+    ASSERT_TRUE(loaded);
+    const auto s = planSurface(*loaded, diags, 1);
+    ASSERT_TRUE(s);
+    // 708 x 708 cells of 2.03 m over ~1.4 km: at 160 px a pixel is ~8.7 m, so the net is 8.7 m (two
+    // digits, rounded up), averaged from the cells under each node.
+    EXPECT_DOUBLE_EQ(s->net.dx, 8.7);
+    EXPECT_EQ(s->net.resample, scene::Resample::Average);
+    EXPECT_TRUE(s->net.spacingReason.starts_with("about one pixel of the 160 px wide still")) << s->net.spacingReason;
+}
+
 }  // namespace
 }  // namespace relief

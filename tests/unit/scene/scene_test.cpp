@@ -37,7 +37,7 @@ TEST(ReadScene, MinimalSceneGetsDefaults) {
     EXPECT_EQ(s->frame.kind, FrameKind::Utm);
     EXPECT_EQ(s->net.rows, 64);
     EXPECT_EQ(s->subdivision.scheme.name, "dlg4");
-    EXPECT_EQ(s->subdivision.depth, 3);
+    EXPECT_FALSE(s->subdivision.depthGiven);  // chosen for the still (Pipeline.DefaultDepthIsChosenForTheStill)
     EXPECT_EQ(s->render.width, 800);
     EXPECT_EQ(s->look.texture.ramp.preset, "terrain");
     std::filesystem::remove_all(dir);

@@ -1,0 +1,139 @@
+// `relief info`: the plan of a scene (planSurface) as facts, JSON or text.
+#include "scene_info.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "core/number_format.h"
+#include "scene/enum_names.h"
+
+namespace relief {
+
+using nlohmann::ordered_json;
+
+namespace {
+
+// The net's corners in WGS84 degrees: lon_min, lat_min, lon_max, lat_max.
+ordered_json lonLatBox(const geo::ControlNet& net) {
+    double lonMin = 1e9, lonMax = -1e9, latMin = 1e9, latMax = -1e9;
+    for (double x : {net.x0, net.xMax()})
+        for (double y : {net.y0, net.yMax()}) {
+            double lat = 0, lon = 0, h = 0;
+            if (!geo::frameToGeodetic(net.frame, Vec3{x, y, 0}, lat, lon, h)) continue;
+            lonMin = std::min(lonMin, lon), lonMax = std::max(lonMax, lon);
+            latMin = std::min(latMin, lat), latMax = std::max(latMax, lat);
+        }
+    return ordered_json::array({lonMin, latMin, lonMax, latMax});
+}
+
+ordered_json dataFacts(const scene::SceneSpec& spec, const geo::ControlNet& net) {
+    ordered_json d;
+    d["path"] = spec.samples.pathAsWritten;
+    d["kind"] = net.raster.empty() ? "scattered samples" : "raster";
+    if (!net.raster.empty()) d["raster"] = net.raster;
+    d["samples"] = net.sampleCount;
+    d["extent_lonlat"] = lonLatBox(net);
+    const std::string credit = !spec.samples.attribution.empty() ? spec.samples.attribution : net.attribution;
+    if (!credit.empty()) d["attribution"] = credit;
+    return d;
+}
+
+ordered_json netFacts(const geo::ControlNet& net) {
+    double zmin = 1e300, zmax = -1e300;
+    for (const Vec3& p : net.grid.points) zmin = std::min(zmin, p.z), zmax = std::max(zmax, p.z);
+    return {{"frame", net.frame.describe()},
+            {"rows", net.rows()},
+            {"cols", net.cols()},
+            {"spacing_m", net.dx},
+            {"spacing_reason", net.spacingReason},
+            {"extent_m", {net.x0, net.y0, net.xMax(), net.yMax()}},
+            {"elevation_range_m", {zmin, zmax}},
+            {"masked_nodata", net.maskedCount()},
+            {"filled_nodata", net.filledNodata}};
+}
+
+// Each figure of the estimate and the limit it meets ("-" where it does not apply).
+ordered_json costFacts(const scene::SceneSpec& spec, const Surface& s) {
+    const subdiv::Budget b = budgetOf(spec.limits);
+    const subdiv::OutputEstimate& e = s.estimate;
+    const bool triangles = !e.heightField && !e.meshAfterBuild;
+    ordered_json c;
+    c["triangles"] = {{"estimate", e.triangles},
+                      {"limit", triangles ? ordered_json(b.maxTriangles) : ordered_json("none for this geometry")}};
+    c["pov_mb"] = {{"estimate", e.sdlBytes / 1e6}, {"limit", b.maxSdlMB}};
+    c["parse_s"] = {{"estimate", e.parseSeconds}, {"limit", b.maxParseS}};
+    c["memory_mb"] = {{"estimate", e.memoryBytes / 1e6}, {"limit", b.maxMemoryMB}};
+    return c;
+}
+
+// Relief over extent: the exaggeration at which the relief would rise a
+// twentieth of the terrain's width, offered when 1 leaves it flatter.
+ordered_json exaggerationAdvice(const geo::ControlNet& net) {
+    double zmin = 1e300, zmax = -1e300;
+    for (const Vec3& p : net.grid.points) zmin = std::min(zmin, p.z), zmax = std::max(zmax, p.z);
+    const double extent = std::max(net.xMax() - net.x0, net.yMax() - net.y0), relief = zmax - zmin;
+    const double ratio = relief / std::max(extent, 1e-9);
+    ordered_json a = {{"relief_over_extent", ratio}};
+    if (ratio < 0.05 && relief > 0) {
+        const double suggested = std::min(100.0, std::max(1.0, std::round(0.05 / ratio)));
+        a["advice"] = fmt::format("the relief is {:.2g} of the extent: vertical.exaggeration = {} would make it show",
+                                  ratio, formatShortest(suggested));
+    }
+    return a;
+}
+
+}  // namespace
+
+ordered_json sceneInfo(const LoadedScene& loaded, const Surface& s) {
+    const scene::SceneSpec& spec = loaded.scene;
+    ordered_json j;
+    j["scene"] = spec.madeForData.empty() ? spec.sceneFile.string() : "made for the data (relief init writes it)";
+    j["data"] = dataFacts(spec, s.net);
+    j["net"] = netFacts(s.net);
+    j["subdivision"] = {{"scheme", loaded.resolved.family},
+                        {"certified", subdiv::certifiedClass(loaded.resolved.report)},
+                        {"depth", s.depth},
+                        {"depth_reason", s.depthReason},
+                        {"refined_rows", s.estimate.rows},
+                        {"refined_cols", s.estimate.cols}};
+    j["geometry"] = {{"kind", scene::nameOf(s.geometry.kind)}, {"reason", s.geometry.reason}};
+    j["cost"] = costFacts(spec, s);
+    j["still"] = {{"width", spec.render.width}, {"height", spec.render.height}};
+    j["vertical"] = exaggerationAdvice(s.net);
+    j["vertical"]["exaggeration"] = spec.look.vertical.exaggeration;
+    return j;
+}
+
+namespace {
+
+std::string valueText(const ordered_json& v) {
+    if (v.is_string()) return v.get<std::string>();
+    if (v.is_number_float()) return fmt::format("{:.6g}", v.get<double>());
+    if (v.is_array()) {
+        std::string out;
+        for (const auto& e : v) out += (out.empty() ? "" : ", ") + valueText(e);
+        return out;
+    }
+    if (v.is_object() && v.contains("estimate"))
+        return fmt::format("{} (limit {})", valueText(v["estimate"]), valueText(v["limit"]));
+    return v.dump();
+}
+
+}  // namespace
+
+std::string sceneInfoText(const ordered_json& info) {
+    std::string out;
+    for (const auto& [group, facts] : info.items()) {
+        if (!facts.is_object()) {
+            out += fmt::format("{}: {}\n", group, valueText(facts));
+            continue;
+        }
+        out += fmt::format("\n{}\n", group);
+        for (const auto& [key, value] : facts.items()) out += fmt::format("  {}: {}\n", key, valueText(value));
+    }
+    return out;
+}
+
+}  // namespace relief
