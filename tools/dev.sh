@@ -27,11 +27,13 @@ esac
 # libcairo2-dev, libpango1.0-dev: the still's overlays (text through fontconfig: fonts-dejavu-core).
 # libnova-dev: the sun's position from a date ([lighting] datetime).
 # slurm-wlm, munge: the tests' private Slurm cluster (tests/slurm/cluster.sh; relief --executor slurm).
+# gdal-bin: gdal_translate and gdalwarp, which the tests cut DEM tiles with and the benchmarks make
+# rasters of every size with (relief itself links libgdal).
 packages=(cmake make g++ pkg-config
           libgeographiclib-dev libgdal-dev libopenimageio-dev openimageio-tools libtomlplusplus-dev
           libcli11-dev libfmt-dev nlohmann-json3-dev libnanoflann-dev libpng-dev libssl-dev libcairo2-dev libpango1.0-dev libnova-dev libgtest-dev libbenchmark-dev
           povray bubblewrap chromium fonts-dejavu-core locales clang libfuzzer-14-dev libclang-rt-14-dev libomp-14-dev
-          slurm-wlm munge)
+          slurm-wlm munge gdal-bin)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

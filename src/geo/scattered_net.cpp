@@ -106,6 +106,13 @@ std::optional<ControlNet> griddedSamples(const NetRequest& request, const std::v
 }  // namespace
 
 std::optional<ControlNet> scatteredNet(const NetRequest& request, ScatteredReader read, Diagnostics& diags) {
+    if (!request.samples.tiles.empty()) {
+        diags.error(request.samples.locs.at("samples.path"),
+                    fmt::format("samples.path: a list is of raster tiles, and {} is not a raster GDAL reads (it "
+                                "is taken for {}): give it alone",
+                                request.samples.path.filename().string(), request.source));
+        return std::nullopt;
+    }
     if (!refuseRasterKeys(request, diags)) return std::nullopt;
     const auto maxBytes = samplesFileLimit(request, diags);
     if (!maxBytes) return std::nullopt;

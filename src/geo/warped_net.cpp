@@ -13,6 +13,7 @@
 
 #include "geo/raster.h"
 #include "geo/raster_heights.h"
+#include "geo/raster_mosaic.h"
 #include "geo/raster_warp.h"
 #include "scene/enum_names.h"
 
@@ -20,11 +21,14 @@ namespace relief::geo {
 
 namespace {
 
-// The scene's resampling; by default, onto a net coarser than the cells
-// (one for the still, not for every cell), the average of the cells each node
-// stands for, as gdal_translate -r average makes an overview.
-scene::Resample resampleFor(const scene::SamplesSpec& samples, const ControlNet& net, double cellM) {
-    if (samples.locs.has("samples.resample") || std::max(net.dx, net.dy) < 1.5 * cellM) return samples.resample;
+// The scene's resampling; by default, onto a net relief made coarser than
+// the cells (one for the still, not for every cell), the average of the cells
+// each node stands for, as gdal_translate -r average makes an overview.
+scene::Resample resampleFor(const scene::SamplesSpec& samples, const scene::NetSpec& netSpec, const ControlNet& net,
+                            double cellM) {
+    const bool netChosen = netSpec.spacingM <= 0 && !netSpec.locs.has("net.rows") && !netSpec.locs.has("net.cols");
+    if (samples.locs.has("samples.resample") || !netChosen || std::max(net.dx, net.dy) < 1.5 * cellM)
+        return samples.resample;
     return scene::Resample::Average;
 }
 
@@ -38,7 +42,7 @@ std::optional<ControlNet> laidOutNet(GDALDatasetH src, const RasterPlace& place,
     net.attribution = rasterCredit(src);
     if (!layoutNet(netSpec, extent.box, extent.cellM, net, diags, budget)) return std::nullopt;
     net.spacingReason = netSpacingReason(netSpec, net, extent.cellM, budget.stillWidthPx);
-    net.resample = resampleFor(samples, net, extent.cellM);
+    net.resample = resampleFor(samples, netSpec, net, extent.cellM);
     const char* crsName = OSRGetName(place.crs.srs.get());
     net.raster = fmt::format("{} x {} cells, band {}, {}, {}", place.width, place.height, samples.band,
                              crsName ? crsName : "unnamed CRS", scene::nameOf(net.resample));
@@ -123,6 +127,11 @@ std::optional<ControlNet> warpedNet(const Dataset& src, const scene::SamplesSpec
 std::optional<ControlNet> rasterNet(const scene::SamplesSpec& samples, const scene::FrameSpec& frameSpec,
                                     const scene::NetSpec& netSpec, Diagnostics& diags,
                                     const GridProgressFn& progress, const NetBudget& budget) {
+    if (!samples.tiles.empty()) {
+        const Dataset mosaic = mosaicOf(samples.tiles, samples.locs.at("samples.path"), diags);
+        if (!mosaic) return std::nullopt;
+        return warpedNet(mosaic, samples, frameSpec, netSpec, std::nullopt, diags, progress, budget);
+    }
     std::string problem;
     const Dataset src = openRaster(samples.path, problem);
     if (!src) {

@@ -13,6 +13,39 @@
 
 namespace relief::scene {
 
+namespace {
+
+// One file of samples.path, resolved against the scene's folder and checked; `written` gathers the names.
+std::filesystem::path samplesFile(Section& s, const SceneFile& f, const std::string& p, std::string& written) {
+    written += (written.empty() ? "" : ", ") + p;
+    const std::filesystem::path path = f.path.parent_path() / p;
+    if (const std::string problem = inputFileProblem(path); problem == "no such file")
+        s.error("path", fmt::format("samples.path: file \"{}\" not found (looked "
+                                    "for {}; the path is relative to the scene file)",
+                                    printableExcerpt(p, 200), printableExcerpt(path.string(), 200)));
+    else if (!problem.empty())
+        s.error("path", fmt::format("samples.path = \"{}\": {}", printableExcerpt(p, 200), problem));
+    return path;
+}
+
+// path = ["n55w004.hgt", "n55w003.hgt", ...]: raster tiles of one DEM.
+void readTiles(Section& s, const SceneFile& f, const toml::array& list, SamplesSpec& samples) {
+    s.markKnown("path");
+    constexpr size_t kMaxTiles = 10000;
+    if (list.empty() || list.size() > kMaxTiles || !list.is_homogeneous(toml::node_type::string)) {
+        s.error("path", fmt::format("samples.path must be a file, or a list of 1 to {} raster tiles as strings "
+                                    "(path = [\"a.tif\", \"b.tif\"])",
+                                    kMaxTiles));
+        return;
+    }
+    for (const auto& tile : list)
+        samples.tiles.push_back(samplesFile(s, f, *tile.value<std::string>(), samples.pathAsWritten));
+    samples.path = samples.tiles.front();
+    if (samples.tiles.size() == 1) samples.tiles.clear();
+}
+
+}  // namespace
+
 void readSamples(Section& s, const SceneFile& f, SceneSpec& scene) {
     SamplesSpec& samples = scene.samples;
     if (!s.present()) {
@@ -21,16 +54,10 @@ void readSamples(Section& s, const SceneFile& f, SceneSpec& scene) {
     } else {
         s.require("path", "the elevations: a raster GDAL reads or a CSV of samples (columns "
                           "lon,lat,elev), relative to the scene file");
-        if (auto p = s.string("path")) {
-            samples.pathAsWritten = *p;
-            samples.path = f.path.parent_path() / *p;
-            if (const std::string problem = inputFileProblem(samples.path); problem == "no such file")
-                s.error("path", fmt::format("samples.path: file \"{}\" not found (looked "
-                                            "for {}; the path is relative to the scene file)",
-                                            printableExcerpt(*p, 200), printableExcerpt(samples.path.string(), 200)));
-            else if (!problem.empty())
-                s.error("path", fmt::format("samples.path = \"{}\": {}", printableExcerpt(*p, 200), problem));
-        }
+        if (const toml::node* list = s.find("path"); list && list->is_array())
+            readTiles(s, f, *list->as_array(), samples);
+        else if (auto p = s.string("path"))
+            samples.path = samplesFile(s, f, *p, samples.pathAsWritten);
     }
     if (auto a = s.text("attribution")) samples.attribution = *a;
     if (auto e = s.choice("elevations", {"earth", "any"})) samples.earthElevations = *e == "earth";

@@ -93,6 +93,9 @@ inline constexpr double kAnyElevationLimitM = 1e7;
 struct SamplesSpec {
     std::filesystem::path path;   ///< resolved against the scene file's folder
     std::string pathAsWritten;    ///< for messages and the .pov header
+    /// path = [...]: adjacent raster tiles mosaicked into one (geo/raster_mosaic.h);
+    /// `path` is the first, `pathAsWritten` all of them. Empty for one file.
+    std::vector<std::filesystem::path> tiles;
     std::string attribution;      ///< the data's credit line, as its licence asks (header, sidecar)
     /// Elevations must lie within the Earth's (kLowestElevationM..kHighestElevationM),
     /// unless the scene says the data are not terrain in metres (elevations = "any":

@@ -1,0 +1,113 @@
+#include "geo/raster_mosaic.h"
+
+#include <cmath>
+#include <string>
+
+#include <cpl_conv.h>
+#include <cpl_error.h>
+#include <cpl_string.h>
+#include <fmt/format.h>
+#include <gdal_utils.h>
+
+namespace relief::geo {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// The tile's CRS, or null when it has none.
+Srs crsOf(GDALDatasetH ds) {
+    const char* wkt = GDALGetProjectionRef(ds);
+    if (!wkt || !*wkt) return Srs();
+    return Srs(OSRNewSpatialReference(wkt));
+}
+
+std::string crsName(OGRSpatialReferenceH srs) {
+    const char* name = srs ? OSRGetName(srs) : nullptr;
+    return name ? name : "no CRS";
+}
+
+// The tile's box in its CRS: xmin, ymin, xmax, ymax.
+std::array<double, 4> boxOf(GDALDatasetH ds) {
+    double g[6] = {0, 1, 0, 0, 0, 1};
+    GDALGetGeoTransform(ds, g);
+    const double w = GDALGetRasterXSize(ds), h = GDALGetRasterYSize(ds);
+    const double x0 = g[0], x1 = g[0] + w * g[1] + h * g[2], y0 = g[3], y1 = g[3] + w * g[4] + h * g[5];
+    return {std::min(x0, x1), std::min(y0, y1), std::max(x0, x1), std::max(y0, y1)};
+}
+
+// Opens every tile and checks that they share one CRS; the first problem ends it.
+bool openTiles(const std::vector<fs::path>& tiles, const SourceLoc& at, Diagnostics& diags, std::vector<Dataset>& out) {
+    Srs first;
+    for (const fs::path& tile : tiles) {
+        std::string problem;
+        Dataset ds = openRaster(tile, problem);
+        if (!ds) {
+            diags.error(at, fmt::format("samples.path: the tile {} {}: each tile must be a raster DEM GDAL reads",
+                                        tile.filename().string(),
+                                        problem.empty() ? std::string("is not a raster GDAL reads")
+                                                        : "is refused: " + problem));
+            return false;
+        }
+        Srs srs = crsOf(ds.get());
+        if (out.empty()) {
+            first = std::move(srs);
+        } else if (!first != !srs || (first && !OSRIsSame(first.get(), srs.get()))) {
+            diags.error(at, fmt::format("samples.path: the tiles {} ({}) and {} ({}) are in different CRSs: "
+                                        "reproject one into the other's (gdalwarp -t_srs) so that all are in one",
+                                        tiles.front().filename().string(), crsName(first.get()),
+                                        tile.filename().string(), crsName(srs.get())));
+            return false;
+        }
+        out.push_back(std::move(ds));
+    }
+    return true;
+}
+
+// The share of the tiles' bounding box they cover (overlaps counted once each: an upper bound).
+double coverage(const std::vector<Dataset>& tiles) {
+    double area = 0, xmin = 1e300, ymin = 1e300, xmax = -1e300, ymax = -1e300;
+    for (const Dataset& t : tiles) {
+        const auto b = boxOf(t.get());
+        area += (b[2] - b[0]) * (b[3] - b[1]);
+        xmin = std::min(xmin, b[0]), ymin = std::min(ymin, b[1]), xmax = std::max(xmax, b[2]),
+        ymax = std::max(ymax, b[3]);
+    }
+    return area / std::max((xmax - xmin) * (ymax - ymin), 1e-300);
+}
+
+}  // namespace
+
+Dataset mosaicOf(const std::vector<fs::path>& tiles, const SourceLoc& at, Diagnostics& diags) {
+    std::vector<Dataset> opened;
+    if (!openTiles(tiles, at, diags, opened)) return Dataset();
+    if (const double share = coverage(opened); share < 0.999)
+        diags.warning(at, fmt::format("samples.path: the {} tiles cover {:.1f} % of their bounding box; the rest "
+                                      "has no data (samples.nodata says what becomes of it): is a tile missing?",
+                                      tiles.size(), 100 * std::min(share, 1.0)));
+    // By name (absolute, as openRaster opens them): the VRT opens its sources itself, for as long as it lives.
+    CPLStringList names;
+    for (const fs::path& tile : tiles) names.AddString(fs::absolute(tile).c_str());
+    CPLStringList args;
+    GDALRasterBandH band = GDALGetRasterBand(opened.front().get(), 1);
+    int hasNoData = 0;
+    GDALGetRasterNoDataValue(band, &hasNoData);
+    const GDALDataType type = GDALGetRasterDataType(band);
+    if (!hasNoData && (type == GDT_Float32 || type == GDT_Float64)) args.AddString("-vrtnodata").AddString("nan");
+    GDALBuildVRTOptions* options = GDALBuildVRTOptionsNew(args.List(), nullptr);
+    int usageError = 0;
+    CPLPushErrorHandler(CPLQuietErrorHandler);
+    Dataset vrt(GDALBuildVRT("", names.size(), nullptr, names.List(), options, &usageError));
+    CPLPopErrorHandler();
+    GDALBuildVRTOptionsFree(options);
+    if (!vrt) {
+        diags.error(at, fmt::format("samples.path: GDAL could not mosaic the {} tiles: {}", tiles.size(),
+                                    CPLGetLastErrorMsg()));
+        return vrt;
+    }
+    // The first tile's metadata (its title, its credit) stand for the mosaic's.
+    GDALSetMetadata(vrt.get(), GDALGetMetadata(opened.front().get(), nullptr), nullptr);
+    return vrt;
+}
+
+}  // namespace relief::geo
