@@ -24,7 +24,9 @@ int transformNetToRaster(void* arg, int dstToSrc, int count, double* x, double* 
                 const double wrapped = x[i] + (x[i] < 0 ? t.wrapPixels : -t.wrapPixels);
                 if (wrapped >= 0 && wrapped <= raster.width) x[i] = wrapped;
             }
+            x[i] *= t.scaleX, y[i] *= t.scaleY;
         } else {
+            x[i] /= t.scaleX, y[i] /= t.scaleY;
             // The whole geotransform: a drape's image may be rotated.
             const auto& geo = raster.geo;
             double cx = geo[0] + x[i] * geo[1] + y[i] * geo[2];

@@ -21,6 +21,9 @@ struct NetToRaster {
     const GeoGrid* net = nullptr;
     const RasterPlace* raster = nullptr;
     double wrapPixels = 0;  ///< raster->wrapPixels(), once
+    /// The warp's source pixels per pixel of `raster`: below 1 for a copy of
+    /// the raster averaged to coarser cells (warped_net.cpp), else 1.
+    double scaleX = 1, scaleY = 1;
 };
 NetToRaster netToRaster(const GeoGrid& net, const RasterPlace& raster);
 

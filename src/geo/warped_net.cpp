@@ -4,6 +4,8 @@
 // nodes without data (raster_heights.h).
 #include "geo/warped_net.h"
 
+#include <algorithm>
+#include <new>
 #include <vector>
 
 #include <cpl_conv.h>
@@ -57,9 +59,40 @@ struct WarpedHeights {
     std::vector<double> z;
 };
 
+// The cells averaged `factor` by `factor` (the last row and column of
+// blocks may be narrower), by GDAL's RasterIO as gdal_translate -outsize -r
+// average does, reading the file once and its overviews when it has them: a
+// raster in memory, its cells `scale` of the source's.
+struct AveragedCells {
+    Dataset raster;
+    double scaleX = 1, scaleY = 1;
+};
+std::optional<AveragedCells> averagedCells(const HeightBand& band, const RasterPlace& place, int factor) {
+    const int w = (place.width + factor - 1) / factor, h = (place.height + factor - 1) / factor;
+    AveragedCells out{memRaster(w, h, 1, GDT_Float64), double(w) / place.width, double(h) / place.height};
+    std::vector<double> cells;
+    try {
+        cells.resize(static_cast<size_t>(w) * h);
+    } catch (const std::bad_alloc&) {
+        return std::nullopt;
+    }
+    GDALRasterIOExtraArg arg;
+    INIT_RASTERIO_EXTRA_ARG(arg);
+    arg.eResampleAlg = GRIORA_Average;
+    if (!out.raster || GDALRasterIOEx(band.band, GF_Read, 0, 0, place.width, place.height, cells.data(), w, h,
+                                      GDT_Float64, 0, 0, &arg) != CE_None)
+        return std::nullopt;
+    GDALRasterBandH averaged = GDALGetRasterBand(out.raster.get(), 1);
+    GDALSetRasterNoDataValue(averaged, band.noData);
+    if (GDALRasterIO(averaged, GF_Write, 0, 0, w, h, cells.data(), w, h, GDT_Float64, 0, 0) != CE_None)
+        return std::nullopt;
+    return out;
+}
+
 std::optional<WarpedHeights> warpHeights(const Dataset& src, const RasterPlace& place, const HeightBand& band,
                                          const ControlNet& net, scene::Resample resample, Diagnostics& diags,
-                                         const GridProgressFn& progress, const SourceLoc& fileLoc) {
+                                         const GridProgressFn& progress, const SourceLoc& fileLoc,
+                                         const AveragedCells* averaged = nullptr) {
     const int rows = net.rows(), cols = net.cols();
     WarpedHeights out{memRaster(cols, rows, 1, GDT_Float64), {}};
     if (!out.netRaster) {
@@ -70,7 +103,8 @@ std::optional<WarpedHeights> warpHeights(const Dataset& src, const RasterPlace& 
     }
     GDALRasterBandH netBand = GDALGetRasterBand(out.netRaster.get(), 1);
     GDALSetRasterNoDataValue(netBand, kNetNoData);
-    GDALWarpOptions* wo = warpOptions(src.get(), out.netRaster.get(), {band.number});
+    GDALWarpOptions* wo = averaged ? warpOptions(averaged->raster.get(), out.netRaster.get(), {1})
+                                   : warpOptions(src.get(), out.netRaster.get(), {band.number});
     wo->eWorkingDataType = GDT_Float64;
     wo->eResampleAlg = gdalResampling(resample);
     wo->padfSrcNoDataReal = static_cast<double*>(CPLMalloc(sizeof(double)));
@@ -85,7 +119,9 @@ std::optional<WarpedHeights> warpHeights(const Dataset& src, const RasterPlace& 
     // cells. Within 0.001 cells it is 8x faster on a 1000 x 1000 DEM
     // (0.07 s against 0.59 s) and changes no height by more than 0.7 mm there.
     constexpr double kMaxErrorCells = 0.001;
-    if (warpOntoNet(wo, netToRaster(net, place), kMaxErrorCells, progress) != CE_None) {
+    NetToRaster chain = netToRaster(net, place);
+    if (averaged) chain.scaleX = averaged->scaleX, chain.scaleY = averaged->scaleY;
+    if (warpOntoNet(wo, chain, kMaxErrorCells, progress) != CE_None) {
         diags.error(fileLoc, fmt::format("GDAL could not resample the raster onto the net: {}",
                                          CPLGetLastErrorMsg()));
         return std::nullopt;
@@ -114,7 +150,23 @@ std::optional<ControlNet> warpedNet(const Dataset& src, const scene::SamplesSpec
     if (!extent) return std::nullopt;
     auto net = laidOutNet(src.get(), *place, *extent, samples, netSpec, diags, budget);
     if (!net) return std::nullopt;
-    auto warped = warpHeights(src, *place, band, *net, net->resample, diags, progress, fileLoc);
+    // A net relief made coarser than the cells: the cells averaged to about
+    // the net's spacing first, then warped bilinearly, which costs reading
+    // the file once where the warper's own average weighs every cell of
+    // every node's footprint through the projections (2.7x gdal_translate's
+    // time on 53 M cells).
+    std::optional<AveragedCells> averaged;
+    if (const int factor = static_cast<int>(std::min(net->dx, net->dy) / extent->cellM);
+        net->resample != samples.resample && factor >= 2) {
+        averaged = averagedCells(band, *place, factor);
+        if (!averaged) {
+            diags.error(fileLoc, fmt::format("GDAL could not average the raster's cells to the net's spacing: {}",
+                                             CPLGetLastErrorMsg()));
+            return std::nullopt;
+        }
+    }
+    auto warped = warpHeights(src, *place, band, *net, averaged ? scene::Resample::Bilinear : net->resample, diags,
+                              progress, fileLoc, averaged ? &*averaged : nullptr);
     if (!warped) return std::nullopt;
     const double scale = metresPerBandUnit(band, samples, diags);
     if (!checkElevations(warped->z, scale, *net, *place, band, samples, diags) ||
