@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <string_view>
 #include <tuple>
 
@@ -40,18 +41,27 @@ Dataset openRaster(const std::filesystem::path& path, std::string& problem) {
     return ds;
 }
 
-// A licence such as CC BY asks for the credit in the still.
-std::string rasterCredit(GDALDatasetH ds) {
-    for (const char* key : {"TIFFTAG_COPYRIGHT", "COPYRIGHT", "ATTRIBUTION", "LICENSE", "LICENCE"})
+namespace {
+
+// The first of the metadata items `keys` the raster has: a file's own text,
+// cut (at a character) to what a still can show.
+std::string metadataText(GDALDatasetH ds, std::initializer_list<const char*> keys) {
+    for (const char* key : keys)
         if (const char* v = GDALGetMetadataItem(ds, key, nullptr); v && *v) {
-            // A file's own text, cut (at a character) to what a still can show.
-            std::string credit = v;
-            if (credit.size() <= scene::kMaxTextBytes) return credit;
+            std::string text = v;
+            if (text.size() <= scene::kMaxTextBytes) return text;
             size_t cut = scene::kMaxTextBytes;
-            while (cut > 0 && (static_cast<unsigned char>(credit[cut]) & 0xC0) == 0x80) --cut;
-            return credit.substr(0, cut) + "\u2026";
+            while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0) == 0x80) --cut;
+            return text.substr(0, cut) + "\u2026";
         }
     return {};
+}
+
+}  // namespace
+
+// A licence such as CC BY asks for the credit in the still.
+std::string rasterCredit(GDALDatasetH ds) {
+    return metadataText(ds, {"TIFFTAG_COPYRIGHT", "COPYRIGHT", "ATTRIBUTION", "LICENSE", "LICENCE"});
 }
 
 bool RasterPlace::toPixel(double lonDeg, double latDeg, double& px, double& py) const {
@@ -242,16 +252,7 @@ HeightBand heightBand(GDALDatasetH src, int number) {
 std::string rasterTitle(const std::filesystem::path& path) {
     std::string problem;
     const Dataset ds = openRaster(path, problem);
-    if (!ds) return {};
-    for (const char* key : {"TIFFTAG_DOCUMENTNAME", "TITLE", "DESCRIPTION"})
-        if (const char* v = GDALGetMetadataItem(ds.get(), key, nullptr); v && *v) {
-            std::string title = v;
-            if (title.size() <= scene::kMaxTextBytes) return title;
-            size_t cut = scene::kMaxTextBytes;
-            while (cut > 0 && (static_cast<unsigned char>(title[cut]) & 0xC0) == 0x80) --cut;
-            return title.substr(0, cut) + "\u2026";
-        }
-    return {};
+    return ds ? metadataText(ds.get(), {"TIFFTAG_DOCUMENTNAME", "TITLE", "DESCRIPTION"}) : std::string();
 }
 
 bool isRasterDem(const std::filesystem::path& path) {
