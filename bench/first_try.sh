@@ -5,11 +5,14 @@
 # per stage from the sidecar, and, in the same run, gdal_translate -outsize -r average of the same
 # raster to the net's size (reading the file onto the net, the floor any renderer pays). Then the
 # refusal of an over-limit job: the largest raster with net.spacing_m at its own cell (time to
-# the error). Needs gdal-bin, bc and GNU time.
+# the error). Last, a net at a raster's own cell with and without net.spacing_m (no node masked
+# either way: the same geometry, the same seconds), on the shared holyroodpark.tif when it is there.
+# Needs gdal-bin, bc and GNU time.
 # Usage: bench/first_try.sh [build/relief] [raster] [sides...]
 #   sides: the rasters' sides in cells (default 1000 2450 7280 14142)
 source "$(dirname "$0")/common.sh"
 relief=$(realpath "${1:-build/relief}")
+own=$(realpath -m "$(dirname "$0")/../../shared/data/rasters/holyroodpark.tif")
 raster=$(realpath "${2:-../shared/data/rasters/volcano2hires.tif}")
 shift $(( $# > 2 ? 2 : $# ))
 sides=("${@:-1000 2450 7280 14142}")
@@ -48,3 +51,22 @@ t0=$(date +%s.%N)
 t1=$(date +%s.%N)
 printf '\nrefusal of dem-%s.tif at net.spacing_m = %s, depth 2, mesh2: %.3f s\n  %s\n' "$last" "$cell" \
   "$(echo "$t1 - $t0" | bc -l)" "$(head -1 refusal.txt)"
+
+# The net at the raster's own cell, given and not given: alternating runs, medians of 3.
+[ -f "$own" ] || { echo "no $own: the last comparison is not run"; exit 0; }
+"$relief" render -q "$own" -o own.png --set render.width=1920 --set render.height=1080 2>err.txt ||
+  { cat err.txt >&2; exit 1; }
+cell=$(gdalinfo "$own" | sed -n 's/^Pixel Size = (\([0-9.]*\),.*/\1/p')
+masked() { sed -n 's/^ *"masked_nodata": \([0-9]*\),*$/\1/p' "$1" | head -1; }
+geometry() { sed -n 's/^ *"kind": "\([a-z_0-9]*\)",*$/\1/p' "$1" | head -1; }
+without=() with=()
+for _ in 1 2 3; do
+  without+=("$(time_of "$relief" render -q "$own" -o own.png --set render.width=1920 --set render.height=1080)")
+  with+=("$(time_of "$relief" render -q "$own" -o own-spaced.png --set render.width=1920 --set render.height=1080 \
+              --set net.spacing_m="$cell")")
+done
+a=$(median "${without[@]}") b=$(median "${with[@]}")
+printf '\n%s at 1920 x 1080, its own %s m cell:\n' "$(basename "$own")" "$cell"
+printf '  without net.spacing_m: %.2f s, %s, %s masked nodes\n' "$a" "$(geometry own.json)" "$(masked own.json)"
+printf '  net.spacing_m = %s: %.2f s, %s, %s masked nodes; ratio %.2f\n' "$cell" "$b" "$(geometry own-spaced.json)" \
+  "$(masked own-spaced.json)" "$(echo "$b / $a" | bc -l)"

@@ -50,12 +50,16 @@ InputKind inputKindOf(const fs::path& path, std::string& why) {
 }
 
 std::string sceneTextForData(const fs::path& data) {
-    std::string title = geo::rasterTitle(data);
+    const auto summary = geo::rasterSummary(data);
+    std::string title = summary ? summary->title : std::string();
     if (title.empty()) title = data.stem().string();
+    // Deeper than any dry land (the Dead Sea's shore, -430 m): a sea floor, in the topobathy ramp's blues.
+    const bool seaFloor = summary && summary->range && (*summary->range)[0] <= kSeaFloorM;
     return fmt::format(
         "# The scene relief makes for {} (relief init writes it out, every choice explained).\n"
-        "[samples]\npath = {}\n\n[overlay]\ntitle = {}\n",
-        data.filename().string(), tomlString(data.filename().string()), tomlString(title));
+        "[samples]\npath = {}\n{}\n[overlay]\ntitle = {}\n",
+        data.filename().string(), tomlString(data.filename().string()),
+        seaFloor ? "\n[texture]\nramp = \"topobathy\"\n" : "", tomlString(title));
 }
 
 namespace {
@@ -123,7 +127,11 @@ void writeSurface(CommentedScene& out, const LoadedScene& loaded, const Surface&
 void writeLook(CommentedScene& out, const scene::SceneSpec& spec) {
     const scene::LookSpec& look = spec.look;
     out.section("texture", "");
-    out.text("ramp", look.texture.ramp.preset, "elevation colours over the surface's range");
+    out.text(
+        "ramp", look.texture.ramp.preset,
+        !spec.madeForData.empty() && look.texture.ramp.preset == "topobathy"
+            ? fmt::format("the data reach {} m or deeper, a sea floor: blues below 0 m", formatShortest(kSeaFloorM))
+            : "elevation colours over the surface's range");
     out.section("lighting", "");
     out.number("sun_azimuth_deg", look.lighting.sunAzimuthDeg, "light from the north-west, as maps have it");
     out.number("sun_altitude_deg", look.lighting.sunAltitudeDeg, "");

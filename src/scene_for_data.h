@@ -18,10 +18,15 @@ enum class InputKind {
 };
 InputKind inputKindOf(const std::filesystem::path& path, std::string& why);
 
+/// The elevation (metres) at or below which data hold a sea floor, not dry
+/// land: their scene takes the topobathy ramp.
+inline constexpr double kSeaFloorM = -500;
+
 /// The scene relief makes for elevation data given alone: [samples] path (the
-/// file's name: the scene is read as if it were the file, from its folder)
-/// and a title from the raster's metadata or the file's name. Every other
-/// choice is relief's default: the net and the depth for the still.
+/// file's name: the scene is read as if it were the file, from its folder),
+/// the topobathy ramp for a raster reaching kSeaFloorM, and a title from the
+/// raster's metadata or the file's name. Every other choice is relief's
+/// default: the net and the depth for the still.
 std::string sceneTextForData(const std::filesystem::path& data);
 
 /// `relief init`: the scene as a TOML file at `scenePath`, every choice

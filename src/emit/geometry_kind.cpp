@@ -31,24 +31,25 @@ std::optional<GeometryChoice> chooseGeometry(const scene::GeometrySpec& spec, co
         return GeometryChoice{GeometryKind::Mesh2,
                               fmt::format("auto: POV-Ray parses its {:.3g} triangles in about {:.2g} s", facts.triangles,
                                           parseSeconds)};
-    if (facts.masked)
-        return GeometryChoice{GeometryKind::Adaptive,
-                              fmt::format("auto: a mesh2 of {:.3g} triangles would take POV-Ray about {:.0f} s to "
-                                          "parse, and nodes without data are left out, which a height_field "
-                                          "cannot",
-                                          facts.triangles, parseSeconds)};
+    // A mesh2 too slow to parse, and a height field that would show less:
+    // the adaptive mesh when nodes are left out (fewer triangles, the same holes).
+    const GeometryKind exact = facts.masked ? GeometryKind::Adaptive : GeometryKind::Mesh2;
     if (facts.rough)
-        return GeometryChoice{GeometryKind::Mesh2,
+        return GeometryChoice{exact,
                               "auto: the surface is rough (Hölder exponent below 1), where a height_field's "
                               "normals part from the mesh2's"};
     if (stepM > halfPixelM)
-        return GeometryChoice{GeometryKind::Mesh2,
-                              fmt::format("auto: 16-bit heights would step by {:.3g} m, more than half a pixel",
-                                          stepM)};
+        return GeometryChoice{
+            exact, fmt::format("auto: 16-bit heights would step by {:.3g} m, more than half a pixel", stepM)};
+    // Nodes without data are holes in the drape (alpha 0), which POV-Ray
+    // traces through: the same holes at a height field's cost, where an adaptive mesh
+    // of a rough DEM keeps most of its triangles (3.8x the seconds of the
+    // height field on a 1197 x 643 SRTM DEM with a masked border).
     return GeometryChoice{GeometryKind::HeightField,
                           fmt::format("auto: a mesh2 of {:.3g} triangles would take POV-Ray about {:.0f} s to "
-                                      "parse; 16-bit heights step by {:.2g} m (half a pixel: {:.2g} m)",
-                                      facts.triangles, parseSeconds, stepM, halfPixelM)};
+                                      "parse; 16-bit heights step by {:.2g} m (half a pixel: {:.2g} m){}",
+                                      facts.triangles, parseSeconds, stepM, halfPixelM,
+                                      facts.masked ? "; nodes without data are holes in its drape" : "")};
 }
 
 }  // namespace relief::emit

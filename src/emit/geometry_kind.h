@@ -13,7 +13,7 @@ namespace relief::emit {
 /// any node is masked, the elevation range, the extent and the still's width.
 struct GeometryFacts {
     double triangles = 0;      ///< of the full mesh2
-    bool masked = false;       ///< nodata left out: only a mesh2 has holes
+    bool masked = false;       ///< nodata left out (holes)
     double zRangeM = 0;        ///< elevation range of the net
     double extentM = 0;        ///< the larger side of the net
     double exaggeration = 1;
@@ -36,10 +36,11 @@ struct GeometryChoice {
 inline constexpr double kQuickParseSeconds = 1.0;
 
 /// The kind the scene asks for, or auto's choice: the mesh2 when POV-Ray
-/// parses it within kQuickParseSeconds; else the adaptive mesh when the grid
-/// has holes; the mesh2 when the surface is rough or 16-bit heights would be
-/// coarser than half a pixel; else the height field.
-/// An explicit height_field that cannot be (holes; too coarse) is an error at
+/// parses it within kQuickParseSeconds; else, when the surface is rough or
+/// 16-bit heights would be coarser than half a pixel, the mesh2 (the
+/// adaptive mesh when the grid has holes); else the height field, whose
+/// drape's alpha cuts the holes.
+/// An explicit height_field that cannot be (too coarse) is an error at
 /// geometry.kind.
 std::optional<GeometryChoice> chooseGeometry(const scene::GeometrySpec& spec, const GeometryFacts& facts,
                                              Diagnostics& diags);

@@ -9,6 +9,7 @@
 // (raster_source.h), where the net goes (raster_footprint.h), the warp
 // (raster_warp.h), the heights and nodata (raster_heights.h), composed in
 // warped_net.cpp; lattices in lattice.cpp, drapes in image_on_grid.cpp.
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -26,9 +27,16 @@ namespace relief::geo {
 /// `lon,lat,elev` CSV stays a CSV of scattered samples.
 bool isRasterDem(const std::filesystem::path& path);
 
-/// The title a raster's metadata gives it (TIFFTAG_DOCUMENTNAME, TITLE or
-/// DESCRIPTION), cut to what a still can show; "" when none or unreadable.
-std::string rasterTitle(const std::filesystem::path& path);
+/// What a scene made for a raster takes from it before any work: the title
+/// its metadata gives it (TIFFTAG_DOCUMENTNAME, TITLE or DESCRIPTION, cut to
+/// what a still can show; "" when none), and band 1's range in metres (a
+/// unit the band does not name taken as metres), approximate (GDAL's
+/// overviews or a sample of its blocks); nullopt when the file is unreadable.
+struct RasterSummary {
+    std::string title;
+    std::optional<std::array<double, 2>> range;  ///< min, max; none when every cell read is nodata
+};
+std::optional<RasterSummary> rasterSummary(const std::filesystem::path& path);
 
 /// The raster resampled onto the net. The frame is the scene's (UTM: the zone
 /// of the raster's centre unless given); the net covers the raster's

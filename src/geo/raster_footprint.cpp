@@ -54,6 +54,15 @@ std::optional<PixelBox> dataBox(GDALRasterBandH band, int width, int height, dou
 
 bool hasWindow(const scene::NetSpec& net) { return net.extentM || net.extentLonLat; }
 
+// The box of the cells' centres: a net at the raster's own spacing then lies
+// on them, and bilinear resampling has data at every node, the outermost
+// ring included (on the cells' outer edges it has none, and a raster with no
+// nodata would get a masked border).
+PixelBox cellCentres(const PixelBox& cells) {
+    const double insetX = cells.x1 - cells.x0 >= 2 ? 0.5 : 0, insetY = cells.y1 - cells.y0 >= 2 ? 0.5 : 0;
+    return {cells.x0 + insetX, cells.y0 + insetY, cells.x1 - insetX, cells.y1 - insetY};
+}
+
 constexpr int kEdgePoints = 64;
 
 // The footprint: points along the edges of `box`, in WGS84.
@@ -138,18 +147,33 @@ double groundCell(const RasterPlace& place, const PixelBox& box, const Frame& fr
 
 }  // namespace
 
+bool defaultIsDataBox(const HeightBand& band, const RasterPlace& place, std::optional<PixelBox> footprint,
+                      const scene::NetSpec& net) {
+    return !footprint && !hasWindow(net) && dataBoxAffordable(band.band, place.cells());
+}
+
+PixelBox allCellCentres(const RasterPlace& place) {
+    return cellCentres({0, 0, double(place.width), double(place.height)});
+}
+
+std::optional<PixelBox> centresWithData(GDALRasterBandH cells, double scaleX, double scaleY, const HeightBand& band,
+                                        const SourceLoc& fileLoc, Diagnostics& diags) {
+    const auto data = dataBox(cells, GDALGetRasterBandXSize(cells), GDALGetRasterBandYSize(cells), band.noData);
+    if (!data) {
+        diags.error(fileLoc, fmt::format("every cell of band {} is nodata ({}): check the band and the "
+                                         "raster's nodata value",
+                                         band.number, band.hasNoData ? formatShortest(band.declaredNoData) : "NaN"));
+        return std::nullopt;
+    }
+    return cellCentres({data->x0 / scaleX, data->y0 / scaleY, data->x1 / scaleX, data->y1 / scaleY});
+}
+
 std::optional<PixelBox> defaultPixelBox(const HeightBand& band, const RasterPlace& place,
                                         std::optional<PixelBox> footprint, const scene::NetSpec& net,
                                         const SourceLoc& fileLoc, Diagnostics& diags) {
     if (footprint) return footprint;
-    const PixelBox all{0, 0, double(place.width), double(place.height)};
-    if (hasWindow(net) || !dataBoxAffordable(band.band, place.cells())) return all;
-    const auto data = dataBox(band.band, place.width, place.height, band.noData);
-    if (!data)
-        diags.error(fileLoc, fmt::format("every cell of band {} is nodata ({}): check the band and the "
-                                         "raster's nodata value",
-                                         band.number, band.hasNoData ? formatShortest(band.declaredNoData) : "NaN"));
-    return data;
+    if (!defaultIsDataBox(band, place, footprint, net)) return allCellCentres(place);
+    return centresWithData(band.band, 1, 1, band, fileLoc, diags);
 }
 
 std::optional<NetExtent> netExtent(const RasterPlace& place, const PixelBox& box, const scene::FrameSpec& frameSpec,

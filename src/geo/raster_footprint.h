@@ -16,15 +16,29 @@ namespace relief::geo {
 /// A box of cells: pixel edges x0, y0 (the first row read) to x1, y1.
 struct PixelBox {
     double x0, y0, x1, y1;
+    bool operator==(const PixelBox&) const = default;
 };
 
-/// The cells whose box is the net's default extent: `footprint` when given
-/// (a lattice of samples: the nodes' centres), else with no window in the
-/// scene (net.extent_m, net.extent_lonlat) the cells with data when finding
-/// them costs little, else every cell. Nullopt, after an error, when no cell
-/// has data.
+/// The box (in pixels) whose footprint is the net's default extent:
+/// `footprint` when given (a lattice of samples: the nodes' centres), else
+/// the centres of the cells with data when finding them costs little and the
+/// scene gives no window (net.extent_m, net.extent_lonlat), else the centres
+/// of every cell. Nullopt, after an error, when no cell has data.
 std::optional<PixelBox> defaultPixelBox(const HeightBand& band, const RasterPlace& place,
                                         std::optional<PixelBox> footprint, const scene::NetSpec& net,
+                                        const SourceLoc& fileLoc, Diagnostics& diags);
+
+/// Whether defaultPixelBox is the box of the cells with data (a scan of them).
+bool defaultIsDataBox(const HeightBand& band, const RasterPlace& place, std::optional<PixelBox> footprint,
+                      const scene::NetSpec& net);
+
+/// The box of the centres of all the raster's cells.
+PixelBox allCellCentres(const RasterPlace& place);
+
+/// The centres of the cells with data in `cells`, the raster's band or its
+/// cells averaged (`scale` of the raster's cells each way), in the raster's
+/// pixels. Nullopt, after an error naming `band`, when none has data.
+std::optional<PixelBox> centresWithData(GDALRasterBandH cells, double scaleX, double scaleY, const HeightBand& band,
                                         const SourceLoc& fileLoc, Diagnostics& diags);
 
 /// Where the net goes: the frame (the scene's, for the raster's footprint or

@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 
 #include "core/input_file.h"
+#include "geo/raster_heights.h"
 #include "core/text_escape.h"
 #include "geo/gdal_crs.h"
 #include "geo/gdal_setup.h"
@@ -249,10 +250,22 @@ HeightBand heightBand(GDALDatasetH src, int number) {
     return b;
 }
 
-std::string rasterTitle(const std::filesystem::path& path) {
+std::optional<RasterSummary> rasterSummary(const std::filesystem::path& path) {
     std::string problem;
     const Dataset ds = openRaster(path, problem);
-    return ds ? metadataText(ds.get(), {"TIFFTAG_DOCUMENTNAME", "TITLE", "DESCRIPTION"}) : std::string();
+    if (!ds || GDALGetRasterCount(ds.get()) < 1) return std::nullopt;
+    RasterSummary s;
+    s.title = metadataText(ds.get(), {"TIFFTAG_DOCUMENTNAME", "TITLE", "DESCRIPTION"});
+    double minMax[2] = {0, 0};
+    const HeightBand band = heightBand(ds.get(), 1);
+    CPLPushErrorHandler(CPLQuietErrorHandler);
+    const CPLErr err = GDALComputeRasterMinMax(band.band, TRUE, minMax);
+    CPLPopErrorHandler();
+    Diagnostics unitUnknown;  // taken as metres; the scene's net says so when it is made
+    const double metres = metresPerBandUnit(band, {}, unitUnknown);
+    if (err == CE_None && std::isfinite(minMax[0]) && std::isfinite(minMax[1]))
+        s.range = std::array<double, 2>{metres * minMax[0], metres * minMax[1]};
+    return s;
 }
 
 bool isRasterDem(const std::filesystem::path& path) {

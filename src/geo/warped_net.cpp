@@ -26,11 +26,13 @@ namespace {
 // The scene's resampling; by default, onto a net relief made coarser than
 // the cells (one for the still, not for every cell), the average of the cells
 // each node stands for, as gdal_translate -r average makes an overview.
+bool averagesWhenCoarser(const scene::SamplesSpec& samples, const scene::NetSpec& netSpec) {
+    const bool netChosen = netSpec.spacingM <= 0 && !netSpec.locs.has("net.rows") && !netSpec.locs.has("net.cols");
+    return netChosen && !samples.locs.has("samples.resample");
+}
 scene::Resample resampleFor(const scene::SamplesSpec& samples, const scene::NetSpec& netSpec, const ControlNet& net,
                             double cellM) {
-    const bool netChosen = netSpec.spacingM <= 0 && !netSpec.locs.has("net.rows") && !netSpec.locs.has("net.cols");
-    if (samples.locs.has("samples.resample") || !netChosen || std::max(net.dx, net.dy) < 1.5 * cellM)
-        return samples.resample;
+    if (!averagesWhenCoarser(samples, netSpec) || std::max(net.dx, net.dy) < 1.5 * cellM) return samples.resample;
     return scene::Resample::Average;
 }
 
@@ -59,17 +61,18 @@ struct WarpedHeights {
     std::vector<double> z;
 };
 
-// The cells averaged `factor` by `factor` (the last row and column of
-// blocks may be narrower), by GDAL's RasterIO as gdal_translate -outsize -r
-// average does, reading the file once and its overviews when it has them: a
+// The cells averaged in blocks of about `factor` by `factor` (GDAL spreads
+// the raster's cells evenly over ceil(cells / factor) averages), by GDAL's
+// RasterIO as gdal_translate -outsize -r average does, reading the file once and its overviews when it has them: a
 // raster in memory, its cells `scale` of the source's.
 struct AveragedCells {
     Dataset raster;
     double scaleX = 1, scaleY = 1;
+    int factor = 1;
 };
 std::optional<AveragedCells> averagedCells(const HeightBand& band, const RasterPlace& place, int factor) {
     const int w = (place.width + factor - 1) / factor, h = (place.height + factor - 1) / factor;
-    AveragedCells out{memRaster(w, h, 1, GDT_Float64), double(w) / place.width, double(h) / place.height};
+    AveragedCells out{memRaster(w, h, 1, GDT_Float64), double(w) / place.width, double(h) / place.height, factor};
     std::vector<double> cells;
     try {
         cells.resize(static_cast<size_t>(w) * h);
@@ -134,6 +137,97 @@ std::optional<WarpedHeights> warpHeights(const Dataset& src, const RasterPlace& 
     return out;
 }
 
+// The net over the footprint of `box`: where it goes, then laid out.
+struct PlacedNet {
+    NetExtent extent;
+    ControlNet net;
+    std::optional<AveragedCells> averaged;  ///< the cells averaged first, if they are
+};
+std::optional<PlacedNet> placedNet(const Dataset& src, const RasterPlace& place, const PixelBox& box,
+                                   const scene::SamplesSpec& samples, const scene::FrameSpec& frameSpec,
+                                   const scene::NetSpec& netSpec, const SourceLoc& fileLoc, Diagnostics& diags,
+                                   const NetBudget& budget) {
+    auto extent = netExtent(place, box, frameSpec, netSpec, fileLoc, diags);
+    if (!extent) return std::nullopt;
+    auto net = laidOutNet(src.get(), place, *extent, samples, netSpec, diags, budget);
+    if (!net) return std::nullopt;
+    return PlacedNet{*extent, std::move(*net), std::nullopt};
+}
+
+// How many cells a side the cells are averaged by before the warp: a net
+// relief made coarser than them is warped bilinearly from their averages,
+// which costs reading the file once, where the warper's own average weighs
+// every cell of every node's footprint through the projections (2.7x
+// gdal_translate's time on 53 M cells). 1: not averaged.
+int averagingFactor(const PlacedNet& placed, const scene::SamplesSpec& samples) {
+    const int factor = static_cast<int>(std::min(placed.net.dx, placed.net.dy) / placed.extent.cellM);
+    return placed.net.resample != samples.resample && factor >= 2 ? factor : 1;
+}
+
+// The averages the net is warped from: those at hand when they are at its factor, else new ones, or none.
+bool keepOrAverage(PlacedNet& placed, const HeightBand& band, const RasterPlace& place,
+                   const scene::SamplesSpec& samples, const SourceLoc& fileLoc, Diagnostics& diags) {
+    const int factor = averagingFactor(placed, samples);
+    if (placed.averaged && placed.averaged->factor == factor) return true;
+    placed.averaged.reset();
+    if (factor < 2) return true;
+    placed.averaged = averagedCells(band, place, factor);
+    if (!placed.averaged)
+        diags.error(fileLoc, fmt::format("GDAL could not average the raster's cells to the net's spacing: {}",
+                                         CPLGetLastErrorMsg()));
+    return placed.averaged.has_value();
+}
+
+// The box of the cells with data found among their averages, and those
+// averages, when the net over every cell is one relief made coarser than
+// them (asked of the limits, but with its own errors put aside: the net over
+// the data is what counts). Nullopt when it is not; an empty box after an
+// error.
+struct AveragedData {
+    std::optional<PixelBox> box;
+    AveragedCells averaged;
+};
+std::optional<AveragedData> dataAmongAverages(const std::optional<PlacedNet>& overAll, const HeightBand& band,
+                                              const RasterPlace& place, const scene::SamplesSpec& samples,
+                                              const SourceLoc& fileLoc, Diagnostics& diags) {
+    const int factor = overAll ? averagingFactor(*overAll, samples) : 1;
+    if (factor < 2) return std::nullopt;
+    auto averaged = averagedCells(band, place, factor);
+    if (!averaged) return std::nullopt;  // the file read again below says why
+    auto box = centresWithData(GDALGetRasterBand(averaged->raster.get(), 1), averaged->scaleX, averaged->scaleY, band,
+                               fileLoc, diags);
+    return AveragedData{box, std::move(*averaged)};
+}
+
+// The net over the cells with data by default, its cells averaged if they
+// are to be. When their box would take a scan of the file and the net may
+// be one relief makes coarser than the cells, the net is first laid over
+// every cell: if those cells are then averaged, their box comes from the
+// averages, and the file is read once when the data fill it (twice when the
+// net over a smaller box is finer and needs finer averages).
+std::optional<PlacedNet> netOverTheData(const Dataset& src, const RasterPlace& place, const HeightBand& band,
+                                        std::optional<PixelBox> footprint, const scene::SamplesSpec& samples,
+                                        const scene::FrameSpec& frameSpec, const scene::NetSpec& netSpec,
+                                        const SourceLoc& fileLoc, Diagnostics& diags, const NetBudget& budget) {
+    auto laidOver = [&](const PixelBox& box, Diagnostics& d) {
+        return placedNet(src, place, box, samples, frameSpec, netSpec, fileLoc, d, budget);
+    };
+    std::optional<AveragedData> data;
+    if (defaultIsDataBox(band, place, footprint, netSpec) && averagesWhenCoarser(samples, netSpec) &&
+        budget.stillWidthPx > 0) {
+        Diagnostics aside;
+        data = dataAmongAverages(laidOver(allCellCentres(place), aside), band, place, samples, fileLoc, diags);
+        if (data && !data->box) return std::nullopt;
+    }
+    const auto box = data ? data->box : defaultPixelBox(band, place, footprint, netSpec, fileLoc, diags);
+    if (!box) return std::nullopt;
+    auto placed = laidOver(*box, diags);
+    if (!placed) return std::nullopt;
+    if (data) placed->averaged = std::move(data->averaged);
+    if (!keepOrAverage(*placed, band, place, samples, fileLoc, diags)) return std::nullopt;
+    return placed;
+}
+
 }  // namespace
 
 std::optional<ControlNet> warpedNet(const Dataset& src, const scene::SamplesSpec& samples,
@@ -144,36 +238,19 @@ std::optional<ControlNet> warpedNet(const Dataset& src, const scene::SamplesSpec
     const auto place = placeOfDem(src.get(), samples, netSpec, budget, diags);
     if (!place) return std::nullopt;
     const HeightBand band = heightBand(src.get(), samples.band);
-    const auto box = defaultPixelBox(band, *place, footprint, netSpec, fileLoc, diags);
-    if (!box) return std::nullopt;
-    const auto extent = netExtent(*place, *box, frameSpec, netSpec, fileLoc, diags);
-    if (!extent) return std::nullopt;
-    auto net = laidOutNet(src.get(), *place, *extent, samples, netSpec, diags, budget);
-    if (!net) return std::nullopt;
-    // A net relief made coarser than the cells: the cells averaged to about
-    // the net's spacing first, then warped bilinearly, which costs reading
-    // the file once where the warper's own average weighs every cell of
-    // every node's footprint through the projections (2.7x gdal_translate's
-    // time on 53 M cells).
-    std::optional<AveragedCells> averaged;
-    if (const int factor = static_cast<int>(std::min(net->dx, net->dy) / extent->cellM);
-        net->resample != samples.resample && factor >= 2) {
-        averaged = averagedCells(band, *place, factor);
-        if (!averaged) {
-            diags.error(fileLoc, fmt::format("GDAL could not average the raster's cells to the net's spacing: {}",
-                                             CPLGetLastErrorMsg()));
-            return std::nullopt;
-        }
-    }
-    auto warped = warpHeights(src, *place, band, *net, averaged ? scene::Resample::Bilinear : net->resample, diags,
-                              progress, fileLoc, averaged ? &*averaged : nullptr);
+    auto placed = netOverTheData(src, *place, band, footprint, samples, frameSpec, netSpec, fileLoc, diags, budget);
+    if (!placed) return std::nullopt;
+    ControlNet& net = placed->net;
+    const AveragedCells* averaged = placed->averaged ? &*placed->averaged : nullptr;
+    auto warped = warpHeights(src, *place, band, net, averaged ? scene::Resample::Bilinear : net.resample, diags,
+                              progress, fileLoc, averaged);
     if (!warped) return std::nullopt;
     const double scale = metresPerBandUnit(band, samples, diags);
-    if (!checkElevations(warped->z, scale, *net, *place, band, samples, diags) ||
-        !resolveNodata(warped->z, GDALGetRasterBand(warped->netRaster.get(), 1), *net, samples, netSpec, diags))
+    if (!checkElevations(warped->z, scale, net, *place, band, samples, diags) ||
+        !resolveNodata(warped->z, GDALGetRasterBand(warped->netRaster.get(), 1), net, samples, netSpec, diags))
         return std::nullopt;
-    setNodeHeights(*net, warped->z, scale);
-    return net;
+    setNodeHeights(net, warped->z, scale);
+    return std::move(net);
 }
 
 std::optional<ControlNet> rasterNet(const scene::SamplesSpec& samples, const scene::FrameSpec& frameSpec,

@@ -150,9 +150,12 @@ TEST(GeometryKind, AutoAndExplicitChoices) {
     GeometryFacts small = big;
     small.triangles = 2e5;  // 0.8 s of parsing
     EXPECT_EQ(chooseGeometry({}, small, diags)->kind, scene::GeometryKind::Mesh2);
-    GeometryFacts holes = big;  // a height field has none: the adaptive mesh
+    GeometryFacts holes = big;  // holes in the drape: still a height field
     holes.masked = true;
-    EXPECT_EQ(chooseGeometry({}, holes, diags)->kind, scene::GeometryKind::Adaptive);
+    EXPECT_EQ(chooseGeometry({}, holes, diags)->kind, scene::GeometryKind::HeightField);
+    GeometryFacts roughHoles = holes;  // no height field: the mesh with holes and fewer triangles
+    roughHoles.rough = true;
+    EXPECT_EQ(chooseGeometry({}, roughHoles, diags)->kind, scene::GeometryKind::Adaptive);
     GeometryFacts smallHoles = small;
     smallHoles.masked = true;
     EXPECT_EQ(chooseGeometry({}, smallHoles, diags)->kind, scene::GeometryKind::Mesh2);

@@ -241,10 +241,58 @@ TEST(Raster, DefaultExtentIsTheDataNotTheBorder) {
     Diagnostics diags;
     const auto result = rasterNet(rasterSpec(path, "EPSG:2193"), {}, net, diags);
     ASSERT_TRUE(result) << (diags.all().empty() ? "" : formatDiagnostic(diags.all()[0]));
-    // 300 x 200 m of data; the inner box in UTM (rotated by grid convergence) is a little smaller.
-    EXPECT_NEAR(result->xMax() - result->x0, 300, 25);
-    EXPECT_NEAR(result->yMax() - result->y0, 200, 25);
+    // 300 x 200 m of data, their cells' centres 290 x 190 m apart; the inner box in UTM (rotated by
+    // grid convergence) is a little smaller.
+    EXPECT_NEAR(result->xMax() - result->x0, 290, 25);
+    EXPECT_NEAR(result->yMax() - result->y0, 190, 25);
     EXPECT_LT(result->maskedCount(), result->grid.points.size() / 10);
+
+    // A net relief makes coarser for a still 10 px wide: the box of the data found from the averaged
+    // cells (laid first over the whole raster, 590 m: 59 m, 5 x 5 cells averaged), then the net
+    // over the data (about 29 m), not over the border.
+    NetBudget still;
+    still.stillWidthPx = 10;
+    Diagnostics coarseDiags;
+    const auto coarse = rasterNet(rasterSpec(path, "EPSG:2193"), {}, {}, coarseDiags, {}, still);
+    ASSERT_TRUE(coarse) << (coarseDiags.all().empty() ? "" : formatDiagnostic(coarseDiags.all()[0]));
+    EXPECT_GT(coarse->dx, 2 * kCell);
+    EXPECT_GT(coarse->xMax() - coarse->x0, 290 - 2 * coarse->dx);
+    EXPECT_LT(coarse->xMax() - coarse->x0, 300);  // the border's 590 m would be twice that
+    EXPECT_LT(coarse->maskedCount(), coarse->grid.points.size() / 4);
+}
+
+// A raster in the frame's own CRS with no nodata, at its own spacing: a node
+// on each cell's centre, holding that cell's height; none masked (on the
+// cells' outer edges, the outermost ring would have no data).
+TEST(Raster, OwnSpacingPutsTheNodesOnTheCellCentres) {
+    const fs::path dir = freshDir("centres");
+    const fs::path path = dir / "utm.asc";
+    constexpr int kCols = 30, kRows = 20;
+    constexpr double kEast = 300005, kNorth = 5916005;                        // UTM 60S, the first cell's centre
+    auto cell = [](int c, int r) { return 100.0 + (c * 7 % 13) + 0.5 * r; };  // not a plane: centres or nothing
+    {
+        std::ofstream out(path);
+        out << fmt::format("ncols {}\nnrows {}\nxllcenter {}\nyllcenter {}\ncellsize {}\n", kCols, kRows, kEast, kNorth,
+                           kCell);
+        for (int r = kRows - 1; r >= 0; --r)
+            for (int c = 0; c < kCols; ++c) out << cell(c, r) << (c + 1 < kCols ? " " : "\n");
+    }
+    for (const double spacing : {0.0, kCell}) {  // the default, and the same spacing given
+        scene::NetSpec net;
+        net.spacingM = spacing;
+        Diagnostics diags;
+        const auto result = rasterNet(rasterSpec(path, "EPSG:32760"), {}, net, diags);
+        ASSERT_TRUE(result) << (diags.all().empty() ? "" : formatDiagnostic(diags.all()[0]));
+        EXPECT_EQ(result->frame.describe(), "UTM zone 60S");
+        ASSERT_EQ(result->cols(), kCols);
+        ASSERT_EQ(result->rows(), kRows);
+        EXPECT_EQ(result->maskedCount(), 0u);
+        EXPECT_NEAR(result->x0, kEast, 1e-6);
+        EXPECT_NEAR(result->y0, kNorth, 1e-6);
+        // Within the warper's positional tolerance (0.001 cells; neighbours differ by up to 12 m).
+        for (int r = 0; r < kRows; ++r)
+            for (int c = 0; c < kCols; ++c) ASSERT_NEAR(result->grid.at(r, c).z, cell(c, r), 0.02) << r << " " << c;
+    }
 }
 
 // Samples that are one per node of a regular lattice are found as such, in
@@ -343,15 +391,19 @@ TEST(Raster, CraftedRastersAreErrorsOrHandled) {
                                        "<VRTRasterBand dataType=\"Float32\" band=\"1\"/></VRTDataset>";
     EXPECT_EQ(first(rasterSpec(dir / "zero.vrt", ""), net).second,
               "zero.vrt: error: the raster's geotransform cannot be inverted (a cell of size 0?)");
-    const auto southUp = first(tiff("south-up.tif", kCell, kCell, plain), {});
+    // 4 x 4 cells, their centres 30 m apart, turned by the grid convergence in UTM: a net at half
+    // their spacing (at their own, 3 x 3 nodes fit, fewer than a net needs).
+    scene::NetSpec half;
+    half.spacingM = kCell / 2;
+    const auto southUp = first(tiff("south-up.tif", kCell, kCell, plain), half);
     EXPECT_TRUE(southUp.first) << southUp.second;
     // An infinite cell is beyond the Earth's elevations, named by its cell; NaN is no data (masked).
     std::vector<float> odd = plain;
     odd[5] = std::numeric_limits<float>::infinity();
-    const auto inf = first(tiff("inf.tif", kCell, -kCell, odd), {});
+    const auto inf = first(tiff("inf.tif", kCell, -kCell, odd), half);
     EXPECT_EQ(inf.second.rfind("inf.tif: error: the cell at column 1, row 1", 0), 0u) << inf.second;
     odd[5] = std::numeric_limits<float>::quiet_NaN();
-    EXPECT_TRUE(first(tiff("nan.tif", kCell, -kCell, odd), {}).first);
+    EXPECT_TRUE(first(tiff("nan.tif", kCell, -kCell, odd), half).first);
     // A declared size of 2^32 cells (a VRT with no source: GDAL reads it as zeros) is refused
     // from its header before anything is read or allocated for it.
     std::ofstream(dir / "huge.vrt") << "<VRTDataset rasterXSize=\"65536\" rasterYSize=\"65536\">"

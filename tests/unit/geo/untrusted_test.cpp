@@ -263,7 +263,9 @@ TEST(UntrustedGdal, VrtsNameOnlyFilesBesideThem) {
     spec.pathAsWritten = "ok.vrt";
     spec.verticalUnit = "m";
     Diagnostics diags;
-    const auto net = rasterNet(spec, {}, {}, diags);
+    scene::NetSpec half;  // 4 x 4 cells of 10 m: their centres hold 3 x 3 nodes at 10 m, too few
+    half.spacingM = 5;
+    const auto net = rasterNet(spec, {}, half, diags);
     ASSERT_TRUE(net) << (diags.all().empty() ? "" : formatDiagnostic(diags.all()[0]));
     EXPECT_NEAR(net->grid.points[net->grid.points.size() / 2].z, 7.0, 1e-6);
 }

@@ -15,6 +15,7 @@
 
 #include "core/atomic_file.h"
 #include "geo/gdal_setup.h"
+#include "scene_for_data.h"
 #include "unit/test_dirs.h"
 
 namespace relief {
@@ -212,14 +213,27 @@ std::optional<Surface> planForStill(const std::string& width, const std::string&
     return planSurface(*loaded, diags, 1);
 }
 
+// A DEM that reaches the sea floor gets the topobathy ramp (blues below 0 m); one of dry land does not.
+TEST(Pipeline, TheSceneForASeaFloorTakesTheTopobathyRamp) {
+    const std::string asia = sceneTextForData(kSource / "scenes/data/rasters/asia.tif");  // -8,000 to 4,800 m
+    EXPECT_NE(asia.find("\n[texture]\nramp = \"topobathy\"\n"), std::string::npos) << asia;
+    const std::string volcano = sceneTextForData(kSource / "scenes/data/rasters/volcano2.tif");
+    EXPECT_EQ(volcano.find("[texture]"), std::string::npos) << volcano;
+    Diagnostics diags;
+    const auto loaded = loadScene(kSource / "scenes/data/rasters/asia.tif", diags);
+    ASSERT_TRUE(loaded) << (diags.all().empty() ? "" : formatDiagnostic(diags.all().back()));
+    EXPECT_EQ(loaded->scene.look.texture.ramp.preset, "topobathy");
+}
+
 TEST(Pipeline, DefaultDepthIsChosenForTheStill) {
     Diagnostics diags;
     const auto thumbnail = planForStill("160", "120", diags);
     const auto poster = planForStill("3840", "2160", diags);
     ASSERT_TRUE(thumbnail && poster) << (diags.all().empty() ? "" : formatDiagnostic(diags.all().back()));
-    // The raster's own 5 m cells: 169 x 115 nodes either way (the thumbnail's pixel, ~5.3 m, is not twice as coarse).
-    EXPECT_EQ(thumbnail->net.rows(), 169);
-    EXPECT_EQ(poster->net.rows(), 169);
+    // The raster's own 5 m cells: 168 nodes up either way, on the centres of its 174 rows inside the
+    // UTM zone's turn (the thumbnail's pixel, ~5.3 m, is not twice as coarse).
+    EXPECT_EQ(thumbnail->net.rows(), 168);
+    EXPECT_EQ(poster->net.rows(), 168);
     // A pixel of the thumbnail covers ~3.4 m where the terrain is nearest: one level (2.5 m); the poster's
     // ~0.20 m: five (0.156 m).
     EXPECT_EQ(thumbnail->depth, 1) << thumbnail->depthReason;
