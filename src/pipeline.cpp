@@ -162,8 +162,7 @@ emit::GeometryFacts geometryFacts(const LoadedScene& loaded, const geo::ControlN
     emit::GeometryFacts facts;
     facts.triangles = triangles;
     facts.masked = !net.masked.empty();
-    double zmin = 1e300, zmax = -1e300;
-    for (const Vec3& p : net.grid.points) zmin = std::min(zmin, p.z), zmax = std::max(zmax, p.z);
+    const auto [zmin, zmax] = net.grid.zRange();
     facts.zRangeM = zmax - zmin;
     facts.extentM = std::max(net.xMax() - net.x0, net.yMax() - net.y0);
     facts.exaggeration = spec.look.vertical.exaggeration;

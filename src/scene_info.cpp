@@ -40,15 +40,8 @@ ordered_json dataFacts(const scene::SceneSpec& spec, const geo::ControlNet& net)
     return d;
 }
 
-// The net's lowest and highest node.
-std::pair<double, double> zRange(const geo::ControlNet& net) {
-    double zmin = 1e300, zmax = -1e300;
-    for (const Vec3& p : net.grid.points) zmin = std::min(zmin, p.z), zmax = std::max(zmax, p.z);
-    return {zmin, zmax};
-}
-
 ordered_json netFacts(const geo::ControlNet& net) {
-    const auto [zmin, zmax] = zRange(net);
+    const auto [zmin, zmax] = net.grid.zRange();
     return {{"frame", net.frame.describe()},
             {"rows", net.rows()},
             {"cols", net.cols()},
@@ -77,7 +70,7 @@ ordered_json costFacts(const scene::SceneSpec& spec, const Surface& s) {
 // Relief over extent: the exaggeration at which the relief would rise a
 // twentieth of the terrain's width, offered when 1 leaves it flatter.
 ordered_json exaggerationAdvice(const geo::ControlNet& net) {
-    const auto [zmin, zmax] = zRange(net);
+    const auto [zmin, zmax] = net.grid.zRange();
     const double extent = std::max(net.xMax() - net.x0, net.yMax() - net.y0), relief = zmax - zmin;
     const double ratio = relief / std::max(extent, 1e-9);
     ordered_json a = {{"relief_over_extent", ratio}};

@@ -2,6 +2,7 @@
 // Small shared value types.
 #include <sys/mman.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdlib>
@@ -77,6 +78,13 @@ struct Grid {
 
     Vec3& at(int r, int c) { return points[static_cast<size_t>(r) * cols + c]; }
     const Vec3& at(int r, int c) const { return points[static_cast<size_t>(r) * cols + c]; }
+
+    /// The lowest and highest z of every point, masked or not ({1e300, -1e300} when empty).
+    std::pair<double, double> zRange() const {
+        double zmin = 1e300, zmax = -1e300;
+        for (const Vec3& p : points) zmin = std::min(zmin, p.z), zmax = std::max(zmax, p.z);
+        return {zmin, zmax};
+    }
 };
 
 /// The size of the triangle mesh a rows x cols grid becomes: one vertex per

@@ -13,10 +13,10 @@
 #include <fmt/format.h>
 
 #include "core/input_file.h"
-#include "geo/raster_heights.h"
 #include "core/text_escape.h"
 #include "geo/gdal_crs.h"
 #include "geo/gdal_setup.h"
+#include "geo/raster_heights.h"
 #include "geo/raster.h"
 
 namespace relief::geo {

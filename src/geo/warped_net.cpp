@@ -63,8 +63,9 @@ struct WarpedHeights {
 
 // The cells averaged in blocks of about `factor` by `factor` (GDAL spreads
 // the raster's cells evenly over ceil(cells / factor) averages), by GDAL's
-// RasterIO as gdal_translate -outsize -r average does, reading the file once and its overviews when it has them: a
-// raster in memory, its cells `scale` of the source's.
+// RasterIO as gdal_translate -outsize -r average does, reading the file once
+// and its overviews when it has them: a raster in memory, its cells `scale`
+// of the source's.
 struct AveragedCells {
     Dataset raster;
     double scaleX = 1, scaleY = 1;
