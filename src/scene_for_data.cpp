@@ -101,11 +101,15 @@ void writeData(CommentedScene& out, const scene::SceneSpec& spec, const geo::Con
     out.text("path", (climbs ? data : relative).generic_string(), climbs ? "" : "relative to this file");
     if (!net.attribution.empty()) out.comment("attribution: the raster's metadata gives the credit the still shows");
     out.text("resample", std::string(scene::nameOf(net.resample)),
-             net.resample == spec.samples.resample
+             net.copiedCells ? "not needed: every node is a cell's centre, read as it is"
+             : net.resample == spec.samples.resample
                  ? "GDAL's warper at each node"
                  : "the net is coarser than the cells: every cell under a node counts");
     out.section("frame", "");
-    out.text("kind", std::string(scene::nameOf(net.frame.kind)), "");
+    out.text("kind", std::string(scene::nameOf(net.frame.kind)),
+             net.frame.kind == scene::FrameKind::Raster
+                 ? fmt::format("{}: the cells are not reprojected", net.frame.crsName)
+                 : "");
     if (net.frame.kind == scene::FrameKind::Utm)
         out.text("zone", zoneName(net.frame), "the standard zone of the data's centre");
     out.section("net", fmt::format("{} x {} nodes", net.rows(), net.cols()));

@@ -13,6 +13,7 @@ std::string Frame::describe() const {
     if (kind == scene::FrameKind::Utm)
         return utmZone == 0 ? fmt::format("UPS {}", northp ? "north" : "south")
                             : fmt::format("UTM zone {}{}", utmZone, northp ? "N" : "S");
+    if (kind == scene::FrameKind::Raster) return fmt::format("{} (the raster's own CRS)", crsName);
     return fmt::format("local tangent plane at lat {} lon {}", formatShortest(originLatDeg),
                        formatShortest(originLonDeg));
 }

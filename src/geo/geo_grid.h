@@ -20,7 +20,9 @@ struct Frame {
     bool northp = true;        ///< hemisphere, for Utm
     double originLatDeg = 0;   ///< tangent point, for Local
     double originLonDeg = 0;
-    std::string describe() const;  ///< e.g. "UTM zone 60S" or "local tangent plane at ..."
+    std::string crsWkt;            ///< the raster's CRS (WKT2), for Raster: x, y are its easting and northing
+    std::string crsName;           ///< its name, e.g. "OSGB36 / British National Grid"
+    std::string describe() const;  ///< e.g. "UTM zone 60S", "local tangent plane at ..." or a CRS's name
 };
 
 /// Node (r, c) sits at (x0 + c dx, y0 + r dy) in `frame`; row 0 is the southern

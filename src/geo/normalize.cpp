@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include <GeographicLib/Geodesic.hpp>
 #include <GeographicLib/LocalCartesian.hpp>
 #include <GeographicLib/UTMUPS.hpp>
 #include <cpl_conv.h>
@@ -14,6 +15,7 @@
 #include <fmt/format.h>
 
 #include "core/number_format.h"
+#include "geo/crs_frame.h"
 #include "geo/linear_gridding.h"
 
 namespace relief::geo {
@@ -51,6 +53,12 @@ std::optional<Frame> chooseFrame(const scene::FrameSpec& spec,
     const double lonC = centreLongitude(std::move(lons));
     Frame f;
     f.kind = spec.kind;
+    if (f.kind == scene::FrameKind::Raster) {
+        diags.error(spec.locs.at("frame.kind"),
+                    "frame.kind = \"raster\" is the CRS of a raster DEM, and these samples are scattered points: "
+                    "use \"utm\" or \"local\"");
+        return std::nullopt;
+    }
     if (f.kind == scene::FrameKind::Local) {
         f.originLatDeg = latC;
         f.originLonDeg = lonC;
@@ -96,6 +104,15 @@ std::vector<FramePoint> projectSamples(const Frame& frame, const std::vector<Geo
         }
         return out;
     }
+    if (frame.kind == scene::FrameKind::Raster) {
+        for (const auto& s : samples) {
+            FramePoint fp{{0, 0, s.elevM}, s.loc};
+            if (!lonLatToCrsFrame(frame, s.lonDeg, s.latDeg, fp.p.x, fp.p.y))
+                fp.p.x = std::numeric_limits<double>::quiet_NaN();
+            keep(s, fp);
+        }
+        return out;
+    }
     for (const auto& s : samples) {
         FramePoint fp{{}, s.loc};
         try {
@@ -127,17 +144,34 @@ bool frameToGeodetic(const Frame& frame, Vec3 p, double& latDeg, double& lonDeg,
             lc.Reverse(p.x, p.y, p.z, latDeg, lonDeg, heightM);
             return true;
         }
+        heightM = p.z;
+        if (frame.kind == scene::FrameKind::Raster) return crsFrameToLonLat(frame, p.x, p.y, lonDeg, latDeg);
         double gamma, k;
         UTMUPS::Reverse(frame.utmZone, frame.northp, p.x, p.y, latDeg, lonDeg, gamma, k);
-        heightM = p.z;
         return true;
     } catch (const GeographicErr&) {
         return false;
     }
 }
 
+namespace {
+
+// The bearing of the frame's y axis at (x, y), from the geodesic to a point
+// 100 m north on the grid: what GeographicLib's gamma is for UTM, for any CRS.
+double gridNorthBearingDeg(const Frame& frame, double x, double y) {
+    double lat0, lon0, lat1, lon1, h;
+    if (!frameToGeodetic(frame, {x, y, 0}, lat0, lon0, h) || !frameToGeodetic(frame, {x, y + 100, 0}, lat1, lon1, h))
+        return 0;
+    double azimuth0, azimuth1;
+    GeographicLib::Geodesic::WGS84().Inverse(lat0, lon0, lat1, lon1, azimuth0, azimuth1);
+    return azimuth0;
+}
+
+}  // namespace
+
 double gridConvergenceDeg(const Frame& frame, double x, double y) {
     if (frame.kind == scene::FrameKind::Local) return 0;
+    if (frame.kind == scene::FrameKind::Raster) return gridNorthBearingDeg(frame, x, y);
     try {
         double lat, lon, gamma, k;
         UTMUPS::Reverse(frame.utmZone, frame.northp, x, y, lat, lon, gamma, k);
@@ -305,7 +339,8 @@ bool layoutNet(const scene::NetSpec& spec, std::array<double, 4> dataBox, double
         spacing = still;
     if (spacing > 0) {
         // The largest net with this spacing inside the extent, centred in it.
-        const double across = std::floor(width / spacing + 1e-9) + 1, up = std::floor(height / spacing + 1e-9) + 1;
+        // Within a millionth of a node: an extent of whole cells far from the origin rounds a little short.
+        const double across = std::floor(width / spacing + 1e-6) + 1, up = std::floor(height / spacing + 1e-6) + 1;
         const bool given = spec.spacingM > 0;  // else the data's own spacing: no key of the scene to blame
         const std::string spacingSaid = given ? fmt::format("net.spacing_m = {} m", formatShortest(spacing))
                                               : fmt::format("a net at the data's own spacing, {} m,", formatShortest(spacing));

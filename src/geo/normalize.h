@@ -28,11 +28,13 @@ struct ControlNet : GeoGrid {
     size_t sampleCount = 0;        ///< samples read, or the raster's cells
     size_t filledNodata = 0;       ///< rasters: nodes without data, filled from their neighbours
     std::string raster;            ///< rasters: what was read and how, e.g.
-                                   ///< "122 x 174 cells, band 1, NZGD2000 / New Zealand Transverse Mercator 2000, bilinear"
+                         ///< "122 x 174 cells, band 1, NZGD2000 / New Zealand Transverse Mercator 2000, bilinear"
+                         ///< (or "..., the cells as they are": copiedCells)
     size_t filledOutsideHull = 0;  ///< nodes set by the nearest-sample fill (linear gridding)
     std::string attribution;       ///< rasters: the credit their metadata carries (rasterCredit), if any
     std::string spacingReason;     ///< why dx, dy are what they are (netSpacingReason)
     scene::Resample resample = scene::Resample::Bilinear;  ///< rasters: how the cells were resampled onto the net
+    bool copiedCells = false;  ///< rasters: every node a cell's centre, its height the cell's (not resampled)
 };
 
 /// A frame point (metres) to WGS84 latitude, longitude (degrees) and height

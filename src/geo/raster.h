@@ -1,10 +1,11 @@
 #pragma once
 // Stage 2 for raster DEMs. Input: SamplesSpec naming any raster GDAL opens
 // (GeoTIFF, SRTM .hgt, ESRI ASCII grid, VRT, ...), FrameSpec and NetSpec.
-// Output: ControlNet, as for scattered samples. Every net node (x, y in the
-// scene's frame) goes to WGS84 latitude and longitude with GeographicLib, then
-// to the raster's CRS with GDAL/PROJ, and is resampled there by GDAL's warper,
-// which reads only the blocks the net covers. controlNet (control_net.h)
+// Output: ControlNet, as for scattered samples. In the raster's own frame
+// (crs_frame.h) nodes on the cells' centres are the cells, read; otherwise
+// every net node (x, y in the scene's frame) goes to WGS84 latitude and
+// longitude with GeographicLib, then to the raster's CRS with GDAL/PROJ, and is
+// resampled there by GDAL's warper, which reads only the blocks the net covers. controlNet (control_net.h)
 // decides when a scene's samples take this path. In phases: the raster checked
 // (raster_source.h), where the net goes (raster_footprint.h), the warp
 // (raster_warp.h), the heights and nodata (raster_heights.h), composed in
@@ -39,7 +40,8 @@ struct RasterSummary {
 std::optional<RasterSummary> rasterSummary(const std::filesystem::path& path);
 
 /// The raster resampled onto the net. The frame is the scene's (UTM: the zone
-/// of the raster's centre unless given); the net covers the raster's
+/// of the raster's centre unless given), or the raster's own CRS when the
+/// scene names none (scene::FrameSpec says when); the net covers the raster's
 /// footprint in the frame (the largest axis-aligned box inside it) unless
 /// net.extent_m says otherwise, with the raster's own cell size on the ground
 /// unless net.spacing_m or rows and cols say otherwise. Nodes without data

@@ -7,7 +7,10 @@
 #include <cpl_error.h>
 #include <fmt/format.h>
 
+#include <GeographicLib/Geodesic.hpp>
+
 #include "core/number_format.h"
+#include "geo/crs_frame.h"
 #include "geo/normalize.h"
 
 namespace relief::geo {
@@ -145,6 +148,63 @@ double groundCell(const RasterPlace& place, const PixelBox& box, const Frame& fr
     return 0;
 }
 
+// How far the raster's CRS is from true scale over `box`: the largest
+// |k - 1| of a cell's step east and north, on the ground (WGS84 geodesics)
+// against the CRS, at the box's corners and centre; 1 when PROJ cannot say.
+double scaleError(const RasterPlace& place, const PixelBox& box) {
+    const double xs[] = {box.x0, 0.5 * (box.x0 + box.x1), box.x1}, ys[] = {box.y0, 0.5 * (box.y0 + box.y1), box.y1};
+    const auto& geodesic = GeographicLib::Geodesic::WGS84();
+    auto stepScale = [&](double px, double py, double dpx, double dpy) {
+        double lon0, lat0, lon1, lat1, metres;
+        if (!place.toLonLat(px, py, lon0, lat0) || !place.toLonLat(px + dpx, py + dpy, lon1, lat1)) return 2.0;
+        geodesic.Inverse(lat0, lon0, lat1, lon1, metres);
+        return metres / std::hypot(dpx * place.geo[1], dpy * place.geo[5]);
+    };
+    double worst = 0;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            if ((i == 1) == (j == 1))  // the corners and the centre
+                worst = std::max({worst, std::fabs(stepScale(xs[i], ys[j], 1, 0) - 1),
+                                  std::fabs(stepScale(xs[i], ys[j], 0, 1) - 1)});
+    return std::min(worst, 1.0);
+}
+
+// The raster's own CRS for the frame: when the scene asks for it (an error
+// when the CRS cannot be one), or, when `byDefault` and the scene names no
+// frame, when the CRS is projected in metres and within kOwnCrsScaleError of
+// true scale over the box (a national grid or UTM, not Web Mercator away from
+// the equator). Nullopt: another frame.
+struct OwnCrs {
+    std::optional<Frame> frame;
+    bool failed = false;
+};
+OwnCrs ownCrsFrame(const RasterPlace& place, const PixelBox& box, const scene::FrameSpec& spec, bool byDefault,
+                   Diagnostics& diags) {
+    OGRSpatialReferenceH srs = place.crs.srs.get();
+    if (spec.kind == scene::FrameKind::Raster) {
+        if (projectedInMetres(srs)) return {crsFrame(srs)};
+        const char* name = OSRGetName(srs);
+        diags.error(spec.locs.at("frame.kind"),
+                    fmt::format("frame.kind = \"raster\" needs a raster in a projected CRS in metres, and {} is "
+                                "not one: use \"utm\" or \"local\"",
+                                name ? name : "the raster's CRS"));
+        return {std::nullopt, true};
+    }
+    const bool frameNamed = spec.locs.has("frame.kind") || spec.locs.has("frame.zone");
+    if (!byDefault || frameNamed || !projectedInMetres(srs) || scaleError(place, box) > kOwnCrsScaleError) return {};
+    return {crsFrame(srs)};
+}
+
+// The box of `box`'s cells in the raster's own CRS, and its cell there.
+NetExtent extentInOwnCrs(const RasterPlace& place, const PixelBox& box, Frame frame) {
+    const auto& g = place.geo;
+    const double xa = g[0] + box.x0 * g[1], xb = g[0] + box.x1 * g[1];
+    const double ya = g[3] + box.y0 * g[5], yb = g[3] + box.y1 * g[5];
+    return {std::move(frame),
+            {std::min(xa, xb), std::min(ya, yb), std::max(xa, xb), std::max(ya, yb)},
+            std::min(std::fabs(g[1]), std::fabs(g[5]))};
+}
+
 }  // namespace
 
 bool defaultIsDataBox(const HeightBand& band, const RasterPlace& place, std::optional<PixelBox> footprint,
@@ -177,7 +237,11 @@ std::optional<PixelBox> defaultPixelBox(const HeightBand& band, const RasterPlac
 }
 
 std::optional<NetExtent> netExtent(const RasterPlace& place, const PixelBox& box, const scene::FrameSpec& frameSpec,
-                                   const scene::NetSpec& net, const SourceLoc& fileLoc, Diagnostics& diags) {
+                                   const scene::NetSpec& net, bool ownCrsByDefault, const SourceLoc& fileLoc,
+                                   Diagnostics& diags) {
+    auto own = ownCrsFrame(place, box, frameSpec, ownCrsByDefault, diags);
+    if (own.failed) return std::nullopt;
+    if (own.frame) return extentInOwnCrs(place, box, std::move(*own.frame));
     std::vector<GeoSample> edge = footprintEdge(place, box);
     if (edge.size() < 4) {
         diags.error(fileLoc, "the raster's corners cannot be carried to latitude and longitude: check its CRS");

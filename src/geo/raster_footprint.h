@@ -41,8 +41,13 @@ PixelBox allCellCentres(const RasterPlace& place);
 std::optional<PixelBox> centresWithData(GDALRasterBandH cells, double scaleX, double scaleY, const HeightBand& band,
                                         const SourceLoc& fileLoc, Diagnostics& diags);
 
+/// The most a raster's own CRS may stray from true scale (|k - 1|) over the
+/// raster to be the frame by default: twice UTM's worst within its zone.
+inline constexpr double kOwnCrsScaleError = 0.002;
+
 /// Where the net goes: the frame (the scene's, for the raster's footprint or
-/// the scene's lon/lat window), the box (xmin, ymin, xmax, ymax, metres in the
+/// the scene's lon/lat window; the raster's own CRS when the scene asks, or
+/// names none and `ownCrsByDefault`: scene::FrameSpec says when), the box (xmin, ymin, xmax, ymax, metres in the
 /// frame) inside the footprint of `box` (0, 0, 1, 1 with a window: layoutNet
 /// places the net there), and the raster's cell on the ground (metres), at
 /// its centre or the window's.
@@ -52,6 +57,7 @@ struct NetExtent {
     double cellM = 0;
 };
 std::optional<NetExtent> netExtent(const RasterPlace& place, const PixelBox& box, const scene::FrameSpec& frameSpec,
-                                   const scene::NetSpec& net, const SourceLoc& fileLoc, Diagnostics& diags);
+                                   const scene::NetSpec& net, bool ownCrsByDefault, const SourceLoc& fileLoc,
+                                   Diagnostics& diags);
 
 }  // namespace relief::geo

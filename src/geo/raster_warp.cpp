@@ -5,9 +5,28 @@
 #include <cpl_conv.h>
 #include <cpl_error.h>
 
+#include "geo/crs_frame.h"
+
 namespace relief::geo {
 
 namespace {
+
+// The chain when the net's frame is the raster's CRS: the geotransform alone.
+void netPixelToRasterPixel(const NetToRaster& t, bool dstToSrc, double& x, double& y) {
+    const GeoGrid& net = *t.net;
+    const auto& geo = t.raster->geo;
+    const auto& inverse = t.raster->inverse;
+    if (dstToSrc) {
+        const double e = net.x0 + (x - 0.5) * net.dx, n = net.y0 + (net.rows() - 0.5 - y) * net.dy;
+        x = (inverse[0] + e * inverse[1] + n * inverse[2]) * t.scaleX;
+        y = (inverse[3] + e * inverse[4] + n * inverse[5]) * t.scaleY;
+        return;
+    }
+    const double px = x / t.scaleX, py = y / t.scaleY;
+    const double e = geo[0] + px * geo[1] + py * geo[2], n = geo[3] + px * geo[4] + py * geo[5];
+    x = (e - net.x0) / net.dx + 0.5;
+    y = net.rows() - 0.5 - (n - net.y0) / net.dy;
+}
 
 int transformNetToRaster(void* arg, int dstToSrc, int count, double* x, double* y, double* z, int* ok) {
     const auto& t = *static_cast<const NetToRaster*>(arg);
@@ -16,7 +35,9 @@ int transformNetToRaster(void* arg, int dstToSrc, int count, double* x, double* 
     for (int i = 0; i < count; ++i) {
         ok[i] = FALSE;
         double lat = 0, lon = 0, h = 0;
-        if (dstToSrc) {
+        if (t.inRasterCrs) {
+            netPixelToRasterPixel(t, dstToSrc, x[i], y[i]);
+        } else if (dstToSrc) {
             const Vec3 p{net.x0 + (x[i] - 0.5) * net.dx, net.y0 + (net.rows() - 0.5 - y[i]) * net.dy, 0};
             if (!frameToGeodetic(net.frame, p, lat, lon, h) || !raster.toPixel(lon, lat, x[i], y[i])) continue;
             if (t.wrapPixels > 0 && (x[i] < 0 || x[i] > raster.width)) {
@@ -63,7 +84,9 @@ constexpr ResamplingRow kResamplings[] = {
 }  // namespace
 
 NetToRaster netToRaster(const GeoGrid& net, const RasterPlace& raster) {
-    return {&net, &raster, raster.wrapPixels()};
+    const bool inRasterCrs =
+        net.frame.kind == scene::FrameKind::Raster && net.frame.crsWkt == crsFrame(raster.crs.srs.get()).crsWkt;
+    return {&net, &raster, raster.wrapPixels(), inRasterCrs};
 }
 
 Dataset memRaster(int cols, int rows, int bands, GDALDataType type) {

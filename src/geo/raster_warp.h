@@ -16,11 +16,13 @@ namespace relief::geo {
 
 /// The chain from a net node to a raster pixel and back: frame <-> WGS84
 /// (GeographicLib) <-> the raster's CRS (PROJ, through GDAL) <-> pixel and
-/// line (the geotransform). Both must outlive the warp.
+/// line (the geotransform); the geotransform alone when the frame is the
+/// raster's own CRS. Both must outlive the warp.
 struct NetToRaster {
     const GeoGrid* net = nullptr;
     const RasterPlace* raster = nullptr;
     double wrapPixels = 0;  ///< raster->wrapPixels(), once
+    bool inRasterCrs = false;  ///< the net's frame is the raster's own CRS (FrameKind::Raster)
     /// The warp's source pixels per pixel of `raster`: below 1 for a copy of
     /// the raster averaged to coarser cells (warped_net.cpp), else 1.
     double scaleX = 1, scaleY = 1;

@@ -20,9 +20,16 @@ using Box = curves::Bounds2;
 Box gridBox(const geo::GeoGrid& g) { return {g.x0, g.y0, g.xMax(), g.yMax()}; }
 
 bool sameFrame(const geo::Frame& p, const geo::Frame& q) {
-    return p.kind == q.kind && (p.kind == scene::FrameKind::Utm
-                                    ? p.utmZone == q.utmZone && p.northp == q.northp
-                                    : p.originLatDeg == q.originLatDeg && p.originLonDeg == q.originLonDeg);
+    if (p.kind != q.kind) return false;
+    switch (p.kind) {
+        case scene::FrameKind::Utm:
+            return p.utmZone == q.utmZone && p.northp == q.northp;
+        case scene::FrameKind::Local:
+            return p.originLatDeg == q.originLatDeg && p.originLonDeg == q.originLonDeg;
+        case scene::FrameKind::Raster:
+            return p.crsWkt == q.crsWkt;
+    }
+    return false;
 }
 
 // A point of b's frame at height z (in b's frame) in a's frame.

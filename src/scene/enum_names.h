@@ -26,7 +26,8 @@ struct EnumNames;
 
 template <>
 struct EnumNames<FrameKind> {
-    static constexpr NameRow<FrameKind> rows[] = {{FrameKind::Utm, "utm"}, {FrameKind::Local, "local"}};
+    static constexpr NameRow<FrameKind> rows[] = {
+        {FrameKind::Utm, "utm"}, {FrameKind::Local, "local"}, {FrameKind::Raster, "raster"}};
 };
 template <>
 struct EnumNames<Gridding> {

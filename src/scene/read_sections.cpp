@@ -72,7 +72,8 @@ void readFrame(Section& s, const SceneFile&, SceneSpec& scene) {
     if (auto k = s.named<FrameKind>("kind")) scene.frame.kind = *k;
     if (auto z = s.string("zone")) {
         scene.frame.utmZone = *z;
-        if (scene.frame.kind == FrameKind::Local) s.error("zone", "frame.zone is only used with kind = \"utm\"; remove it");
+        if (scene.frame.kind != FrameKind::Utm)
+            s.error("zone", "frame.zone is only used with kind = \"utm\"; remove it");
     }
 }
 

@@ -53,7 +53,9 @@ struct KeyLocations {
     bool knows(const std::string& qualifiedKey) const { return known.count(qualifiedKey) > 0; }
 };
 
-enum class FrameKind { Utm, Local };
+/// The frame's projection: a UTM zone, the local tangent plane at the data's
+/// centre, or a raster DEM's own projected CRS in metres (no reprojection).
+enum class FrameKind { Utm, Local, Raster };
 enum class Gridding { Linear, InverseDistance, Nearest };
 enum class Projection { Perspective, Orthographic };
 
@@ -110,7 +112,10 @@ struct SamplesSpec {
     KeyLocations locs;
 };
 
-/// [frame]: the projected frame the net is built in.
+/// [frame]: the projected frame the net is built in. A scene that names no
+/// kind (nor a zone) over one raster DEM in a projected CRS in metres, of
+/// scale within 0.2 % of true over the raster, takes the raster's
+/// own CRS (its cells need no reprojection); other data take UTM.
 struct FrameSpec {
     FrameKind kind = FrameKind::Utm;
     std::string utmZone = "auto";  ///< "auto" or e.g. "60S"

@@ -41,7 +41,7 @@ diff info.txt "$expected/info.txt" > info.diff || { fail "relief info says other
 # The default depth follows the still: a thumbnail gets fewer levels than a poster.
 depth_for() { "$relief" info "$dem" --set render.width="$1" --set render.height="$2" 2>/dev/null |
                 sed -n 's/^  depth: //p'; }
-[ "$(depth_for 160 120)" = 3 ] || fail "a 160 x 120 thumbnail got depth $(depth_for 160 120), not 3"
+[ "$(depth_for 160 120)" = 2 ] || fail "a 160 x 120 thumbnail got depth $(depth_for 160 120), not 2"
 [ "$(depth_for 3840 2160)" = 7 ] || fail "a 3840 x 2160 poster got depth $(depth_for 3840 2160), not 7"
 
 # A CSV of lon,lat,elev alone: gridded onto relief's 64 x 64 net.

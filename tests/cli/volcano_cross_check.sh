@@ -12,7 +12,7 @@ set -eu
 relief=$1 src=$2 work=$3
 rm -rf "$work" && mkdir -p "$work" && cd "$work"
 for name in map:volcano_full.csv lidar:rasters/volcano2.tif; do
-  printf '[samples]\npath = "%s"\n[net]\nextent_lonlat = [174.7615, -36.8796, 174.7678, -36.8722]\nspacing_m = 10\n[subdivision]\ndepth = 0\n' \
+  printf '[samples]\npath = "%s"\n[net]\nextent_lonlat = [174.7615, -36.8796, 174.7678, -36.8722]\nspacing_m = 10\n[frame]\nkind = "utm"\n[subdivision]\ndepth = 0\n' \
     "$src/scenes/data/${name#*:}" > "${name%%:*}.toml"
   "$relief" compile -q "${name%%:*}.toml" -o "${name%%:*}.pov" --dump-net "${name%%:*}.csv" 2>/dev/null
 done

@@ -59,6 +59,14 @@ fs::path writePlane(const fs::path& dir, int cols, int rows, int nodataCells = 0
     return path;
 }
 
+// The frame a scene names: `kind = "utm"` (the zone of the data's centre) or another kind.
+scene::FrameSpec namedFrame(scene::FrameKind kind = scene::FrameKind::Utm) {
+    scene::FrameSpec frame;
+    frame.kind = kind;
+    frame.locs.keys["frame.kind"] = {"scene.toml", 2, 8};
+    return frame;
+}
+
 scene::SamplesSpec rasterSpec(const fs::path& path, const std::string& crs) {
     scene::SamplesSpec s;
     s.path = path;
@@ -78,7 +86,7 @@ TEST(Raster, PlaneInANationalGridLandsWhereItShould) {
     scene::NetSpec net;
     net.spacingM = 7;  // not the raster's cell: nodes fall between cells
     Diagnostics diags;
-    const auto result = rasterNet(spec, {}, net, diags);
+    const auto result = rasterNet(spec, namedFrame(), net, diags);
     ASSERT_TRUE(result) << (diags.all().empty() ? "" : formatDiagnostic(diags.all()[0]));
     EXPECT_EQ(result->frame.describe(), "UTM zone 60S");
     EXPECT_EQ(result->filledNodata, 0u);
@@ -109,7 +117,7 @@ TEST(Raster, LonLatWindowChoosesTheNet) {
     const std::array<double, 4> window{174.7630, -36.8790, 174.7655, -36.8770};
     net.extentLonLat = window;
     Diagnostics diags;
-    const auto result = rasterNet(spec, {}, net, diags);
+    const auto result = rasterNet(spec, namedFrame(), net, diags);
     ASSERT_TRUE(result) << (diags.all().empty() ? "" : formatDiagnostic(diags.all()[0]));
     EXPECT_EQ(result->filledNodata, 0u);
     for (const Vec3& p : result->grid.points) {
@@ -281,7 +289,7 @@ TEST(Raster, OwnSpacingPutsTheNodesOnTheCellCentres) {
         scene::NetSpec net;
         net.spacingM = spacing;
         Diagnostics diags;
-        const auto result = rasterNet(rasterSpec(path, "EPSG:32760"), {}, net, diags);
+        const auto result = rasterNet(rasterSpec(path, "EPSG:32760"), namedFrame(), net, diags);
         ASSERT_TRUE(result) << (diags.all().empty() ? "" : formatDiagnostic(diags.all()[0]));
         EXPECT_EQ(result->frame.describe(), "UTM zone 60S");
         ASSERT_EQ(result->cols(), kCols);
@@ -293,6 +301,103 @@ TEST(Raster, OwnSpacingPutsTheNodesOnTheCellCentres) {
         for (int r = 0; r < kRows; ++r)
             for (int c = 0; c < kCols; ++c) ASSERT_NEAR(result->grid.at(r, c).z, cell(c, r), 0.02) << r << " " << c;
     }
+}
+
+// A raster in a national grid, with no frame in the scene: the frame is its
+// own CRS, a node on each cell's centre holding that cell's height exactly
+// (read, not resampled), and the nodes land on the Earth where NZTM puts them
+// (GeographicLib's transverse Mercator, independently of PROJ).
+TEST(Raster, ItsOwnCrsIsTheFrameAndItsCellsTheNet) {
+    const fs::path dir = freshDir("own-crs");
+    const fs::path path = dir / "nztm.asc";
+    constexpr int kCols = 30, kRows = 20;
+    auto cell = [](int c, int r) { return 100.0 + (c * 7 % 13) + 0.25 * r; };  // not a plane
+    {
+        std::ofstream out(path);
+        out << fmt::format("ncols {}\nnrows {}\nxllcenter {}\nyllcenter {}\ncellsize {}\n", kCols, kRows, kX0, kY0,
+                           kCell);
+        for (int r = kRows - 1; r >= 0; --r)
+            for (int c = 0; c < kCols; ++c) out << cell(c, r) << (c + 1 < kCols ? " " : "\n");
+    }
+    Diagnostics diags;
+    const auto result = rasterNet(rasterSpec(path, "EPSG:2193"), {}, {}, diags);
+    ASSERT_TRUE(result) << (diags.all().empty() ? "" : formatDiagnostic(diags.all()[0]));
+    EXPECT_EQ(result->frame.kind, scene::FrameKind::Raster);
+    EXPECT_EQ(result->frame.describe(), "NZGD2000 / New Zealand Transverse Mercator 2000 (the raster's own CRS)");
+    ASSERT_EQ(result->cols(), kCols);
+    ASSERT_EQ(result->rows(), kRows);
+    EXPECT_TRUE(result->copiedCells);
+    EXPECT_EQ(result->dx, kCell);
+    EXPECT_NEAR(result->x0, kX0, 1e-9);
+    EXPECT_NEAR(result->y0, kY0, 1e-9);
+    for (int r = 0; r < kRows; ++r)
+        for (int c = 0; c < kCols; ++c) ASSERT_EQ(result->grid.at(r, c).z, cell(c, r)) << r << " " << c;
+    for (const Vec3& p : {result->grid.at(0, 0), result->grid.at(kRows - 1, kCols - 1)}) {
+        double lat, lon, h, e, n;
+        ASSERT_TRUE(frameToGeodetic(result->frame, p, lat, lon, h));
+        nztm(lat, lon, e, n);
+        EXPECT_NEAR(e, p.x, 0.001);
+        EXPECT_NEAR(n, p.y, 0.001);
+        EXPECT_EQ(h, p.z);
+        Vec3 back;
+        ASSERT_TRUE(geodeticToFrame(result->frame, lat, lon, h, back));
+        EXPECT_NEAR(back.x, p.x, 1e-6);
+        EXPECT_NEAR(back.y, p.y, 1e-6);
+    }
+    // Grid north in NZTM at 174.76 E, 36.88 S: about (174.76 - 173) sin(36.88) = 1.06 degrees west of true
+    // north, as GeographicLib's transverse Mercator gives it.
+    const Vec3 centre = result->grid.at(kRows / 2, kCols / 2);
+    double lat, lon, h;
+    ASSERT_TRUE(frameToGeodetic(result->frame, centre, lat, lon, h));
+    static const GeographicLib::TransverseMercator tm(6378137, 1 / 298.257222101, 0.9996);
+    double e, n, gamma, k;
+    tm.Forward(173, lat, lon, e, n, gamma, k);
+    EXPECT_NEAR(gridConvergenceDeg(result->frame, centre.x, centre.y), gamma, 1e-5);
+
+    // The scene names UTM: the cells are reprojected into its zone, and resampled.
+    Diagnostics utmDiags;
+    const auto utm = rasterNet(rasterSpec(path, "EPSG:2193"), namedFrame(), {}, utmDiags);
+    ASSERT_TRUE(utm);
+    EXPECT_EQ(utm->frame.describe(), "UTM zone 60S");
+    EXPECT_FALSE(utm->copiedCells);
+}
+
+// The raster's CRS is the frame by default only when it is true to scale
+// (Web Mercator at 37 S is 25 % off: UTM then) and in metres (degrees: UTM);
+// asked for, a CRS in degrees is an error at the key, and so is the raster
+// frame for scattered samples.
+TEST(Raster, ItsOwnCrsOnlyWhenTrueToScaleAndInMetres) {
+    const fs::path dir = freshDir("own-crs-not");
+    const fs::path path = writePlane(dir, 20, 10);
+    Diagnostics diags;
+    const auto mercator = rasterNet(rasterSpec(path, "EPSG:3857"), {}, {}, diags);
+    ASSERT_TRUE(mercator) << (diags.all().empty() ? "" : formatDiagnostic(diags.all()[0]));
+    EXPECT_EQ(mercator->frame.kind, scene::FrameKind::Utm);
+    const auto asked = rasterNet(rasterSpec(path, "EPSG:3857"), namedFrame(scene::FrameKind::Raster), {}, diags);
+    ASSERT_TRUE(asked);
+    EXPECT_EQ(asked->frame.describe(), "WGS 84 / Pseudo-Mercator (the raster's own CRS)");
+
+    const fs::path degrees = dir / "degrees.asc";
+    {
+        std::ofstream out(degrees);
+        out << "ncols 10\nnrows 10\nxllcenter 174.76\nyllcenter -36.88\ncellsize 0.0005\n";
+        for (int r = 0; r < 10; ++r) out << "100 101 102 103 104 105 106 107 108 109\n";
+    }
+    Diagnostics geographic;
+    const auto utm = rasterNet(rasterSpec(degrees, "EPSG:4326"), {}, {}, geographic);
+    ASSERT_TRUE(utm) << (geographic.all().empty() ? "" : formatDiagnostic(geographic.all()[0]));
+    EXPECT_EQ(utm->frame.describe(), "UTM zone 60S");
+    Diagnostics refused;
+    EXPECT_FALSE(rasterNet(rasterSpec(degrees, "EPSG:4326"), namedFrame(scene::FrameKind::Raster), {}, refused));
+    ASSERT_EQ(refused.errorCount(), 1);
+    EXPECT_EQ(formatDiagnostic(refused.all()[0]),
+              "scene.toml:2:8: error: frame.kind = \"raster\" needs a raster in a projected CRS in metres, and WGS 84 "
+              "is not one: use \"utm\" or \"local\"");
+
+    Diagnostics scattered;
+    EXPECT_FALSE(chooseFrame(namedFrame(scene::FrameKind::Raster), {{174.76, -36.88, 100, {}}}, scattered));
+    ASSERT_EQ(scattered.errorCount(), 1);
+    EXPECT_NE(formatDiagnostic(scattered.all()[0]).find("scattered points"), std::string::npos);
 }
 
 // Samples that are one per node of a regular lattice are found as such, in

@@ -230,15 +230,15 @@ TEST(Pipeline, DefaultDepthIsChosenForTheStill) {
     const auto thumbnail = planForStill("160", "120", diags);
     const auto poster = planForStill("3840", "2160", diags);
     ASSERT_TRUE(thumbnail && poster) << (diags.all().empty() ? "" : formatDiagnostic(diags.all().back()));
-    // The raster's own 5 m cells: 168 nodes up either way, on the centres of its 174 rows inside the
-    // UTM zone's turn (the thumbnail's pixel, ~5.3 m, is not twice as coarse).
-    EXPECT_EQ(thumbnail->net.rows(), 168);
-    EXPECT_EQ(poster->net.rows(), 168);
-    // A pixel of the thumbnail covers ~3.4 m where the terrain is nearest: one level (2.5 m); the poster's
-    // ~0.20 m: five (0.156 m).
-    EXPECT_EQ(thumbnail->depth, 1) << thumbnail->depthReason;
+    // The raster's own 5 m cells in its own CRS: a node on each of its 174 rows either way (the
+    // thumbnail's pixel, ~5.5 m, is not twice as coarse).
+    EXPECT_EQ(thumbnail->net.rows(), 174);
+    EXPECT_EQ(poster->net.rows(), 174);
+    // A pixel of the thumbnail covers ~3.6 m where the terrain is nearest, within sqrt(2) of the 5 m
+    // net: no level; the poster's ~0.20 m: five (0.156 m).
+    EXPECT_EQ(thumbnail->depth, 0) << thumbnail->depthReason;
     EXPECT_EQ(poster->depth, 5) << poster->depthReason;
-    EXPECT_TRUE(thumbnail->depthReason.starts_with("chosen for the still: the net's 5 m refined to 2.5 m"))
+    EXPECT_TRUE(thumbnail->depthReason.starts_with("chosen for the still: the net's 5 m refined to 5 m, about the 3.6"))
         << thumbnail->depthReason;
     EXPECT_TRUE(thumbnail->refined.grid.points.empty());  // planned, not refined
 }
@@ -265,9 +265,9 @@ TEST(Pipeline, AFineRasterGetsANetForTheStill) {
     ASSERT_TRUE(loaded);
     const auto s = planSurface(*loaded, diags, 1);
     ASSERT_TRUE(s);
-    // 708 x 708 cells of 2.03 m over ~1.4 km: at 160 px a pixel is ~8.7 m, so the net is 8.7 m (two
-    // digits, rounded up), averaged from the cells under each node.
-    EXPECT_DOUBLE_EQ(s->net.dx, 8.7);
+    // 708 x 708 cells of 2.03 m, 1.44 km between the outermost centres: at 160 px a pixel is ~9.0 m,
+    // so the net is 9 m (two digits, rounded up), averaged from the cells under each node.
+    EXPECT_DOUBLE_EQ(s->net.dx, 9);
     EXPECT_EQ(s->net.resample, scene::Resample::Average);
     EXPECT_TRUE(s->net.spacingReason.starts_with("about one pixel of the 160 px wide still")) << s->net.spacingReason;
 }

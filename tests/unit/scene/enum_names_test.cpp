@@ -29,7 +29,7 @@ void expectOneNameEach(E last) {
 }
 
 TEST(EnumNames, EveryValueHasOneName) {
-    expectOneNameEach(FrameKind::Local);
+    expectOneNameEach(FrameKind::Raster);
     expectOneNameEach(Gridding::Nearest);
     expectOneNameEach(Projection::Orthographic);
     expectOneNameEach(Resample::Nearest);
