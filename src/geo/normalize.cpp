@@ -156,15 +156,17 @@ bool frameToGeodetic(const Frame& frame, Vec3 p, double& latDeg, double& lonDeg,
 
 namespace {
 
-// The bearing of the frame's y axis at (x, y), from the geodesic to a point
-// 100 m north on the grid: what GeographicLib's gamma is for UTM, for any CRS.
+// The bearing of the frame's y axis at (x, y): of the geodesic between the
+// points 5 m south and north of it on the grid, the mean of its azimuths at
+// its ends (its azimuth at its middle, to second order): what GeographicLib's
+// gamma is for UTM, for any CRS.
 double gridNorthBearingDeg(const Frame& frame, double x, double y) {
     double lat0, lon0, lat1, lon1, h;
-    if (!frameToGeodetic(frame, {x, y, 0}, lat0, lon0, h) || !frameToGeodetic(frame, {x, y + 100, 0}, lat1, lon1, h))
+    if (!frameToGeodetic(frame, {x, y - 5, 0}, lat0, lon0, h) || !frameToGeodetic(frame, {x, y + 5, 0}, lat1, lon1, h))
         return 0;
     double azimuth0, azimuth1;
     GeographicLib::Geodesic::WGS84().Inverse(lat0, lon0, lat1, lon1, azimuth0, azimuth1);
-    return azimuth0;
+    return 0.5 * (azimuth0 + azimuth1);
 }
 
 }  // namespace

@@ -216,8 +216,9 @@ PixelBox allCellCentres(const RasterPlace& place) {
     return cellCentres({0, 0, double(place.width), double(place.height)});
 }
 
-std::optional<PixelBox> centresWithData(GDALRasterBandH cells, double scaleX, double scaleY, const HeightBand& band,
-                                        const SourceLoc& fileLoc, Diagnostics& diags) {
+std::optional<PixelBox> centresWithData(GDALRasterBandH cells, double scaleX, double scaleY, double offsetX,
+                                        double offsetY, const HeightBand& band, const SourceLoc& fileLoc,
+                                        Diagnostics& diags) {
     const auto data = dataBox(cells, GDALGetRasterBandXSize(cells), GDALGetRasterBandYSize(cells), band.noData);
     if (!data) {
         diags.error(fileLoc, fmt::format("every cell of band {} is nodata ({}): check the band and the "
@@ -225,7 +226,8 @@ std::optional<PixelBox> centresWithData(GDALRasterBandH cells, double scaleX, do
                                          band.number, band.hasNoData ? formatShortest(band.declaredNoData) : "NaN"));
         return std::nullopt;
     }
-    return cellCentres({data->x0 / scaleX, data->y0 / scaleY, data->x1 / scaleX, data->y1 / scaleY});
+    return cellCentres({offsetX + data->x0 / scaleX, offsetY + data->y0 / scaleY, offsetX + data->x1 / scaleX,
+                        offsetY + data->y1 / scaleY});
 }
 
 std::optional<PixelBox> defaultPixelBox(const HeightBand& band, const RasterPlace& place,
@@ -233,7 +235,7 @@ std::optional<PixelBox> defaultPixelBox(const HeightBand& band, const RasterPlac
                                         const SourceLoc& fileLoc, Diagnostics& diags) {
     if (footprint) return footprint;
     if (!defaultIsDataBox(band, place, footprint, net)) return allCellCentres(place);
-    return centresWithData(band.band, 1, 1, band, fileLoc, diags);
+    return centresWithData(band.band, 1, 1, 0, 0, band, fileLoc, diags);
 }
 
 std::optional<NetExtent> netExtent(const RasterPlace& place, const PixelBox& box, const scene::FrameSpec& frameSpec,

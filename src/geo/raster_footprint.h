@@ -36,10 +36,12 @@ bool defaultIsDataBox(const HeightBand& band, const RasterPlace& place, std::opt
 PixelBox allCellCentres(const RasterPlace& place);
 
 /// The centres of the cells with data in `cells`, the raster's band or its
-/// cells averaged (`scale` of the raster's cells each way), in the raster's
-/// pixels. Nullopt, after an error naming `band`, when none has data.
-std::optional<PixelBox> centresWithData(GDALRasterBandH cells, double scaleX, double scaleY, const HeightBand& band,
-                                        const SourceLoc& fileLoc, Diagnostics& diags);
+/// cells averaged (`scale` of the raster's cells each way, the first average
+/// `offset` cells from its corner), in the raster's pixels. Nullopt, after an
+/// error naming `band`, when none has data.
+std::optional<PixelBox> centresWithData(GDALRasterBandH cells, double scaleX, double scaleY, double offsetX,
+                                        double offsetY, const HeightBand& band, const SourceLoc& fileLoc,
+                                        Diagnostics& diags);
 
 /// The most a raster's own CRS may stray from true scale (|k - 1|) over the
 /// raster to be the frame by default: twice UTM's worst within its zone.

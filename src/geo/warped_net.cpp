@@ -15,6 +15,7 @@
 #include <fmt/format.h>
 
 #include "core/text_escape.h"
+#include "geo/cell_blocks.h"
 #include "geo/raster.h"
 #include "geo/raster_heights.h"
 #include "geo/raster_mosaic.h"
@@ -38,6 +39,28 @@ scene::Resample resampleFor(const scene::SamplesSpec& samples, const scene::NetS
     return scene::Resample::Average;
 }
 
+// An averaged net in the raster's own frame over no window of the scene's:
+// onto the centres of blocks of whole cells (cell_blocks.h), k = the spacing
+// in cells, rounded when relief chose the spacing for the still. False after
+// an error (the blocks over the limits).
+bool onBlocksWhenAveraged(ControlNet& net, const RasterPlace& place, const NetExtent& extent,
+                          const scene::SamplesSpec& samples, const scene::NetSpec& netSpec, Diagnostics& diags,
+                          const NetBudget& budget) {
+    if (net.frame.kind != scene::FrameKind::Raster || net.resample != scene::Resample::Average || netSpec.extentM ||
+        netSpec.extentLonLat)
+        return true;
+    GeoGrid blocks = net;
+    if (averagesWhenCoarser(samples, netSpec))
+        blocks.dx = blocks.dy = std::max(2.0, std::round(net.dx / extent.cellM)) * extent.cellM;
+    if (!onBlockCentres(blocks, place, extent.box)) return true;
+    const bool more = double(blocks.rows()) * blocks.cols() > double(net.rows()) * net.cols();
+    if (more && budget.fits && !budget.fits(blocks.rows(), blocks.cols(), diags)) return false;
+    const int k = blockSideOf(blocks, place);
+    if (blocks.dx != net.dx) net.spacingReason += fmt::format(": the mean of each block of {0} x {0} cells", k);
+    static_cast<GeoGrid&>(net) = std::move(blocks);
+    return true;
+}
+
 // The net laid over the extent and described (what was read and how), without heights.
 std::optional<ControlNet> laidOutNet(GDALDatasetH src, const RasterPlace& place, const NetExtent& extent,
                                      const scene::SamplesSpec& samples, const scene::NetSpec& netSpec,
@@ -49,6 +72,7 @@ std::optional<ControlNet> laidOutNet(GDALDatasetH src, const RasterPlace& place,
     if (!layoutNet(netSpec, extent.box, extent.cellM, net, diags, budget)) return std::nullopt;
     net.spacingReason = netSpacingReason(netSpec, net, extent.cellM, budget.stillWidthPx);
     net.resample = resampleFor(samples, netSpec, net, extent.cellM);
+    if (!onBlocksWhenAveraged(net, place, extent, samples, netSpec, diags, budget)) return std::nullopt;
     const char* crsName = OSRGetName(place.crs.srs.get());
     net.raster = fmt::format("{} x {} cells, band {}, {}", place.width, place.height, samples.band,
                              crsName ? oneLineText(crsName) : "unnamed CRS");
@@ -62,6 +86,7 @@ struct WarpedHeights {
     Dataset netRaster;
     std::vector<double> z;
     bool copiedCells = false;  ///< every node a cell's centre: the cells read as they are
+    int blockSide = 0;         ///< every node a block's centre: the means of blocks of this many cells a side, read
 };
 
 // The cells averaged in blocks of about `factor` by `factor` (GDAL spreads
@@ -69,14 +94,24 @@ struct WarpedHeights {
 // RasterIO as gdal_translate -outsize -r average does, reading the file once
 // and its overviews when it has them: a raster in memory, its cells `scale`
 // of the source's.
+// With `blocks`, the means of exact blocks of k x k cells instead (cell_blocks.h).
 struct AveragedCells {
     Dataset raster;
     double scaleX = 1, scaleY = 1;
     int factor = 1;
+    std::optional<CellBlocks> blocks;
+    double offsetX() const { return blocks ? blocks->column0 : 0; }
+    double offsetY() const { return blocks ? blocks->row0 : 0; }
 };
-std::optional<AveragedCells> averagedCells(const HeightBand& band, const RasterPlace& place, int factor) {
-    const int w = (place.width + factor - 1) / factor, h = (place.height + factor - 1) / factor;
-    AveragedCells out{memRaster(w, h, 1, GDT_Float64), double(w) / place.width, double(h) / place.height, factor};
+std::optional<AveragedCells> averagedCells(const HeightBand& band, const RasterPlace& place, int factor,
+                                           bool inBlocks = false) {
+    std::optional<CellBlocks> blocks;
+    if (inBlocks) blocks = cellBlocks(place, factor);
+    const int w = blocks ? blocks->columns : (place.width + factor - 1) / factor;
+    const int h = blocks ? blocks->rows : (place.height + factor - 1) / factor;
+    const int x0 = blocks ? blocks->column0 : 0, y0 = blocks ? blocks->row0 : 0;
+    const int readW = blocks ? w * factor : place.width, readH = blocks ? h * factor : place.height;
+    AveragedCells out{memRaster(w, h, 1, GDT_Float64), double(w) / readW, double(h) / readH, factor, blocks};
     std::vector<double> cells;
     try {
         cells.resize(static_cast<size_t>(w) * h);
@@ -86,8 +121,8 @@ std::optional<AveragedCells> averagedCells(const HeightBand& band, const RasterP
     GDALRasterIOExtraArg arg;
     INIT_RASTERIO_EXTRA_ARG(arg);
     arg.eResampleAlg = GRIORA_Average;
-    if (!out.raster || GDALRasterIOEx(band.band, GF_Read, 0, 0, place.width, place.height, cells.data(), w, h,
-                                      GDT_Float64, 0, 0, &arg) != CE_None)
+    if (!out.raster || GDALRasterIOEx(band.band, GF_Read, x0, y0, readW, readH, cells.data(), w, h, GDT_Float64, 0, 0,
+                                      &arg) != CE_None)
         return std::nullopt;
     GDALRasterBandH averaged = GDALGetRasterBand(out.raster.get(), 1);
     GDALSetRasterNoDataValue(averaged, band.noData);
@@ -96,30 +131,11 @@ std::optional<AveragedCells> averagedCells(const HeightBand& band, const RasterP
     return out;
 }
 
-// The raster's cell under the net's north-west node when every node is a
-// cell's centre (the frame is the raster's own CRS, the spacing its cell, the
-// nodes whole cells from its corner, all on it); nullopt otherwise.
-struct CellWindow {
-    int column = 0, row = 0;
-};
-std::optional<CellWindow> nodesOnCellCentres(const ControlNet& net, const NetToRaster& chain) {
-    const RasterPlace& place = *chain.raster;
-    const auto& g = place.geo;
-    auto same = [](double a, double b) { return std::fabs(a - b) <= 1e-9 * std::fabs(b); };
-    if (!chain.inRasterCrs || !same(net.dx, g[1]) || !same(net.dy, -g[5]) || g[2] != 0 || g[4] != 0)
-        return std::nullopt;
-    const double column = (net.x0 - g[0]) / g[1] - 0.5, row = (net.yMax() - g[3]) / g[5] - 0.5;
-    const double c = std::round(column), r = std::round(row);
-    if (std::fabs(column - c) > 1e-6 || std::fabs(row - r) > 1e-6 || c < 0 || r < 0 || c + net.cols() > place.width ||
-        r + net.rows() > place.height)
-        return std::nullopt;
-    return CellWindow{static_cast<int>(c), static_cast<int>(r)};
-}
-
-// The heights of nodes on the cells' centres: the cells themselves, read as
-// gdal_translate copies them (a warp would interpolate at the centres, to the
-// same values at many times the cost), nodata cells marked kNetNoData.
-bool readCellsOntoNet(const HeightBand& band, const CellWindow& window, WarpedHeights& out, int rows, int cols) {
+// The heights of nodes on the cells' centres (of the raster, or of its
+// blocks' means): the cells themselves, read as gdal_translate copies them (a
+// warp would interpolate at the centres, to the same values at many times the
+// cost), nodata cells marked kNetNoData.
+bool readCellsOntoNet(const HeightBand& band, const BlockWindow& window, WarpedHeights& out, int rows, int cols) {
     out.z.resize(static_cast<size_t>(rows) * cols);
     if (GDALRasterIO(band.band, GF_Read, window.column, window.row, cols, rows, out.z.data(), cols, rows, GDT_Float64,
                      0, 0) != CE_None)
@@ -130,6 +146,27 @@ bool readCellsOntoNet(const HeightBand& band, const CellWindow& window, WarpedHe
     // The net as a raster only serves the filling of nodes without data.
     return empty == 0 || GDALRasterIO(GDALGetRasterBand(out.netRaster.get(), 1), GF_Write, 0, 0, cols, rows,
                                       out.z.data(), cols, rows, GDT_Float64, 0, 0) == CE_None;
+}
+
+// What the net's heights are read from when no warp is needed: the raster's
+// cells, or the blocks' means, under nodes on their centres.
+struct ReadWindow {
+    HeightBand band;
+    BlockWindow window;
+};
+std::optional<ReadWindow> readWithoutWarp(const HeightBand& band, const RasterPlace& place, const ControlNet& net,
+                                          const NetToRaster& chain, const AveragedCells* averaged) {
+    if (!chain.inRasterCrs) return std::nullopt;
+    if (!averaged) {
+        const auto window = nodesOnBlockCentres(net, place, cellBlocks(place, 1));
+        return window ? std::optional<ReadWindow>({band, *window}) : std::nullopt;
+    }
+    if (!averaged->blocks) return std::nullopt;
+    const auto window = nodesOnBlockCentres(net, place, *averaged->blocks);
+    if (!window) return std::nullopt;
+    HeightBand means = band;
+    means.band = GDALGetRasterBand(averaged->raster.get(), 1);
+    return ReadWindow{means, *window};
 }
 
 std::optional<WarpedHeights> warpHeights(const Dataset& src, const RasterPlace& place, const HeightBand& band,
@@ -147,15 +184,17 @@ std::optional<WarpedHeights> warpHeights(const Dataset& src, const RasterPlace& 
     GDALRasterBandH netBand = GDALGetRasterBand(out.netRaster.get(), 1);
     GDALSetRasterNoDataValue(netBand, kNetNoData);
     NetToRaster chain = netToRaster(net, place);
-    if (const auto window = averaged ? std::nullopt : nodesOnCellCentres(net, chain)) {
-        if (readCellsOntoNet(band, *window, out, rows, cols)) {
-            out.copiedCells = true;
+    if (const auto read = readWithoutWarp(band, place, net, chain, averaged)) {
+        if (readCellsOntoNet(read->band, read->window, out, rows, cols)) {
+            out.copiedCells = !averaged;
+            out.blockSide = averaged ? averaged->factor : 0;
             if (progress) progress(1.0);
             return out;
         }
         diags.error(fileLoc, fmt::format("GDAL could not read the raster's cells: {}", CPLGetLastErrorMsg()));
         return std::nullopt;
     }
+    if (averaged && averaged->blocks) averaged = nullptr;  // not the net's blocks: warp the cells themselves
     GDALWarpOptions* wo = averaged ? warpOptions(averaged->raster.get(), out.netRaster.get(), {1})
                                    : warpOptions(src.get(), out.netRaster.get(), {band.number});
     wo->eWorkingDataType = GDT_Float64;
@@ -203,24 +242,34 @@ std::optional<PlacedNet> placedNet(const Dataset& src, const RasterPlace& place,
     return PlacedNet{*extent, std::move(*net), std::nullopt};
 }
 
-// How many cells a side the cells are averaged by before the warp: a net
-// relief made coarser than them is warped bilinearly from their averages,
-// which costs reading the file once, where the warper's own average weighs
-// every cell of every node's footprint through the projections (2.7x
-// gdal_translate's time on 53 M cells). 1: not averaged.
-int averagingFactor(const PlacedNet& placed, const scene::SamplesSpec& samples) {
-    const int factor = static_cast<int>(std::min(placed.net.dx, placed.net.dy) / placed.extent.cellM);
-    return placed.net.resample != samples.resample && factor >= 2 ? factor : 1;
+// How many cells a side the cells are averaged by first: a net relief made
+// coarser than them is warped bilinearly from their averages, which costs
+// reading the file once, where the warper's own average weighs every cell of
+// every node's footprint through the projections (2.7x gdal_translate's time
+// on 53 M cells); a net on the centres of blocks of cells (cell_blocks.h) is
+// their means, read. Factor 1: not averaged.
+struct Averaging {
+    int factor = 1;
+    bool blocks = false;
+};
+Averaging averagingFor(const PlacedNet& placed, const RasterPlace& place, const scene::SamplesSpec& samples) {
+    const ControlNet& net = placed.net;
+    if (const int k = blockSideOf(net, place);
+        k >= 2 && net.resample == scene::Resample::Average && nodesOnBlockCentres(net, place, cellBlocks(place, k)))
+        return {k, true};
+    const int factor = static_cast<int>(std::min(net.dx, net.dy) / placed.extent.cellM);
+    return {net.resample != samples.resample && factor >= 2 ? factor : 1, false};
 }
 
-// The averages the net is warped from: those at hand when they are at its factor, else new ones, or none.
+// The averages the net is warped or read from: those at hand when they are the ones it needs, else new ones, or none.
 bool keepOrAverage(PlacedNet& placed, const HeightBand& band, const RasterPlace& place,
                    const scene::SamplesSpec& samples, const SourceLoc& fileLoc, Diagnostics& diags) {
-    const int factor = averagingFactor(placed, samples);
-    if (placed.averaged && placed.averaged->factor == factor) return true;
+    const Averaging a = averagingFor(placed, place, samples);
+    if (placed.averaged && placed.averaged->factor == a.factor && placed.averaged->blocks.has_value() == a.blocks)
+        return true;
     placed.averaged.reset();
-    if (factor < 2) return true;
-    placed.averaged = averagedCells(band, place, factor);
+    if (a.factor < 2) return true;
+    placed.averaged = averagedCells(band, place, a.factor, a.blocks);
     if (!placed.averaged)
         diags.error(fileLoc, fmt::format("GDAL could not average the raster's cells to the net's spacing: {}",
                                          CPLGetLastErrorMsg()));
@@ -239,12 +288,12 @@ struct AveragedData {
 std::optional<AveragedData> dataAmongAverages(const std::optional<PlacedNet>& overAll, const HeightBand& band,
                                               const RasterPlace& place, const scene::SamplesSpec& samples,
                                               const SourceLoc& fileLoc, Diagnostics& diags) {
-    const int factor = overAll ? averagingFactor(*overAll, samples) : 1;
-    if (factor < 2) return std::nullopt;
-    auto averaged = averagedCells(band, place, factor);
+    const Averaging a = overAll ? averagingFor(*overAll, place, samples) : Averaging{};
+    if (a.factor < 2) return std::nullopt;
+    auto averaged = averagedCells(band, place, a.factor, a.blocks);
     if (!averaged) return std::nullopt;  // the file read again below says why
-    auto box = centresWithData(GDALGetRasterBand(averaged->raster.get(), 1), averaged->scaleX, averaged->scaleY, band,
-                               fileLoc, diags);
+    auto box = centresWithData(GDALGetRasterBand(averaged->raster.get(), 1), averaged->scaleX, averaged->scaleY,
+                               averaged->offsetX(), averaged->offsetY(), band, fileLoc, diags);
     return AveragedData{box, std::move(*averaged)};
 }
 
@@ -301,7 +350,9 @@ std::optional<ControlNet> warpedNet(const Dataset& src, const scene::SamplesSpec
         return std::nullopt;
     setNodeHeights(net, warped->z, scale);
     net.copiedCells = warped->copiedCells;
-    net.raster += fmt::format(", {}", net.copiedCells ? "the cells as they are" : scene::nameOf(net.resample));
+    net.raster += warped->blockSide ? fmt::format(", the mean of each {0} x {0} cells", warped->blockSide)
+                  : net.copiedCells ? std::string(", the cells as they are")
+                                    : fmt::format(", {}", scene::nameOf(net.resample));
     return std::move(net);
 }
 

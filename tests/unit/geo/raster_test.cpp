@@ -362,6 +362,58 @@ TEST(Raster, ItsOwnCrsIsTheFrameAndItsCellsTheNet) {
     EXPECT_FALSE(utm->copiedCells);
 }
 
+// A net relief makes coarser for the still, in the raster's own frame: the
+// centres of blocks of k x k cells (k the still's pixel in whole cells), each
+// node its block's mean; a scene that gives that spacing and the average (as
+// relief init writes it) reads the same blocks.
+TEST(Raster, ACoarserNetInItsOwnCrsIsTheMeansOfBlocksOfCells) {
+    const fs::path dir = freshDir("blocks");
+    const fs::path path = dir / "nztm.asc";
+    constexpr int kCols = 30, kRows = 21;
+    auto cell = [](int c, int r) { return 100.0 + (c * 7 % 13) + 0.25 * r; };  // row 0 south
+    {
+        std::ofstream out(path);
+        out << fmt::format("ncols {}\nnrows {}\nxllcenter {}\nyllcenter {}\ncellsize {}\n", kCols, kRows, kX0, kY0,
+                           kCell);
+        for (int r = kRows - 1; r >= 0; --r)
+            for (int c = 0; c < kCols; ++c) out << cell(c, r) << (c + 1 < kCols ? " " : "\n");
+    }
+    NetBudget still;
+    still.stillWidthPx = 7;  // 290 m across: 42 m a pixel, about 4 cells
+    Diagnostics diags;
+    const auto chosen = rasterNet(rasterSpec(path, "EPSG:2193"), {}, {}, diags, {}, still);
+    ASSERT_TRUE(chosen) << (diags.all().empty() ? "" : formatDiagnostic(diags.all()[0]));
+    EXPECT_EQ(chosen->resample, scene::Resample::Average);
+    EXPECT_EQ(chosen->dx, 4 * kCell);
+    // 30 columns: 7 blocks, the 2 columns left over split between the edges; 21 rows: 5 blocks, 1 left.
+    ASSERT_EQ(chosen->cols(), 7);
+    ASSERT_EQ(chosen->rows(), 5);
+    EXPECT_NEAR(chosen->x0, kX0 + 1 * kCell + 1.5 * kCell, 1e-9);
+    EXPECT_NE(chosen->raster.find("the mean of each 4 x 4 cells"), std::string::npos) << chosen->raster;
+    for (int i = 0; i < 5; ++i)  // block rows from the north: cell rows (from the north) 4 i .. 4 i + 3
+        for (int j = 0; j < 7; ++j) {
+            double sum = 0;
+            for (int a = 0; a < 4; ++a)
+                for (int b = 0; b < 4; ++b) sum += cell(1 + 4 * j + b, kRows - 1 - (4 * i + a));
+            ASSERT_NEAR(chosen->grid.at(4 - i, j).z, sum / 16, 1e-9) << i << " " << j;
+        }
+
+    auto spec = rasterSpec(path, "EPSG:2193");
+    spec.resample = scene::Resample::Average;
+    spec.locs.keys["samples.resample"] = {};
+    scene::NetSpec given;
+    given.spacingM = 4 * kCell;
+    Diagnostics givenDiags;
+    const auto written = rasterNet(spec, namedFrame(scene::FrameKind::Raster), given, givenDiags);
+    ASSERT_TRUE(written) << (givenDiags.all().empty() ? "" : formatDiagnostic(givenDiags.all()[0]));
+    ASSERT_EQ(written->cols(), chosen->cols());
+    ASSERT_EQ(written->rows(), chosen->rows());
+    EXPECT_EQ(written->x0, chosen->x0);
+    EXPECT_EQ(written->y0, chosen->y0);
+    for (size_t i = 0; i < chosen->grid.points.size(); ++i)
+        ASSERT_EQ(written->grid.points[i].z, chosen->grid.points[i].z) << i;
+}
+
 // The raster's CRS is the frame by default only when it is true to scale
 // (Web Mercator at 37 S is 25 % off: UTM then) and in metres (degrees: UTM);
 // asked for, a CRS in degrees is an error at the key, and so is the raster
