@@ -86,16 +86,21 @@ OutputPaths outputPathsFor(const std::filesystem::path& png) {
     return p;
 }
 
-std::optional<LoadedScene> loadScene(const std::filesystem::path& scenePath,
-                                     Diagnostics& diags, const scene::SceneOverrides& overrides) {
+std::optional<LoadedScene> loadScene(const std::filesystem::path& named, Diagnostics& diags,
+                                     const scene::SceneOverrides& overrides) {
     const auto t0 = Clock::now();
+    // "tiles/" is the folder "tiles", beside which its scene lies.
+    const std::filesystem::path scenePath = named.has_filename() ? named : named.parent_path();
     std::string why;
     const InputKind kind = inputKindOf(scenePath, why);
     if (kind == InputKind::Neither) {
-        diags.error({scenePath.string(), 0, 0},
-                    fmt::format("relief reads a scene file (TOML), a raster DEM GDAL opens (GeoTIFF, SRTM .hgt, ESRI "
-                                "ASCII grid, VRT, ...) or a CSV of lon,lat,elev samples, and this is none of them ({})",
-                                why));
+        diags.error(
+            {scenePath.string(), 0, 0},
+            fmt::format(
+                "relief reads a scene file (TOML), a raster DEM GDAL opens (GeoTIFF, SRTM .hgt, ESRI "
+                "ASCII grid, VRT, ...), a folder of such tiles or a CSV of lon,lat,elev samples, and this is none of "
+                "them ({})",
+                why));
         return std::nullopt;
     }
     const std::string made = kind == InputKind::Scene ? std::string() : sceneTextForData(scenePath);

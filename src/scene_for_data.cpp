@@ -12,6 +12,7 @@
 #include "core/input_file.h"
 #include "core/number_format.h"
 #include "geo/raster.h"
+#include "geo/raster_mosaic.h"
 #include "scene/enum_names.h"
 
 namespace relief {
@@ -26,6 +27,10 @@ std::string tomlString(const std::string& text) {
 
 InputKind inputKindOf(const fs::path& path, std::string& why) {
     std::error_code ec;
+    if (fs::is_directory(path, ec)) {  // a folder of tiles
+        if (!geo::rasterTilesIn(path, why).empty()) return InputKind::Raster;
+        return InputKind::Neither;
+    }
     if (!fs::is_regular_file(path, ec) || path.extension() == ".toml") return InputKind::Scene;
     if (geo::isRasterDem(path)) return InputKind::Raster;
     if (path.extension() == ".csv") return InputKind::Samples;
@@ -49,10 +54,16 @@ InputKind inputKindOf(const fs::path& path, std::string& why) {
     return InputKind::Neither;
 }
 
-std::string sceneTextForData(const fs::path& data) {
-    const auto summary = geo::rasterSummary(data);
-    std::string title = summary ? summary->title : std::string();
-    if (title.empty()) title = data.stem().string();
+std::string sceneTextForData(const fs::path& path) {
+    // A folder of tiles is named by the folder, and summed up by its first tile.
+    const fs::path data = path.has_filename() ? path : path.parent_path();
+    std::error_code ec;
+    std::string ignored;
+    const std::vector<fs::path> tiles =
+        fs::is_directory(data, ec) ? geo::rasterTilesIn(data, ignored) : std::vector<fs::path>{};
+    const auto summary = geo::rasterSummary(tiles.empty() ? data : tiles.front());
+    std::string title = summary && tiles.empty() ? summary->title : std::string();
+    if (title.empty()) title = tiles.empty() ? data.stem().string() : data.filename().string();
     // Deeper than any dry land (the Dead Sea's shore, -430 m): a sea floor, in the topobathy ramp's blues.
     const bool seaFloor = summary && summary->range && (*summary->range)[0] <= kSeaFloorM;
     return fmt::format(

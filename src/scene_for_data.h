@@ -12,7 +12,7 @@ namespace relief {
 /// What a file named in place of a scene is.
 enum class InputKind {
     Scene,    ///< a scene file (TOML), or a file that is not there (the scene reader says so)
-    Raster,   ///< a raster GDAL opens: GeoTIFF, SRTM .hgt, ESRI ASCII grid, VRT, ...
+    Raster,   ///< a raster GDAL opens (GeoTIFF, SRTM .hgt, ESRI ASCII grid, VRT, ...), or a folder of them
     Samples,  ///< a CSV of lon,lat,elev samples
     Neither,  ///< none of these; `why` says what it is not
 };

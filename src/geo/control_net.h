@@ -6,6 +6,7 @@
 //
 // What the samples file is decides how it becomes a net, by the first row of
 // sampleSources() that recognises it:
+//  - a folder is the raster tiles in it, mosaicked (raster_mosaic.h);
 //  - a raster GDAL reads (GeoTIFF, SRTM .hgt, ASCII grid, VRT, ...) is
 //    resampled onto the net by GDAL's warper (raster.h: rasterNet);
 //  - anything else is scattered samples (a CSV of lon, lat, elev; samples.h),

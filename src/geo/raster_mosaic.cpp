@@ -1,7 +1,9 @@
 #include "geo/raster_mosaic.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
+#include <string_view>
 
 #include <cpl_conv.h>
 #include <cpl_error.h>
@@ -9,11 +11,23 @@
 #include <fmt/format.h>
 #include <gdal_utils.h>
 
+#include "core/text_escape.h"
+#include "geo/raster.h"
+
 namespace relief::geo {
 
 namespace fs = std::filesystem;
 
 namespace {
+
+// GDAL's files beside a raster, which GDAL may read as rasters of their own.
+bool sideFile(const fs::path& file) {
+    const std::string name = file.filename().string();
+    if (name.empty() || name.front() == '.') return true;
+    for (std::string_view end : {".ovr", ".msk", ".aux.xml"})
+        if (name.size() > end.size() && name.compare(name.size() - end.size(), end.size(), end) == 0) return true;
+    return false;
+}
 
 // The tile's CRS, or null when it has none.
 Srs crsOf(GDALDatasetH ds) {
@@ -77,6 +91,29 @@ double coverage(const std::vector<Dataset>& tiles) {
 }
 
 }  // namespace
+
+std::vector<fs::path> rasterTilesIn(const fs::path& folder, std::string& problem) {
+    std::vector<fs::path> tiles;
+    std::error_code ec;
+    size_t files = 0;
+    for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
+        if (!it->is_regular_file(ec) || sideFile(it->path())) continue;
+        if (++files > 4 * kMaxTiles) break;  // a folder of everything: no scan of all of it
+        if (isRasterDem(it->path())) tiles.push_back(it->path());
+    }
+    if (ec) {
+        problem = fmt::format("the folder cannot be read ({})", ec.message());
+        return {};
+    }
+    if (tiles.size() > kMaxTiles || files > 4 * kMaxTiles) {
+        problem = fmt::format("the folder holds more than the {} tiles a scene may mosaic", kMaxTiles);
+        return {};
+    }
+    if (tiles.empty()) problem = "the folder holds no raster GDAL reads";
+    std::sort(tiles.begin(), tiles.end(),
+              [](const fs::path& a, const fs::path& b) { return a.filename() < b.filename(); });
+    return tiles;
+}
 
 Dataset mosaicOf(const std::vector<fs::path>& tiles, const SourceLoc& at, Diagnostics& diags) {
     std::vector<Dataset> opened;

@@ -16,9 +16,13 @@ namespace relief::scene {
 namespace {
 
 // One file of samples.path, resolved against the scene's folder and checked; `written` gathers the names.
-std::filesystem::path samplesFile(Section& s, const SceneFile& f, const std::string& p, std::string& written) {
+// A folder, when `folderToo`: its raster tiles (geo reads which they are).
+std::filesystem::path samplesFile(Section& s, const SceneFile& f, const std::string& p, std::string& written,
+                                  bool folderToo = false) {
     written += (written.empty() ? "" : ", ") + p;
     const std::filesystem::path path = f.path.parent_path() / p;
+    std::error_code ec;
+    if (folderToo && std::filesystem::is_directory(path, ec)) return path;
     if (const std::string problem = inputFileProblem(path); problem == "no such file")
         s.error("path", fmt::format("samples.path: file \"{}\" not found (looked "
                                     "for {}; the path is relative to the scene file)",
@@ -31,7 +35,7 @@ std::filesystem::path samplesFile(Section& s, const SceneFile& f, const std::str
 // path = ["n55w004.hgt", "n55w003.hgt", ...]: raster tiles of one DEM.
 void readTiles(Section& s, const SceneFile& f, const toml::array& list, SamplesSpec& samples) {
     s.markKnown("path");
-    constexpr size_t kMaxTiles = 10000;
+    constexpr size_t kMaxTiles = 10000;  // geo::kMaxTiles
     if (list.empty() || list.size() > kMaxTiles || !list.is_homogeneous(toml::node_type::string)) {
         s.error("path", fmt::format("samples.path must be a file, or a list of 1 to {} raster tiles as strings "
                                     "(path = [\"a.tif\", \"b.tif\"])",
@@ -57,7 +61,7 @@ void readSamples(Section& s, const SceneFile& f, SceneSpec& scene) {
         if (const toml::node* list = s.find("path"); list && list->is_array())
             readTiles(s, f, *list->as_array(), samples);
         else if (auto p = s.string("path"))
-            samples.path = samplesFile(s, f, *p, samples.pathAsWritten);
+            samples.path = samplesFile(s, f, *p, samples.pathAsWritten, true);
     }
     if (auto a = s.text("attribution")) samples.attribution = *a;
     if (auto e = s.choice("elevations", {"earth", "any"})) samples.earthElevations = *e == "earth";

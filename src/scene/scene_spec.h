@@ -95,6 +95,7 @@ inline constexpr double kAnyElevationLimitM = 1e7;
 struct SamplesSpec {
     std::filesystem::path path;   ///< resolved against the scene file's folder
     std::string pathAsWritten;    ///< for messages and the .pov header
+    /// `path` may be a folder: the raster tiles in it (geo::rasterTilesIn), mosaicked.
     /// path = [...]: adjacent raster tiles mosaicked into one (geo/raster_mosaic.h);
     /// `path` is the first, `pathAsWritten` all of them. Empty for one file.
     std::vector<std::filesystem::path> tiles;

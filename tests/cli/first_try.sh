@@ -54,7 +54,7 @@ printf 'no TOML\x00\x01\x02 and no commas\n' > neither.bin
 "$relief" render neither.bin -o neither/x.png 2>neither.err
 rc=$?
 [ "$rc" = 2 ] || fail "a file that is neither exited $rc, not 2"
-grep -q '^neither.bin: error: relief reads a scene file (TOML), a raster DEM GDAL opens (GeoTIFF, SRTM .hgt, ESRI ASCII grid, VRT, ...) or a CSV of lon,lat,elev samples, and this is none of them (not TOML: ' neither.err ||
+grep -q '^neither.bin: error: relief reads a scene file (TOML), a raster DEM GDAL opens (GeoTIFF, SRTM .hgt, ESRI ASCII grid, VRT, ...), a folder of such tiles or a CSV of lon,lat,elev samples, and this is none of them (not TOML: ' neither.err ||
   { fail "a file that is neither got another message:"; cat neither.err; }
 [ -z "$(find . -path './neither/*' -type f)" ] || fail "a file that is neither left $(find neither -type f) behind"
 
@@ -68,6 +68,14 @@ cut west 0 0 16 44 && cut east 16 0 15 44 && cut nw 0 0 16 22 && cut sw 0 22 16 
 printf '[samples]\npath = ["west.tif", "east.tif"]\n[overlay]\ntitle = "Maungawhau / Mt Eden"\n' > tiles/halves.toml
 "$relief" render -q tiles/halves.toml -o tiles/halves.png 2>tiles.err || { fail "two tiles did not render"; cat tiles.err; }
 cmp -s alone/dem.png tiles/halves.png || fail "two tiles of the DEM did not make the still the whole DEM makes"
+# A folder of tiles, as path or alone: the same still (side files of GDAL's and other files in it left out).
+mkdir -p tiles/folder && cp tiles/west.tif tiles/east.tif tiles/folder/ && echo "LiDAR tiles" > tiles/folder/README.txt &&
+  gdaladdo -q -ro tiles/folder/west.tif 2 || fail "could not make the folder of tiles"
+printf '[samples]\npath = "folder"\n[overlay]\ntitle = "Maungawhau / Mt Eden"\n' > tiles/folder.toml
+"$relief" render -q tiles/folder.toml -o tiles/folder.png 2>tiles.err || { fail "a folder of tiles did not render"; cat tiles.err; }
+cmp -s alone/dem.png tiles/folder.png || fail "a folder of tiles did not make the still the whole DEM makes"
+"$relief" render -q tiles/folder/ -o tiles/alone/folder.png 2>tiles.err && [ -s tiles/alone/folder.png ] ||
+  { fail "relief render FOLDER did not render"; cat tiles.err; }
 printf '[samples]\npath = ["nw.tif", "sw.tif", "se.tif"]\nvertical_unit = "m"\n' > tiles/gap.toml
 "$relief" compile -q tiles/gap.toml -o tiles/gap.pov 2>gap.err || fail "three tiles with a gap exited $?"
 grep -qx 'tiles/gap.toml:2:8: warning: samples.path: the 3 tiles cover 75.8 % of their bounding box; the rest has no data (samples.nodata says what becomes of it): is a tile missing?' gap.err ||
@@ -78,5 +86,5 @@ rc=$?
 [ "$rc" = 2 ] && grep -qx 'tiles/crs.toml:2:8: error: samples.path: the tiles west.tif (NZGD2000 / New Zealand Transverse Mercator 2000) and utm.tif (WGS 84 / UTM zone 60S) are in different CRSs: reproject one into the other'"'"'s (gdalwarp -t_srs) so that all are in one' crs.err ||
   { fail "tiles in two CRSs: exit $rc, or another message:"; cat crs.err; }
 
-[ "$status" = 0 ] && echo "first try: render, init (same bytes), info, CSV, neither, depth for the still"
+[ "$status" = 0 ] && echo "first try: render, init (same bytes), info, CSV, neither, depth for the still, tiles, a folder of tiles"
 exit $status

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,7 @@
 #include "core/diagnostics.h"
 #include "geo/control_net.h"
 #include "geo/gdal_setup.h"
+#include "geo/raster_mosaic.h"
 #include "unit/test_dirs.h"
 
 namespace relief::geo {
@@ -106,6 +108,34 @@ TEST(Mosaic, TilesInDifferentCrssAreAnErrorNamingBoth) {
               "scene.toml:2:8: error: samples.path: the tiles tile-00.tif (NZGD2000 "
               "/ New Zealand Transverse Mercator 2000) and utm.tif (WGS 84 / UTM zone 60S) are in different CRSs: "
               "reproject one into the other's (gdalwarp -t_srs) so that all are in one");
+}
+
+// A folder as samples.path: its rasters in the order of their names, not the
+// other files in it, GDAL's side files (an external overview is a TIFF
+// GDAL reads), hidden files or subfolders; the net is the one the list makes.
+TEST(Mosaic, AFolderIsItsRasterTiles) {
+    setUpGdal();
+    const fs::path dir = relief::testing::freshTestDir("relief-mosaic-folder");
+    const auto tiles = quarters(dir);
+    translate(tiles[0], dir / "tile-00.tif.ovr", {"-of", "GTiff", "-outsize", "50%", "50%"});
+    translate(tiles[0], dir / ".hidden.tif", {});
+    std::ofstream(dir / "README.txt") << "LiDAR tiles, 2013\n";
+    fs::create_directory(dir / "old");
+    translate(tiles[0], dir / "old" / "tile-00.tif", {});
+    std::string problem;
+    EXPECT_EQ(rasterTilesIn(dir, problem), tiles) << problem;
+    Diagnostics diags;
+    const auto listed = netOf(tiles.front(), tiles, diags);
+    const auto folder = netOf(dir, {}, diags);
+    ASSERT_TRUE(listed && folder) << (diags.all().empty() ? "" : formatDiagnostic(diags.all().back()));
+    ASSERT_EQ(folder->grid.points.size(), listed->grid.points.size());
+    for (size_t i = 0; i < listed->grid.points.size(); ++i)
+        ASSERT_EQ(folder->grid.points[i].z, listed->grid.points[i].z);
+
+    const fs::path empty = dir / "old" / "empty";
+    fs::create_directory(empty);
+    EXPECT_TRUE(rasterTilesIn(empty, problem).empty());
+    EXPECT_EQ(problem, "the folder holds no raster GDAL reads");
 }
 
 }  // namespace
