@@ -3,10 +3,11 @@
 # rasters of about 1 M, 6 M, 53 M and 200 M cells, made from one shared raster with gdalwarp; for
 # each, relief's seconds and peak memory (the largest process: relief or POV-Ray), the seconds
 # per stage from the sidecar, and, in the same run, gdal_translate -outsize -r average of the same
-# raster to the net's size (reading the file onto the net, the floor any renderer pays). Then the
-# refusal of an over-limit job: the largest raster with net.spacing_m at its own cell (time to
-# the error). Last, a net at a raster's own cell with and without net.spacing_m (no node masked
-# either way: the same geometry, the same seconds), on the shared holyroodpark.tif when it is there.
+# raster to the net's size (reading the file onto the net, the floor any renderer pays), medians
+# of three runs each, alternating. Then the refusal of an over-limit job: the largest raster with
+# net.spacing_m at its own cell (time to the error). Last, a net at a raster's own cell with and
+# without net.spacing_m (no node masked either way: the same geometry, the same seconds), on the
+# shared holyroodpark.tif when it is there.
 # Needs gdal-bin, bc and GNU time.
 # Usage: bench/first_try.sh [build/relief] [raster] [sides...]
 #   sides: the rasters' sides in cells (default 1000 2450 7280 14142)
@@ -27,19 +28,25 @@ printf '| cells | net | depth | geometry | relief render | peak MB | normalize |
 printf '|---|---|---|---|---|---|---|---|---|---|---|---|\n'
 for side in "${sides[@]}"; do
   gdalwarp -q -overwrite -ts "$side" "$side" -r cubic -ot Float32 -co TILED=YES "$raster" "dem-$side.tif"
-  read -r seconds kb < <(measured "$relief" render -q "dem-$side.tif" -o "still-$side.png" \
-                           --set render.width=1920 --set render.height=1080)
   sidecar=still-$side.json
-  rows=$(json rows "$sidecar"); cols=$(sed -n 's/^ *"cols": \([0-9]*\),*$/\1/p' "$sidecar" | head -1)
+  # Three runs each, relief and gdal_translate alternating: medians (the machine is shared).
+  times=() kbs=() normalizes=() gts=()
+  for _ in 1 2 3; do
+    read -r seconds kb < <(measured "$relief" render -q "dem-$side.tif" -o "still-$side.png" \
+                             --set render.width=1920 --set render.height=1080)
+    times+=("$seconds") kbs+=("$kb") normalizes+=("$(json normalize "$sidecar")")
+    rows=$(json rows "$sidecar"); cols=$(sed -n 's/^ *"cols": \([0-9]*\),*$/\1/p' "$sidecar" | head -1)
+    read -r gt _ < <(measured gdal_translate -q -outsize "$cols" "$rows" -r average "dem-$side.tif" net.tif)
+    gts+=("$gt")
+  done
+  seconds=$(median "${times[@]}") kb=$(median "${kbs[@]}") normalize=$(median "${normalizes[@]}") gt=$(median "${gts[@]}")
   depth=$(json depth "$sidecar")
   kind=$(sed -n 's/^ *"geometry": "\([a-z_0-9]*\) .*/\1/p' "$sidecar" | head -1)
   povray=$(sed -n 's/^ *"povray_wall": \([0-9.e+-]*\),*$/\1/p' "$sidecar" | head -1)
-  read -r gt _ < <(measured gdal_translate -q -outsize "$cols" "$rows" -r average "dem-$side.tif" net.tif)
-  normalize=$(json normalize "$sidecar")
-  printf '| %s M | %s x %s | %s | %s | %.2f s | %.0f | %.2f s | %.2f s | %.2f s | %s s | %.2f s | %.2f |\n' \
+  printf '| %s M | %s x %s | %s | %s | %.2f s | %.0f | %.2f s | %.2f s | %.2f s | %.2f s | %.2f s | %.2f |\n' \
     "$(echo "$side * $side / 1000000" | bc -l | xargs printf '%.1f')" "$rows" "$cols" "$depth" "$kind" "$seconds" \
     "$(echo "$kb / 1024" | bc -l)" "$normalize" "$(json subdivide "$sidecar")" "$(json emit "$sidecar")" \
-    "${povray:-?}" "$gt" "$(echo "$normalize / $gt" | bc -l)"
+    "${povray:-0}" "$gt" "$(echo "$normalize / $gt" | bc -l)"
   last=$side
 done
 

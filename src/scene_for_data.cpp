@@ -97,6 +97,13 @@ private:
     std::string text_;
 };
 
+// The scene's word for a vertical unit of this many metres.
+std::string verticalUnitName(double metresPerUnit) {
+    if (metresPerUnit == 0.3048) return "ft";
+    if (metresPerUnit == 1200.0 / 3937.0) return "us-ft";
+    return "m";
+}
+
 std::string zoneName(const geo::Frame& frame) {
     return frame.utmZone == 0 ? std::string("UPS") : fmt::format("{}{}", frame.utmZone, frame.northp ? "N" : "S");
 }
@@ -116,6 +123,10 @@ void writeData(CommentedScene& out, const scene::SceneSpec& spec, const geo::Con
              : net.resample == spec.samples.resample
                  ? "GDAL's warper at each node"
                  : "the net is coarser than the cells: every cell under a node counts");
+    if (!net.raster.empty())
+        out.text("vertical_unit", verticalUnitName(net.metresPerUnit),
+                 net.verticalUnitAssumed ? "the raster does not say: metres assumed (check, and say so here)"
+                                         : "the raster's own");
     out.section("frame", "");
     out.text("kind", std::string(scene::nameOf(net.frame.kind)),
              net.frame.kind == scene::FrameKind::Raster

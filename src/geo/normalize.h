@@ -35,6 +35,8 @@ struct ControlNet : GeoGrid {
     std::string spacingReason;     ///< why dx, dy are what they are (netSpacingReason)
     scene::Resample resample = scene::Resample::Bilinear;  ///< rasters: how the cells were resampled onto the net
     bool copiedCells = false;  ///< rasters: every node a cell's centre, its height the cell's (not resampled)
+    double metresPerUnit = 1;  ///< rasters: of the band's heights (0.3048 for feet)
+    bool verticalUnitAssumed = false;  ///< rasters: the band named no length, and metres were taken (a warning)
 };
 
 /// A frame point (metres) to WGS84 latitude, longitude (degrees) and height

@@ -344,7 +344,10 @@ std::optional<ControlNet> warpedNet(const Dataset& src, const scene::SamplesSpec
     auto warped = warpHeights(src, *place, band, net, averaged ? scene::Resample::Bilinear : net.resample, diags,
                               progress, fileLoc, averaged);
     if (!warped) return std::nullopt;
+    const int warnings = diags.warningCount();
     const double scale = metresPerBandUnit(band, samples, diags);
+    net.metresPerUnit = scale;
+    net.verticalUnitAssumed = diags.warningCount() > warnings;
     if (!checkElevations(warped->z, scale, net, *place, band, samples, diags) ||
         !resolveNodata(warped->z, GDALGetRasterBand(warped->netRaster.get(), 1), net, samples, netSpec, diags))
         return std::nullopt;

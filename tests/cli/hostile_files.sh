@@ -33,7 +33,7 @@ expect scene-fifo 2 "fifo: error: cannot read the scene file: it is a FIFO (a na
 $nothing" "$relief" compile -q fifo -o out/x.pov
 expect scene-device 2 "/dev/zero: error: cannot read the scene file: it is a device, not a file
 $nothing" "$relief" compile -q /dev/zero -o out/x.pov
-expect scene-folder 2 "folder: error: cannot read the scene file: it is a folder, not a file
+expect scene-folder 2 "folder: error: relief reads a scene file (TOML), a raster DEM GDAL opens (GeoTIFF, SRTM .hgt, ESRI ASCII grid, VRT, ...), a folder of such tiles or a CSV of lon,lat,elev samples, and this is none of them (the folder holds no raster GDAL reads)
 $nothing" "$relief" compile -q folder -o out/x.pov
 expect scene-too-big 2 "big.toml: error: cannot read the scene file: it is 5.24 MB, more than the 4 MB such a file may be
 $nothing" "$relief" compile -q big.toml -o out/x.pov
@@ -44,7 +44,7 @@ scene fifo "" samples-fifo.toml
 expect samples-fifo 2 "samples-fifo.toml:2:8: error: samples.path = \"fifo\": it is a FIFO (a named pipe), not a file
 $nothing" "$relief" compile -q samples-fifo.toml -o out/x.pov
 scene folder "" samples-folder.toml
-expect samples-folder 2 "samples-folder.toml:2:8: error: samples.path = \"folder\": it is a folder, not a file
+expect samples-folder 2 "samples-folder.toml:2:8: error: samples.path = \"folder\": the folder holds no raster GDAL reads; give a folder of raster tiles (GeoTIFF, SRTM .hgt, ...), a raster, or a CSV of samples
 $nothing" "$relief" compile -q samples-folder.toml -o out/x.pov
 scene samples.csv '[texture]
 cpt = "fifo"' cpt-fifo.toml
