@@ -67,6 +67,15 @@ scene::FrameSpec namedFrame(scene::FrameKind kind = scene::FrameKind::Utm) {
     return frame;
 }
 
+// An ESRI ASCII grid of kCell cells, the south-west cell's centre at (x0, y0), cell(c, r) with row 0 south.
+template <class CellFn>
+void writeCells(const fs::path& path, int cols, int rows, double x0, double y0, CellFn cell) {
+    std::ofstream out(path);
+    out << fmt::format("ncols {}\nnrows {}\nxllcenter {}\nyllcenter {}\ncellsize {}\n", cols, rows, x0, y0, kCell);
+    for (int r = rows - 1; r >= 0; --r)
+        for (int c = 0; c < cols; ++c) out << cell(c, r) << (c + 1 < cols ? " " : "\n");
+}
+
 scene::SamplesSpec rasterSpec(const fs::path& path, const std::string& crs) {
     scene::SamplesSpec s;
     s.path = path;
@@ -278,13 +287,7 @@ TEST(Raster, OwnSpacingPutsTheNodesOnTheCellCentres) {
     constexpr int kCols = 30, kRows = 20;
     constexpr double kEast = 300005, kNorth = 5916005;                        // UTM 60S, the first cell's centre
     auto cell = [](int c, int r) { return 100.0 + (c * 7 % 13) + 0.5 * r; };  // not a plane: centres or nothing
-    {
-        std::ofstream out(path);
-        out << fmt::format("ncols {}\nnrows {}\nxllcenter {}\nyllcenter {}\ncellsize {}\n", kCols, kRows, kEast, kNorth,
-                           kCell);
-        for (int r = kRows - 1; r >= 0; --r)
-            for (int c = 0; c < kCols; ++c) out << cell(c, r) << (c + 1 < kCols ? " " : "\n");
-    }
+    writeCells(path, kCols, kRows, kEast, kNorth, cell);
     for (const double spacing : {0.0, kCell}) {  // the default, and the same spacing given
         scene::NetSpec net;
         net.spacingM = spacing;
@@ -312,13 +315,7 @@ TEST(Raster, ItsOwnCrsIsTheFrameAndItsCellsTheNet) {
     const fs::path path = dir / "nztm.asc";
     constexpr int kCols = 30, kRows = 20;
     auto cell = [](int c, int r) { return 100.0 + (c * 7 % 13) + 0.25 * r; };  // not a plane
-    {
-        std::ofstream out(path);
-        out << fmt::format("ncols {}\nnrows {}\nxllcenter {}\nyllcenter {}\ncellsize {}\n", kCols, kRows, kX0, kY0,
-                           kCell);
-        for (int r = kRows - 1; r >= 0; --r)
-            for (int c = 0; c < kCols; ++c) out << cell(c, r) << (c + 1 < kCols ? " " : "\n");
-    }
+    writeCells(path, kCols, kRows, kX0, kY0, cell);
     Diagnostics diags;
     const auto result = rasterNet(rasterSpec(path, "EPSG:2193"), {}, {}, diags);
     ASSERT_TRUE(result) << (diags.all().empty() ? "" : formatDiagnostic(diags.all()[0]));
@@ -371,13 +368,7 @@ TEST(Raster, ACoarserNetInItsOwnCrsIsTheMeansOfBlocksOfCells) {
     const fs::path path = dir / "nztm.asc";
     constexpr int kCols = 30, kRows = 21;
     auto cell = [](int c, int r) { return 100.0 + (c * 7 % 13) + 0.25 * r; };  // row 0 south
-    {
-        std::ofstream out(path);
-        out << fmt::format("ncols {}\nnrows {}\nxllcenter {}\nyllcenter {}\ncellsize {}\n", kCols, kRows, kX0, kY0,
-                           kCell);
-        for (int r = kRows - 1; r >= 0; --r)
-            for (int c = 0; c < kCols; ++c) out << cell(c, r) << (c + 1 < kCols ? " " : "\n");
-    }
+    writeCells(path, kCols, kRows, kX0, kY0, cell);
     NetBudget still;
     still.stillWidthPx = 7;  // 290 m across: 42 m a pixel, about 4 cells
     Diagnostics diags;
