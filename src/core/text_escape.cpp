@@ -124,10 +124,20 @@ std::string markupText(std::string_view text) {
 std::string oneLineText(std::string_view text) {
     std::string out;
     out.reserve(text.size());
-    for (const char ch : text) {
-        const auto c = static_cast<unsigned char>(ch);
+    for (size_t i = 0; i < text.size();) {
+        const auto c = static_cast<unsigned char>(text[i]);
+        if (c >= 0x80) {
+            const size_t n = utf8Length(text, i);
+            if (n == 0)
+                out += kReplacement, ++i;
+            else
+                out.append(text.substr(i, n)), i += n;
+            continue;
+        }
         if (c < 0x20 || c == 0x7f) out += fmt::format("\\x{:02x}", c);
-        else out += ch;
+        else
+            out += static_cast<char>(c);
+        ++i;
     }
     return out;
 }

@@ -14,9 +14,10 @@ namespace relief {
 /// the file stays well-formed whatever the input.
 std::string markupText(std::string_view text);
 
-/// One line: control characters (line breaks included) and DEL as \xNN,
-/// the rest as it is. An SDL `//` comment ends at a line break, so a path
-/// holding one can never start a directive.
+/// One line of UTF-8: control characters (line breaks included) and DEL as
+/// \xNN, bytes that are not UTF-8 as U+FFFD (a TOML file or a JSON sidecar
+/// must be UTF-8), the rest as it is. An SDL `//` comment ends at a line
+/// break, so a path holding one can never start a directive.
 std::string oneLineText(std::string_view text);
 
 /// For a terminal: what an input put in a message shown as text, never as

@@ -51,6 +51,11 @@ bool projectedInMetres(OGRSpatialReferenceH srs) {
     return OSRIsProjected(srs) && std::fabs(OSRGetLinearUnits(srs, nullptr) - 1.0) < 1e-12;
 }
 
+std::string crsNameOf(OGRSpatialReferenceH srs, std::string_view unnamed) {
+    const char* name = srs ? OSRGetName(srs) : nullptr;
+    return name && *name ? oneLineText(name) : std::string(unnamed);
+}
+
 Frame crsFrame(OGRSpatialReferenceH srs) {
     Frame f;
     f.kind = scene::FrameKind::Raster;
@@ -58,9 +63,7 @@ Frame crsFrame(OGRSpatialReferenceH srs) {
     const char* options[] = {"FORMAT=WKT2_2019", nullptr};
     if (OSRExportToWktEx(srs, &wkt, options) == OGRERR_NONE && wkt) f.crsWkt = wkt;
     CPLFree(wkt);
-    const char* name = OSRGetName(srs);
-    // Untrusted (the file says it): one line, for the .pov header, the sidecar and relief init.
-    f.crsName = name && *name ? oneLineText(name) : "unnamed projected CRS";
+    f.crsName = crsNameOf(srs, "unnamed projected CRS");
     return f;
 }
 

@@ -3,6 +3,9 @@
 // whose x and y are the raster's easting and northing, so that its cells need
 // no reprojection; carried to and from WGS84 by PROJ through GDAL, as the
 // raster's cells are.
+#include <string>
+#include <string_view>
+
 #include <ogr_srs_api.h>
 
 #include "geo/geo_grid.h"
@@ -11,6 +14,10 @@ namespace relief::geo {
 
 /// Whether `srs` can hold a Raster frame: projected, in metres.
 bool projectedInMetres(OGRSpatialReferenceH srs);
+
+/// The name of `srs` (or `unnamed`, when it has none) as one line of UTF-8:
+/// the file says it, and it goes into the .pov header, the sidecar and relief init.
+std::string crsNameOf(OGRSpatialReferenceH srs, std::string_view unnamed);
 
 /// The Raster frame in `srs` (projectedInMetres), named and written as WKT2.
 Frame crsFrame(OGRSpatialReferenceH srs);

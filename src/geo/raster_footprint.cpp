@@ -183,11 +183,10 @@ OwnCrs ownCrsFrame(const RasterPlace& place, const PixelBox& box, const scene::F
     OGRSpatialReferenceH srs = place.crs.srs.get();
     if (spec.kind == scene::FrameKind::Raster) {
         if (projectedInMetres(srs)) return {crsFrame(srs)};
-        const char* name = OSRGetName(srs);
         diags.error(spec.locs.at("frame.kind"),
                     fmt::format("frame.kind = \"raster\" needs a raster in a projected CRS in metres, and {} is "
                                 "not one: use \"utm\" or \"local\"",
-                                name ? name : "the raster's CRS"));
+                                crsNameOf(srs, "the raster's CRS")));
         return {std::nullopt, true};
     }
     const bool frameNamed = spec.locs.has("frame.kind") || spec.locs.has("frame.zone");
@@ -195,11 +194,21 @@ OwnCrs ownCrsFrame(const RasterPlace& place, const PixelBox& box, const scene::F
     return {crsFrame(srs)};
 }
 
-// The box of `box`'s cells in the raster's own CRS, and its cell there.
-NetExtent extentInOwnCrs(const RasterPlace& place, const PixelBox& box, Frame frame) {
+// The edges of a box of cell centres moved out to the nearest centres (a
+// box from a sparse scan of a large raster falls between them), so that a
+// net at the cells' own spacing lies on them; within the `count` cells.
+std::array<double, 2> onCentres(double lo, double hi, int count) {
+    if (hi - lo < 1) return {lo, hi};
+    return {std::max(0.5, std::floor(lo - 0.5 + 1e-9) + 0.5), std::min(count - 0.5, std::ceil(hi - 0.5 - 1e-9) + 0.5)};
+}
+
+// The box of `cellBox`'s cells in the raster's own CRS, and its cell there.
+NetExtent extentInOwnCrs(const RasterPlace& place, const PixelBox& cellBox, Frame frame) {
     const auto& g = place.geo;
-    const double xa = g[0] + box.x0 * g[1], xb = g[0] + box.x1 * g[1];
-    const double ya = g[3] + box.y0 * g[5], yb = g[3] + box.y1 * g[5];
+    const auto [px0, px1] = onCentres(cellBox.x0, cellBox.x1, place.width);
+    const auto [py0, py1] = onCentres(cellBox.y0, cellBox.y1, place.height);
+    const double xa = g[0] + px0 * g[1], xb = g[0] + px1 * g[1];
+    const double ya = g[3] + py0 * g[5], yb = g[3] + py1 * g[5];
     return {std::move(frame),
             {std::min(xa, xb), std::min(ya, yb), std::max(xa, xb), std::max(ya, yb)},
             std::min(std::fabs(g[1]), std::fabs(g[5]))};

@@ -1,6 +1,7 @@
 #include "geo/raster_mosaic.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <string>
 #include <string_view>
@@ -11,7 +12,7 @@
 #include <fmt/format.h>
 #include <gdal_utils.h>
 
-#include "core/text_escape.h"
+#include "geo/crs_frame.h"
 #include "geo/raster.h"
 
 namespace relief::geo {
@@ -20,11 +21,13 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// GDAL's files beside a raster, which GDAL may read as rasters of their own.
+// GDAL's files beside a raster, which GDAL may read as rasters of their own:
+// overviews (.ovr, and Erdas's .aux and .rrd), masks, PAM metadata; in any case.
 bool sideFile(const fs::path& file) {
-    const std::string name = file.filename().string();
+    std::string name = file.filename().string();
     if (name.empty() || name.front() == '.') return true;
-    for (std::string_view end : {".ovr", ".msk", ".aux.xml"})
+    std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return std::tolower(c); });
+    for (std::string_view end : {".ovr", ".msk", ".aux.xml", ".aux", ".rrd"})
         if (name.size() > end.size() && name.compare(name.size() - end.size(), end.size(), end) == 0) return true;
     return false;
 }
@@ -34,11 +37,6 @@ Srs crsOf(GDALDatasetH ds) {
     const char* wkt = GDALGetProjectionRef(ds);
     if (!wkt || !*wkt) return Srs();
     return Srs(OSRNewSpatialReference(wkt));
-}
-
-std::string crsName(OGRSpatialReferenceH srs) {
-    const char* name = srs ? OSRGetName(srs) : nullptr;
-    return name ? name : "no CRS";
 }
 
 // The tile's box in its CRS: xmin, ymin, xmax, ymax.
@@ -69,8 +67,8 @@ bool openTiles(const std::vector<fs::path>& tiles, const SourceLoc& at, Diagnost
         } else if (!first != !srs || (first && !OSRIsSame(first.get(), srs.get()))) {
             diags.error(at, fmt::format("samples.path: the tiles {} ({}) and {} ({}) are in different CRSs: "
                                         "reproject one into the other's (gdalwarp -t_srs) so that all are in one",
-                                        tiles.front().filename().string(), crsName(first.get()),
-                                        tile.filename().string(), crsName(srs.get())));
+                                        tiles.front().filename().string(), crsNameOf(first.get(), "no CRS"),
+                                        tile.filename().string(), crsNameOf(srs.get(), "no CRS")));
             return false;
         }
         out.push_back(std::move(ds));

@@ -14,8 +14,8 @@
 #include <cpl_string.h>
 #include <fmt/format.h>
 
-#include "core/text_escape.h"
 #include "geo/cell_blocks.h"
+#include "geo/crs_frame.h"
 #include "geo/raster.h"
 #include "geo/raster_heights.h"
 #include "geo/raster_mosaic.h"
@@ -41,24 +41,31 @@ scene::Resample resampleFor(const scene::SamplesSpec& samples, const scene::NetS
 
 // An averaged net in the raster's own frame over no window of the scene's:
 // onto the centres of blocks of whole cells (cell_blocks.h), k = the spacing
-// in cells, rounded when relief chose the spacing for the still. False after
-// an error (the blocks over the limits).
-bool onBlocksWhenAveraged(ControlNet& net, const RasterPlace& place, const NetExtent& extent,
-                          const scene::SamplesSpec& samples, const scene::NetSpec& netSpec, Diagnostics& diags,
-                          const NetBudget& budget) {
+// in cells, rounded when relief chose the spacing for the still (up, when
+// rounding down would pass the limits). The net as it was when no blocks
+// fit.
+void onBlocksWhenAveraged(ControlNet& net, const RasterPlace& place, const NetExtent& extent,
+                          const scene::SamplesSpec& samples, const scene::NetSpec& netSpec, const NetBudget& budget) {
     if (net.frame.kind != scene::FrameKind::Raster || net.resample != scene::Resample::Average || netSpec.extentM ||
         netSpec.extentLonLat)
-        return true;
-    GeoGrid blocks = net;
-    if (averagesWhenCoarser(samples, netSpec))
-        blocks.dx = blocks.dy = std::max(2.0, std::round(net.dx / extent.cellM)) * extent.cellM;
-    if (!onBlockCentres(blocks, place, extent.box)) return true;
-    const bool more = double(blocks.rows()) * blocks.cols() > double(net.rows()) * net.cols();
-    if (more && budget.fits && !budget.fits(blocks.rows(), blocks.cols(), diags)) return false;
-    const int k = blockSideOf(blocks, place);
-    if (blocks.dx != net.dx) net.spacingReason += fmt::format(": the mean of each block of {0} x {0} cells", k);
-    static_cast<GeoGrid&>(net) = std::move(blocks);
-    return true;
+        return;
+    const bool chosen = averagesWhenCoarser(samples, netSpec);
+    const double cells = net.dx / extent.cellM;
+    for (const double k : {std::max(2.0, std::round(cells)), std::max(2.0, std::ceil(cells))}) {
+        GeoGrid blocks = net;
+        if (chosen) blocks.dx = blocks.dy = k * extent.cellM;
+        if (!onBlockCentres(blocks, place, extent.box)) return;
+        const bool more = double(blocks.rows()) * blocks.cols() > double(net.rows()) * net.cols();
+        Diagnostics aside;
+        if (more && budget.fits && !budget.fits(blocks.rows(), blocks.cols(), aside)) {
+            if (chosen) continue;
+            return;
+        }
+        const int side = blockSideOf(blocks, place);
+        if (blocks.dx != net.dx) net.spacingReason += fmt::format(": the mean of each block of {0} x {0} cells", side);
+        static_cast<GeoGrid&>(net) = std::move(blocks);
+        return;
+    }
 }
 
 // The net laid over the extent and described (what was read and how), without heights.
@@ -72,10 +79,9 @@ std::optional<ControlNet> laidOutNet(GDALDatasetH src, const RasterPlace& place,
     if (!layoutNet(netSpec, extent.box, extent.cellM, net, diags, budget)) return std::nullopt;
     net.spacingReason = netSpacingReason(netSpec, net, extent.cellM, budget.stillWidthPx);
     net.resample = resampleFor(samples, netSpec, net, extent.cellM);
-    if (!onBlocksWhenAveraged(net, place, extent, samples, netSpec, diags, budget)) return std::nullopt;
-    const char* crsName = OSRGetName(place.crs.srs.get());
+    onBlocksWhenAveraged(net, place, extent, samples, netSpec, budget);
     net.raster = fmt::format("{} x {} cells, band {}, {}", place.width, place.height, samples.band,
-                             crsName ? oneLineText(crsName) : "unnamed CRS");
+                             crsNameOf(place.crs.srs.get(), "unnamed CRS"));
     return net;
 }
 
@@ -103,13 +109,43 @@ struct AveragedCells {
     double offsetX() const { return blocks ? blocks->column0 : 0; }
     double offsetY() const { return blocks ? blocks->row0 : 0; }
 };
+
+// The means of `b`'s blocks, row 0 north, nodata cells left out (a block of
+// them is band.noData), read a band of blocks at a time at the cells' own
+// size: RasterIO's average would read the file's overviews when it has them,
+// whose cells are not these blocks (gdaladdo's are the nearest cell by default).
+bool readBlockMeans(const HeightBand& band, const CellBlocks& b, std::vector<double>& means) {
+    const int k = b.k, width = b.columns * k;
+    const int blockRowsPerRead = std::max(1, (1 << 22) / (width * k));  // 32 MB of cells
+    std::vector<double> cells, sum(b.columns);
+    std::vector<int> count(b.columns);
+    for (int i0 = 0; i0 < b.rows; i0 += blockRowsPerRead) {
+        const int n = std::min(blockRowsPerRead, b.rows - i0);
+        cells.resize(static_cast<size_t>(width) * n * k);
+        if (GDALRasterIO(band.band, GF_Read, b.column0, b.row0 + i0 * k, width, n * k, cells.data(), width, n * k,
+                         GDT_Float64, 0, 0) != CE_None)
+            return false;
+        for (int i = 0; i < n; ++i) {
+            std::fill(sum.begin(), sum.end(), 0.0);
+            std::fill(count.begin(), count.end(), 0);
+            for (int r = 0; r < k; ++r) {
+                const double* row = cells.data() + (static_cast<size_t>(i) * k + r) * width;
+                for (int c = 0; c < width; ++c)
+                    if (!std::isnan(row[c]) && row[c] != band.noData) sum[c / k] += row[c], ++count[c / k];
+            }
+            double* out = means.data() + static_cast<size_t>(i0 + i) * b.columns;
+            for (int j = 0; j < b.columns; ++j) out[j] = count[j] ? sum[j] / count[j] : band.noData;
+        }
+    }
+    return true;
+}
+
 std::optional<AveragedCells> averagedCells(const HeightBand& band, const RasterPlace& place, int factor,
                                            bool inBlocks = false) {
     std::optional<CellBlocks> blocks;
     if (inBlocks) blocks = cellBlocks(place, factor);
     const int w = blocks ? blocks->columns : (place.width + factor - 1) / factor;
     const int h = blocks ? blocks->rows : (place.height + factor - 1) / factor;
-    const int x0 = blocks ? blocks->column0 : 0, y0 = blocks ? blocks->row0 : 0;
     const int readW = blocks ? w * factor : place.width, readH = blocks ? h * factor : place.height;
     AveragedCells out{memRaster(w, h, 1, GDT_Float64), double(w) / readW, double(h) / readH, factor, blocks};
     std::vector<double> cells;
@@ -121,8 +157,9 @@ std::optional<AveragedCells> averagedCells(const HeightBand& band, const RasterP
     GDALRasterIOExtraArg arg;
     INIT_RASTERIO_EXTRA_ARG(arg);
     arg.eResampleAlg = GRIORA_Average;
-    if (!out.raster || GDALRasterIOEx(band.band, GF_Read, x0, y0, readW, readH, cells.data(), w, h, GDT_Float64, 0, 0,
-                                      &arg) != CE_None)
+    if (!out.raster || (blocks ? !readBlockMeans(band, *blocks, cells)
+                               : GDALRasterIOEx(band.band, GF_Read, 0, 0, readW, readH, cells.data(), w, h, GDT_Float64,
+                                                0, 0, &arg) != CE_None))
         return std::nullopt;
     GDALRasterBandH averaged = GDALGetRasterBand(out.raster.get(), 1);
     GDALSetRasterNoDataValue(averaged, band.noData);
@@ -311,9 +348,12 @@ std::optional<PlacedNet> netOverTheData(const Dataset& src, const RasterPlace& p
         // A lattice's CRS is relief's guess, not the data's own: its frame stays the scene's.
         return placedNet(src, place, box, samples, frameSpec, netSpec, !footprint, fileLoc, d, budget);
     };
+    // A net spaced a whole number of cells and averaged (as relief init writes
+    // the one chosen for the still) finds its box among the same block means.
+    const bool chosenForStill = averagesWhenCoarser(samples, netSpec) && budget.stillWidthPx > 0;
+    const bool averagedAsGiven = netSpec.spacingM > 0 && samples.resample == scene::Resample::Average;
     std::optional<AveragedData> data;
-    if (defaultIsDataBox(band, place, footprint, netSpec) && averagesWhenCoarser(samples, netSpec) &&
-        budget.stillWidthPx > 0) {
+    if (defaultIsDataBox(band, place, footprint, netSpec) && (chosenForStill || averagedAsGiven)) {
         Diagnostics aside;
         data = dataAmongAverages(laidOver(allCellCentres(place), aside), band, place, samples, fileLoc, diags);
         if (data && !data->box) return std::nullopt;

@@ -91,6 +91,9 @@ TEST(TextEscape, OneLineAndExcerpts) {
     EXPECT_EQ(oneLineText("a\n#fopen F \"/tmp/x\" write\r\x7f"), "a\\x0a#fopen F \"/tmp/x\" write\\x0d\\x7f");
     EXPECT_EQ(oneLineText(std::string("\0", 1)), "\\x00");
     for (const std::string& s : kHostile) EXPECT_EQ(oneLineText(s).find('\n'), std::string::npos);
+    // A CRS name in Latin-1 (a file's own bytes) becomes UTF-8 a TOML file and a JSON sidecar can hold.
+    EXPECT_EQ(oneLineText("Lamb\xe9rt 93 / \xc3\xa9"), "Lamb\xEF\xBF\xBDrt 93 / \xc3\xa9");
+    for (const std::string& s : kHostile) EXPECT_TRUE(isUtf8(oneLineText(s))) << s;
     EXPECT_EQ(printableExcerpt(std::string("II*\x00\x10", 5), 60), "II*\\x00\\x10");
     EXPECT_EQ(printableExcerpt(std::string(100, 'x'), 60), std::string(60, 'x') + "...");
 }

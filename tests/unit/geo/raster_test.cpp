@@ -405,6 +405,113 @@ TEST(Raster, ACoarserNetInItsOwnCrsIsTheMeansOfBlocksOfCells) {
         ASSERT_EQ(written->grid.points[i].z, chosen->grid.points[i].z) << i;
 }
 
+// Block means are exact whatever the file brings: a GeoTIFF wider than the
+// data scan reads (1024 cells), with a nodata border and gdaladdo's nearest
+// overviews, which RasterIO's average would read. The net chosen for the
+// still and the one relief init writes (spacing_m 4 cells, resample
+// "average") find the same box among the block means.
+TEST(Raster, BlockMeansAreExactWithOverviewsAndANodataBorder) {
+    const fs::path path = freshDir("block-means") / "nztm.tif";
+    constexpr int kCols = 1102, kRows = 46, kWest = 5, kEast = 7, kNorth = 3;  // nodata columns and rows
+    constexpr double kNoData = -9999;
+    auto cell = [&](int c, int r) {  // row 0 north
+        const bool data = c >= kWest && c < kCols - kEast && r >= kNorth;
+        return data ? 100.0 + (c * 7 % 13) + 0.25 * r : kNoData;
+    };
+    {
+        setUpGdal();
+        GDALDatasetH ds = GDALCreate(GDALGetDriverByName("GTiff"), path.c_str(), kCols, kRows, 1, GDT_Float32, nullptr);
+        ASSERT_NE(ds, nullptr);
+        double geo[6] = {kX0, kCell, 0, kY0, 0, -kCell};
+        GDALSetGeoTransform(ds, geo);
+        OGRSpatialReferenceH srs = OSRNewSpatialReference(nullptr);
+        OSRImportFromEPSG(srs, 2193);
+        GDALSetSpatialRef(ds, srs);
+        OSRDestroySpatialReference(srs);
+        GDALRasterBandH band = GDALGetRasterBand(ds, 1);
+        GDALSetRasterNoDataValue(band, kNoData);
+        std::vector<float> cells;
+        for (int r = 0; r < kRows; ++r)
+            for (int c = 0; c < kCols; ++c) cells.push_back(static_cast<float>(cell(c, r)));
+        ASSERT_EQ(GDALRasterIO(band, GF_Write, 0, 0, kCols, kRows, cells.data(), kCols, kRows, GDT_Float32, 0, 0),
+                  CE_None);
+        int levels[] = {2, 4};
+        ASSERT_EQ(GDALBuildOverviews(ds, "NEAREST", 2, levels, 0, nullptr, nullptr, nullptr), CE_None);
+        GDALClose(ds);
+    }
+    NetBudget still;
+    still.stillWidthPx = 275;  // 40 m a pixel: 4 cells
+    Diagnostics diags;
+    const auto chosen = rasterNet(rasterSpec(path, ""), {}, {}, diags, {}, still);
+    ASSERT_TRUE(chosen) << (diags.all().empty() ? "" : formatDiagnostic(diags.all()[0]));
+    ASSERT_EQ(chosen->dx, 4 * kCell);
+    // Blocks from column 1 and row 1 (1102 = 4 x 275 + 2, 46 = 4 x 11 + 2); the first and last
+    // blocks of columns are nodata, the first block of rows half data.
+    ASSERT_EQ(chosen->cols(), 273);
+    ASSERT_EQ(chosen->rows(), 11);
+    EXPECT_EQ(chosen->maskedCount(), 0u);
+    EXPECT_NEAR(chosen->x0, kX0 + (5 + 2) * kCell, 1e-6);
+    EXPECT_NEAR(chosen->y0, kY0 - (1 + 44 - 2) * kCell, 1e-6);
+    for (int i = 0; i < chosen->rows(); ++i)  // net row i from the south: block row 10 - i from the north
+        for (int j = 0; j < chosen->cols(); ++j) {
+            const int r0 = 1 + 4 * (10 - i), c0 = 5 + 4 * j;
+            double sum = 0;
+            int n = 0;
+            for (int a = 0; a < 4; ++a)
+                for (int b = 0; b < 4; ++b)
+                    if (const double v = cell(c0 + b, r0 + a); v != kNoData) sum += v, ++n;
+            ASSERT_GT(n, 0);
+            ASSERT_NEAR(chosen->grid.at(i, j).z, sum / n, 1e-9) << i << " " << j;
+        }
+
+    auto spec = rasterSpec(path, "");
+    spec.resample = scene::Resample::Average;
+    spec.locs.keys["samples.resample"] = {};
+    scene::NetSpec given;
+    given.spacingM = 4 * kCell;
+    Diagnostics givenDiags;
+    const auto written = rasterNet(spec, {}, given, givenDiags);
+    ASSERT_TRUE(written) << (givenDiags.all().empty() ? "" : formatDiagnostic(givenDiags.all()[0]));
+    ASSERT_EQ(written->cols(), chosen->cols());
+    ASSERT_EQ(written->rows(), chosen->rows());
+    EXPECT_EQ(written->x0, chosen->x0);
+    EXPECT_EQ(written->y0, chosen->y0);
+    for (size_t i = 0; i < chosen->grid.points.size(); ++i)
+        ASSERT_EQ(written->grid.points[i].z, chosen->grid.points[i].z) << i;
+}
+
+// At its own cells, a net over the data of a raster wider than the data scan
+// lies on the cells' centres (the scan's box, a few cells wide of the data,
+// moved out to them): the cells read, none warped.
+TEST(Raster, AnOwnCellNetOverAWideRastersDataIsItsCells) {
+    const fs::path path = freshDir("wide-own-cells") / "nztm.asc";
+    constexpr int kCols = 1500, kRows = 12;
+    auto cell = [&](int c, int r) { return c < 301 ? -9999.0 : 50.0 + c % 17 + r; };  // row 0 south
+    {
+        std::ofstream out(path);
+        out << fmt::format("ncols {}\nnrows {}\nxllcenter {}\nyllcenter {}\ncellsize {}\nNODATA_value -9999\n", kCols,
+                           kRows, kX0, kY0, kCell);
+        for (int r = kRows - 1; r >= 0; --r)
+            for (int c = 0; c < kCols; ++c) out << cell(c, r) << (c + 1 < kCols ? " " : "\n");
+    }
+    Diagnostics diags;
+    const auto net = rasterNet(rasterSpec(path, "EPSG:2193"), {}, {}, diags);
+    ASSERT_TRUE(net) << (diags.all().empty() ? "" : formatDiagnostic(diags.all()[0]));
+    EXPECT_EQ(net->frame.kind, scene::FrameKind::Raster);
+    EXPECT_TRUE(net->copiedCells) << net->raster;
+    EXPECT_LE(net->maskedCount(), 3u * kRows);
+    ASSERT_EQ(net->rows(), kRows);
+    const double firstColumn = (net->x0 - kX0) / kCell;
+    ASSERT_NEAR(firstColumn, std::round(firstColumn), 1e-9);
+    for (int r = 0; r < kRows; ++r)
+        for (int j = 0; j < net->cols(); ++j) {
+            const double v = cell(static_cast<int>(std::round(firstColumn)) + j, r);
+            if (v != -9999.0) {
+                ASSERT_EQ(net->grid.at(r, j).z, v) << r << " " << j;
+            }
+        }
+}
+
 // The raster's CRS is the frame by default only when it is true to scale
 // (Web Mercator at 37 S is 25 % off: UTM then) and in metres (degrees: UTM);
 // asked for, a CRS in degrees is an error at the key, and so is the raster
