@@ -43,10 +43,11 @@ for side in "${sides[@]}"; do
   depth=$(json depth "$sidecar")
   kind=$(sed -n 's/^ *"geometry": "\([a-z_0-9]*\) .*/\1/p' "$sidecar" | head -1)
   povray=$(sed -n 's/^ *"povray_wall": \([0-9.e+-]*\),*$/\1/p' "$sidecar" | head -1)
-  printf '| %s M | %s x %s | %s | %s | %.2f s | %.0f | %.2f s | %.2f s | %.2f s | %.2f s | %.2f s | %.2f |\n' \
+  povray=${povray:+$(printf '%.2f s' "$povray")}
+  printf '| %s M | %s x %s | %s | %s | %.2f s | %.0f | %.2f s | %.2f s | %.2f s | %s | %.2f s | %.2f |\n' \
     "$(echo "$side * $side / 1000000" | bc -l | xargs printf '%.1f')" "$rows" "$cols" "$depth" "$kind" "$seconds" \
     "$(echo "$kb / 1024" | bc -l)" "$normalize" "$(json subdivide "$sidecar")" "$(json emit "$sidecar")" \
-    "${povray:-0}" "$gt" "$(echo "$normalize / $gt" | bc -l)"
+    "${povray:-(no POV-Ray time)}" "$gt" "$(echo "$normalize / $gt" | bc -l)"
   last=$side
 done
 

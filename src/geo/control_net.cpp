@@ -50,7 +50,7 @@ std::optional<ControlNet> folderOfTiles(const NetRequest& request, Diagnostics& 
 // file, and what is not one is taken for scattered samples.
 constexpr SampleSource kSampleSources[] = {
     {"a folder of raster tiles", isFolder, folderOfTiles},
-    {"a raster DEM", isRasterDem, resampledRaster},
+    {"a raster DEM", [](const std::filesystem::path& path) { return isRasterDem(path); }, resampledRaster},
     {"a CSV of samples", anyFile,
      [](const NetRequest& request, Diagnostics& diags) { return scatteredNet(request, readSamples, diags); }},
 };

@@ -24,6 +24,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
+std::string lowered(std::string text) {
+    std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::tolower(c); });
+    return text;
+}
+
 bool sameWord(std::string_view a, std::string_view b) {  // as GDAL's EQUAL: letters in any case
     return a.size() == b.size() &&
            std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) { return std::tolower(x) == std::tolower(y); });
@@ -168,21 +173,28 @@ std::string vrtProblem(const fs::path& vrt, VrtWalk& walk) {
 // dem.tif.msk, dem.prj, dem.tfw, ...): each must be a regular file too (a FIFO
 // would block GDAL, a link to /dev/zero fill memory), and one that is a VRT is
 // checked as one.
-std::string sidecarProblem(const fs::path& path) {
+std::string sidecarProblem(const fs::path& path, const FolderNames* siblings) {
     std::error_code ec;
     const fs::path folder = fs::absolute(path, ec).parent_path();
-    const std::string name = path.filename().string(), stem = name.substr(0, name.find('.'));
-    for (auto it = fs::directory_iterator(folder, ec); !ec && it != fs::directory_iterator(); it.increment(ec)) {
-        const std::string other = it->path().filename().string();
-        if (other == name || !other.starts_with(stem + ".")) continue;
-        if (fs::is_directory(it->path(), ec)) continue;
+    const std::string name = path.filename().string(), prefix = name.substr(0, name.find('.')) + ".";
+    std::vector<std::string> beside;
+    if (siblings) {
+        beside = siblings->beside(name);
+    } else {
+        for (auto it = fs::directory_iterator(folder, ec); !ec && it != fs::directory_iterator(); it.increment(ec))
+            if (std::string other = it->path().filename().string(); other.starts_with(prefix))
+                beside.push_back(std::move(other));
+    }
+    for (const std::string& other : beside) {
+        const fs::path file = folder / other;
+        if (other == name || fs::is_directory(file, ec)) continue;
         const std::string shown = printableExcerpt(other, 80);
-        if (std::string problem = inputFileProblem(it->path()); !problem.empty())
+        if (std::string problem = inputFileProblem(file); !problem.empty())
             return fmt::format("the file beside it that GDAL would read with it, {}, is not a plain file ({})", shown,
                                problem);
         VrtWalk walk;
-        if (looksLikeVrt(it->path()))
-            if (std::string problem = vrtProblem(it->path(), walk); !problem.empty())
+        if (looksLikeVrt(file))
+            if (std::string problem = vrtProblem(file, walk); !problem.empty())
                 return fmt::format("the file beside it that GDAL would read with it, {}, is a VRT, and {}", shown,
                                    problem);
     }
@@ -191,17 +203,46 @@ std::string sidecarProblem(const fs::path& path) {
 
 }  // namespace
 
-std::string gdalInputProblem(const fs::path& path) {
+FolderNames::FolderNames(const fs::path& folder) {
+    std::error_code ec;
+    for (auto it = fs::directory_iterator(folder, ec); !ec && it != fs::directory_iterator(); it.increment(ec))
+        names_.push_back(it->path().filename().string());
+    std::sort(names_.begin(), names_.end());
+    for (size_t i = 0; i < names_.size(); ++i) lowered_.emplace_back(lowered(names_[i]), i);
+    std::sort(lowered_.begin(), lowered_.end());
+}
+
+std::vector<std::string> FolderNames::beside(const std::string& name) const {
+    const std::string own = lowered(name), prefix = own.substr(0, own.find('.')) + ".";
+    std::vector<std::string> out;
+    for (auto it = std::lower_bound(lowered_.begin(), lowered_.end(), std::make_pair(prefix, size_t{0}));
+         it != lowered_.end() && (it->first.starts_with(prefix) || it->first == own); ++it)
+        out.push_back(names_[it->second]);
+    if (std::find(out.begin(), out.end(), name) == out.end()) out.push_back(name);
+    return out;
+}
+
+std::vector<const char*> gdalNameList(const std::vector<std::string>& names) {
+    std::vector<const char*> list;
+    for (const std::string& name : names) list.push_back(name.c_str());
+    list.push_back(nullptr);
+    return list;
+}
+
+std::string gdalInputProblem(const fs::path& path, const FolderNames* siblings) {
     if (std::string problem = inputFileProblem(path); !problem.empty()) return problem;
     setUpGdal();
+    const std::vector<std::string> beside =
+        siblings ? siblings->beside(path.filename().string()) : std::vector<std::string>{};
+    const std::vector<const char*> list = gdalNameList(beside);
     CPLPushErrorHandler(CPLQuietErrorHandler);
-    GDALDriverH driver = GDALIdentifyDriverEx(path.c_str(), GDAL_OF_RASTER, nullptr, nullptr);
+    GDALDriverH driver = GDALIdentifyDriverEx(path.c_str(), GDAL_OF_RASTER, nullptr, siblings ? list.data() : nullptr);
     CPLPopErrorHandler();
     if ((driver && std::string_view(GDALGetDriverShortName(driver)) == "VRT") || looksLikeVrt(path)) {
         VrtWalk walk;
         if (const std::string problem = vrtProblem(path, walk); !problem.empty()) return "it is a VRT, and " + problem;
     }
-    return driver ? sidecarProblem(path) : "";  // a file GDAL does not take for a raster brings no sidecars
+    return driver ? sidecarProblem(path, siblings) : "";  // a file GDAL does not take for a raster brings no sidecars
 }
 
 }  // namespace relief::geo

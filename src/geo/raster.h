@@ -23,10 +23,13 @@
 
 namespace relief::geo {
 
+class FolderNames;  // gdal_setup.h
+
 /// Whether GDAL takes `path` for a raster (it may still fail to read it: a
 /// truncated file). Text tables (GDAL's CSV and XYZ drivers) are not: a
-/// `lon,lat,elev` CSV stays a CSV of scattered samples.
-bool isRasterDem(const std::filesystem::path& path);
+/// `lon,lat,elev` CSV stays a CSV of scattered samples. `siblings`: the
+/// names in its folder, when the caller has them.
+bool isRasterDem(const std::filesystem::path& path, const FolderNames* siblings = nullptr);
 
 /// What a scene made for a raster takes from it before any work: the title
 /// its metadata gives it (TIFFTAG_DOCUMENTNAME, TITLE or DESCRIPTION, cut to

@@ -182,7 +182,7 @@ OwnCrs ownCrsFrame(const RasterPlace& place, const PixelBox& box, const scene::F
                    Diagnostics& diags) {
     OGRSpatialReferenceH srs = place.crs.srs.get();
     if (spec.kind == scene::FrameKind::Raster) {
-        if (projectedInMetres(srs)) return {crsFrame(srs)};
+        if (Frame own = crsFrame(srs); projectedInMetres(srs) && !own.crsWkt.empty()) return {std::move(own)};
         diags.error(spec.locs.at("frame.kind"),
                     fmt::format("frame.kind = \"raster\" needs a raster in a projected CRS in metres, and {} is "
                                 "not one: use \"utm\" or \"local\"",
@@ -191,7 +191,9 @@ OwnCrs ownCrsFrame(const RasterPlace& place, const PixelBox& box, const scene::F
     }
     const bool frameNamed = spec.locs.has("frame.kind") || spec.locs.has("frame.zone");
     if (!byDefault || frameNamed || !projectedInMetres(srs) || scaleError(place, box) > kOwnCrsScaleError) return {};
-    return {crsFrame(srs)};
+    Frame own = crsFrame(srs);
+    if (own.crsWkt.empty()) return {};  // GDAL cannot write it as WKT2: PROJ could not carry it back
+    return {std::move(own)};
 }
 
 // The edges of a box of cell centres moved out to the nearest centres (a

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <map>
+#include <memory>
 #include <string>
 #include <string_view>
 
@@ -51,9 +53,12 @@ std::array<double, 4> boxOf(GDALDatasetH ds) {
 // Opens every tile and checks that they share one CRS; the first problem ends it.
 bool openTiles(const std::vector<fs::path>& tiles, const SourceLoc& at, Diagnostics& diags, std::vector<Dataset>& out) {
     Srs first;
+    std::map<fs::path, std::unique_ptr<FolderNames>> folders;  // the tiles' folders, each listed once
     for (const fs::path& tile : tiles) {
+        auto& names = folders[tile.parent_path()];
+        if (!names) names = std::make_unique<FolderNames>(tile.has_parent_path() ? tile.parent_path() : ".");
         std::string problem;
-        Dataset ds = openRaster(tile, problem);
+        Dataset ds = openRaster(tile, problem, names.get());
         if (!ds) {
             diags.error(at, fmt::format("samples.path: the tile {} {}: each tile must be a raster DEM GDAL reads",
                                         tile.filename().string(),
@@ -91,25 +96,25 @@ double coverage(const std::vector<Dataset>& tiles) {
 }  // namespace
 
 std::vector<fs::path> rasterTilesIn(const fs::path& folder, std::string& problem) {
-    std::vector<fs::path> tiles;
     std::error_code ec;
-    size_t files = 0;
-    for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
-        if (!it->is_regular_file(ec) || sideFile(it->path())) continue;
-        if (++files > 4 * kMaxTiles) break;  // a folder of everything: no scan of all of it
-        if (isRasterDem(it->path())) tiles.push_back(it->path());
-    }
-    if (ec) {
+    if (fs::directory_iterator(folder, ec); ec) {
         problem = fmt::format("the folder cannot be read ({})", ec.message());
         return {};
+    }
+    const FolderNames names(folder);
+    std::vector<fs::path> tiles;
+    size_t files = 0;
+    for (const std::string& name : names.sorted()) {  // in name order
+        const fs::path file = folder / name;
+        if (sideFile(file) || !fs::is_regular_file(file, ec)) continue;
+        if (++files > 4 * kMaxTiles) break;  // a folder of everything: no scan of all of it
+        if (isRasterDem(file, &names)) tiles.push_back(file);
     }
     if (tiles.size() > kMaxTiles || files > 4 * kMaxTiles) {
         problem = fmt::format("the folder holds more than the {} tiles a scene may mosaic", kMaxTiles);
         return {};
     }
     if (tiles.empty()) problem = "the folder holds no raster GDAL reads";
-    std::sort(tiles.begin(), tiles.end(),
-              [](const fs::path& a, const fs::path& b) { return a.filename() < b.filename(); });
     return tiles;
 }
 

@@ -30,14 +30,18 @@ std::pair<Transform, Transform> wgs84Transforms(OGRSpatialReferenceH srs) {
             Transform(OCTNewCoordinateTransformation(srs, wgs84.get()))};
 }
 
-Dataset openRaster(const std::filesystem::path& path, std::string& problem) {
-    problem = gdalInputProblem(path);
+Dataset openRaster(const std::filesystem::path& path, std::string& problem, const FolderNames* siblings) {
+    problem = gdalInputProblem(path, siblings);
     if (!problem.empty()) return Dataset();
     // Absolute: a relative name is never taken for a driver's prefix ("NETCDF:...").
     std::error_code ec;
     const std::string name = std::filesystem::absolute(path, ec).string();
+    const std::vector<std::string> beside =
+        siblings ? siblings->beside(path.filename().string()) : std::vector<std::string>{};
+    const std::vector<const char*> list = gdalNameList(beside);
     CPLPushErrorHandler(CPLQuietErrorHandler);
-    Dataset ds(GDALOpenEx(name.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr));
+    Dataset ds(GDALOpenEx(name.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr,
+                          siblings ? list.data() : nullptr));
     CPLPopErrorHandler();
     return ds;
 }
@@ -268,15 +272,18 @@ std::optional<RasterSummary> rasterSummary(const std::filesystem::path& path) {
     return s;
 }
 
-bool isRasterDem(const std::filesystem::path& path) {
+bool isRasterDem(const std::filesystem::path& path, const FolderNames* siblings) {
     std::string problem;
-    if (openRaster(path, problem)) return true;
+    if (openRaster(path, problem, siblings)) return true;
     // A VRT relief refuses, or a file identified as a raster format but not
     // readable (a truncated GeoTIFF): still a raster, so that the error is about
     // the raster, not about a CSV header made of binary bytes.
     if (!problem.empty()) return inputFileProblem(path).empty();  // refused for what it brings with it
     CPLPushErrorHandler(CPLQuietErrorHandler);
-    GDALDriverH driver = GDALIdentifyDriverEx(path.c_str(), GDAL_OF_RASTER, nullptr, nullptr);
+    const std::vector<std::string> beside =
+        siblings ? siblings->beside(path.filename().string()) : std::vector<std::string>{};
+    const std::vector<const char*> list = gdalNameList(beside);
+    GDALDriverH driver = GDALIdentifyDriverEx(path.c_str(), GDAL_OF_RASTER, nullptr, siblings ? list.data() : nullptr);
     CPLPopErrorHandler();
     return driver != nullptr;
 }

@@ -13,6 +13,7 @@
 #include <ogr_srs_api.h>
 
 #include "core/diagnostics.h"
+#include "geo/gdal_setup.h"
 #include "geo/normalize.h"
 #include "scene/scene_spec.h"
 
@@ -37,8 +38,9 @@ std::pair<Transform, Transform> wgs84Transforms(OGRSpatialReferenceH srs);
 
 /// A raster a scene names, opened as GDAL reads it once relief has checked it
 /// (gdal_setup.h); null with `problem` saying why when GDAL must not open it
-/// (null with `problem` empty: GDAL cannot read it).
-Dataset openRaster(const std::filesystem::path& path, std::string& problem);
+/// (null with `problem` empty: GDAL cannot read it). `siblings`: the names in
+/// its folder, when the caller has them (a folder of tiles).
+Dataset openRaster(const std::filesystem::path& path, std::string& problem, const FolderNames* siblings = nullptr);
 
 /// The credit a raster's metadata carries (GeoTIFF's copyright tag, or a
 /// COPYRIGHT, LICENSE, LICENCE or ATTRIBUTION item), cut to what a still can

@@ -114,30 +114,48 @@ struct AveragedCells {
 // them is band.noData), read a band of blocks at a time at the cells' own
 // size: RasterIO's average would read the file's overviews when it has them,
 // whose cells are not these blocks (gdaladdo's are the nearest cell by default).
-bool readBlockMeans(const HeightBand& band, const CellBlocks& b, std::vector<double>& means) {
+template <class Cell>
+bool readBlockMeansAs(GDALDataType type, const HeightBand& band, const CellBlocks& b, std::vector<double>& means) {
     const int k = b.k, width = b.columns * k;
-    const int blockRowsPerRead = std::max(1, (1 << 22) / (width * k));  // 32 MB of cells
-    std::vector<double> cells, sum(b.columns);
+    const int blockRowsPerRead = std::max(1, (1 << 23) / (width * k));  // 32 MB of float cells
+    std::vector<Cell> cells;
+    std::vector<double> sum(b.columns);
     std::vector<int> count(b.columns);
     for (int i0 = 0; i0 < b.rows; i0 += blockRowsPerRead) {
         const int n = std::min(blockRowsPerRead, b.rows - i0);
         cells.resize(static_cast<size_t>(width) * n * k);
-        if (GDALRasterIO(band.band, GF_Read, b.column0, b.row0 + i0 * k, width, n * k, cells.data(), width, n * k,
-                         GDT_Float64, 0, 0) != CE_None)
+        if (GDALRasterIO(band.band, GF_Read, b.column0, b.row0 + i0 * k, width, n * k, cells.data(), width, n * k, type,
+                         0, 0) != CE_None)
             return false;
         for (int i = 0; i < n; ++i) {
             std::fill(sum.begin(), sum.end(), 0.0);
             std::fill(count.begin(), count.end(), 0);
             for (int r = 0; r < k; ++r) {
-                const double* row = cells.data() + (static_cast<size_t>(i) * k + r) * width;
-                for (int c = 0; c < width; ++c)
-                    if (!std::isnan(row[c]) && row[c] != band.noData) sum[c / k] += row[c], ++count[c / k];
+                const Cell* row = cells.data() + (static_cast<size_t>(i) * k + r) * width;
+                for (int j = 0; j < b.columns; ++j, row += k)
+                    for (int c = 0; c < k; ++c) {
+                        const double v = row[c];
+                        const bool data = !std::isnan(v) && v != band.noData;
+                        sum[j] += data ? v : 0.0;
+                        count[j] += data;
+                    }
             }
             double* out = means.data() + static_cast<size_t>(i0 + i) * b.columns;
             for (int j = 0; j < b.columns; ++j) out[j] = count[j] ? sum[j] / count[j] : band.noData;
         }
     }
     return true;
+}
+bool readBlockMeans(const HeightBand& band, const CellBlocks& b, std::vector<double>& means) {
+    switch (GDALGetRasterDataType(band.band)) {
+        case GDT_Byte:
+        case GDT_Int16:
+        case GDT_UInt16:
+        case GDT_Float32:  // cells a float holds exactly: half the bytes GDAL copies
+            return readBlockMeansAs<float>(GDT_Float32, band, b, means);
+        default:
+            return readBlockMeansAs<double>(GDT_Float64, band, b, means);
+    }
 }
 
 std::optional<AveragedCells> averagedCells(const HeightBand& band, const RasterPlace& place, int factor,
@@ -231,7 +249,10 @@ std::optional<WarpedHeights> warpHeights(const Dataset& src, const RasterPlace& 
         diags.error(fileLoc, fmt::format("GDAL could not read the raster's cells: {}", CPLGetLastErrorMsg()));
         return std::nullopt;
     }
-    if (averaged && averaged->blocks) averaged = nullptr;  // not the net's blocks: warp the cells themselves
+    if (averaged && averaged->blocks) {  // not the net's blocks: warp the cells themselves, as the net says
+        averaged = nullptr;
+        resample = net.resample;
+    }
     GDALWarpOptions* wo = averaged ? warpOptions(averaged->raster.get(), out.netRaster.get(), {1})
                                    : warpOptions(src.get(), out.netRaster.get(), {band.number});
     wo->eWorkingDataType = GDT_Float64;

@@ -12,6 +12,7 @@
 #include <atomic>
 #include <cmath>
 #include <fstream>
+#include <memory>
 #include <thread>
 
 #include <cpl_conv.h>
@@ -270,24 +271,41 @@ TEST(UntrustedGdal, VrtsNameOnlyFilesBesideThem) {
     EXPECT_NEAR(net->grid.points[net->grid.points.size() / 2].z, 7.0, 1e-6);
 }
 
-// GDAL reads files beside a raster by its name: each is checked as the raster is.
+// GDAL reads files beside a raster by its name: each is checked as the raster
+// is, whether the folder is listed for the raster or once for many (tiles).
 TEST(UntrustedGdal, FilesBesideARasterAreCheckedToo) {
     const fs::path dir = freshTestDir("sidecars");
     const fs::path dem = writeTiff(dir / "dem.tif", "EPSG:2193", 1757000, 10, 5917000, -10, 4, 4,
                                    [](double, double) { return 5.f; });
-    EXPECT_EQ(gdalInputProblem(dem), "");
+    auto problems = [&] {
+        const FolderNames names(dir);
+        const std::string listed = gdalInputProblem(dem, &names), alone = gdalInputProblem(dem);
+        EXPECT_EQ(listed, alone);
+        return alone;
+    };
+    EXPECT_EQ(problems(), "");
     ASSERT_EQ(::mkfifo((dir / "dem.tif.ovr").c_str(), 0600), 0);
-    EXPECT_EQ(gdalInputProblem(dem), "the file beside it that GDAL would read with it, dem.tif.ovr, is not a plain "
-                                     "file (it is a FIFO (a named pipe), not a file)");
+    EXPECT_EQ(problems(),
+              "the file beside it that GDAL would read with it, dem.tif.ovr, is not a plain "
+              "file (it is a FIFO (a named pipe), not a file)");
     fs::remove(dir / "dem.tif.ovr");
     write(dir / "dem.tif.ovr", vrtWith("<VRTRasterBand dataType=\"Byte\" band=\"1\" subClass=\"VRTRawRasterBand\">"
                                       "<SourceFilename>/etc/passwd</SourceFilename></VRTRasterBand>"));
-    EXPECT_EQ(gdalInputProblem(dem), "the file beside it that GDAL would read with it, dem.tif.ovr, is a VRT, and it "
-                                     "holds a VRTRawRasterBand, which reads the raw bytes of any file");
+    EXPECT_EQ(problems(),
+              "the file beside it that GDAL would read with it, dem.tif.ovr, is a VRT, and it "
+              "holds a VRTRawRasterBand, which reads the raw bytes of any file");
     fs::remove(dir / "dem.tif.ovr");
     fs::create_symlink("/dev/zero", dir / "dem.prj");
-    EXPECT_EQ(gdalInputProblem(dem), "the file beside it that GDAL would read with it, dem.prj, is not a plain file "
-                                     "(it is a device, not a file)");
+    EXPECT_EQ(problems(),
+              "the file beside it that GDAL would read with it, dem.prj, is not a plain file "
+              "(it is a device, not a file)");
+    fs::remove(dir / "dem.prj");
+    // GDAL looks for side files in any case (DEM.TIF.OVR for dem.tif): so does the listed check.
+    fs::create_symlink("/dev/zero", dir / "DEM.TIF.OVR");
+    EXPECT_EQ(gdalInputProblem(dem, std::make_unique<FolderNames>(dir).get()),
+              "the file beside it that GDAL would read with it, DEM.TIF.OVR, is not a plain file "
+              "(it is a device, not a file)");
+    EXPECT_EQ(FolderNames(dir).beside("dem.tif"), (std::vector<std::string>{"dem.tif", "DEM.TIF.OVR"}));
 }
 
 TEST(Frames, TheCentreOfLongitudesIsOnTheCircle) {
