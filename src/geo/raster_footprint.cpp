@@ -182,7 +182,14 @@ OwnCrs ownCrsFrame(const RasterPlace& place, const PixelBox& box, const scene::F
                    Diagnostics& diags) {
     OGRSpatialReferenceH srs = place.crs.srs.get();
     if (spec.kind == scene::FrameKind::Raster) {
-        if (Frame own = crsFrame(srs); projectedInMetres(srs) && !own.crsWkt.empty()) return {std::move(own)};
+        if (Frame own = crsFrame(srs); projectedInMetres(srs) && !own.crsWkt.empty()) {
+            if (const double off = scaleError(place, box); off > kOwnCrsScaleError)
+                diags.warning(spec.locs.at("frame.kind"),
+                              fmt::format("{} is {:.1f} % off true scale over the data: lengths, the scale bar and "
+                                          "the slopes are off by as much; \"utm\" is true to scale",
+                                          own.crsName, 100 * off));
+            return {std::move(own)};
+        }
         diags.error(spec.locs.at("frame.kind"),
                     fmt::format("frame.kind = \"raster\" needs a raster in a projected CRS in metres, and {} is "
                                 "not one: use \"utm\" or \"local\"",

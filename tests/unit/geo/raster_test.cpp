@@ -513,7 +513,7 @@ TEST(Raster, AnOwnCellNetOverAWideRastersDataIsItsCells) {
 }
 
 // The raster's CRS is the frame by default only when it is true to scale
-// (Web Mercator at 37 S is 25 % off: UTM then) and in metres (degrees: UTM);
+// (Web Mercator here, at 47 N, is 32 % off: UTM then, and a warning when asked for) and in metres (degrees: UTM);
 // asked for, a CRS in degrees is an error at the key, and so is the raster
 // frame for scattered samples.
 TEST(Raster, ItsOwnCrsOnlyWhenTrueToScaleAndInMetres) {
@@ -523,9 +523,14 @@ TEST(Raster, ItsOwnCrsOnlyWhenTrueToScaleAndInMetres) {
     const auto mercator = rasterNet(rasterSpec(path, "EPSG:3857"), {}, {}, diags);
     ASSERT_TRUE(mercator) << (diags.all().empty() ? "" : formatDiagnostic(diags.all()[0]));
     EXPECT_EQ(mercator->frame.kind, scene::FrameKind::Utm);
-    const auto asked = rasterNet(rasterSpec(path, "EPSG:3857"), namedFrame(scene::FrameKind::Raster), {}, diags);
+    Diagnostics askedDiags;
+    const auto asked = rasterNet(rasterSpec(path, "EPSG:3857"), namedFrame(scene::FrameKind::Raster), {}, askedDiags);
     ASSERT_TRUE(asked);
     EXPECT_EQ(asked->frame.describe(), "WGS 84 / Pseudo-Mercator (the raster's own CRS)");
+    ASSERT_GE(askedDiags.warningCount(), 1);  // these metres in Web Mercator lie at 47 N: cos 47 = 0.68
+    EXPECT_EQ(formatDiagnostic(askedDiags.all()[0]),
+              "scene.toml:2:8: warning: WGS 84 / Pseudo-Mercator is 31.7 % off true scale over the data: lengths, the "
+              "scale bar and the slopes are off by as much; \"utm\" is true to scale");
 
     const fs::path degrees = dir / "degrees.asc";
     {
