@@ -176,14 +176,17 @@ std::optional<emit::ContourRibbons> buildContours(const scene::SceneSpec& spec, 
         diags.error(at, "overlay.contours: GDAL: " + error);
         return std::nullopt;
     }
-    const scene::LimitsSpec& limits = spec.limits;
-    const double triangles = double(ribbons.faces.size()), mb = ribbons.sdlBytes() / 1e6;
-    if (triangles + double(meshTriangles) > limits.maxTriangles || mb > limits.maxSdlMB) {
-        diags.error(at, fmt::format("overlay.contours: interval_m = {} m draws {} lines of {:.3g} triangles ({:.3g} MB "
-                                    "of SDL), past limits.max_triangles ({:.3g} with the surface's {:.3g}) or "
-                                    "limits.max_sdl_mb ({}): choose a wider interval",
-                                    formatShortest(spec.overlay.contours->intervalM), ribbons.made.lines, triangles,
-                                    mb, limits.maxTriangles, double(meshTriangles), formatShortest(limits.maxSdlMB)));
+    // The lines' triangles join the surface's in POV-Ray's parse; their SDL is the .pov's beside the surface's.
+    subdiv::OutputEstimate withLines;
+    withLines.triangles = double(ribbons.faces.size()) + double(meshTriangles);
+    withLines.parseSeconds = withLines.triangles * subdiv::kParseSecondsPerTriangle;
+    withLines.sdlBytes = ribbons.sdlBytes();
+    if (const std::string over = subdiv::overBudget(withLines, budgetOf(spec.limits)); !over.empty()) {
+        const std::string beside = meshTriangles > 0 ? fmt::format(" beside the surface's {}", meshTriangles) : "";
+        diags.error(at, fmt::format("overlay.contours: interval_m = {} m draws {} lines of {} triangles{}: {}; choose "
+                                    "a wider interval, or raise [limits]",
+                                    formatShortest(spec.overlay.contours->intervalM), ribbons.made.lines,
+                                    ribbons.faces.size(), beside, over));
         return std::nullopt;
     }
     return ribbons;
@@ -318,8 +321,8 @@ std::optional<CompileResult> compileScene(const LoadedScene& loaded, const Compi
     r.scene = spec;
     r.times = {loaded.seconds, surface->normalizeSeconds, surface->subdivideSeconds, 0};
     describeView(spec, surface->net, *view, r);
-    const auto ribbons =
-        buildContours(spec, *surface, *view, r.overlayFacts.metresPerPixel, terrain.triangles, diags);
+    const long long parsedTriangles = terrain.field ? 0 : terrain.triangles;  // a height field's are POV-Ray's own
+    const auto ribbons = buildContours(spec, *surface, *view, r.overlayFacts.metresPerPixel, parsedTriangles, diags);
     if (!ribbons || !dumpNetFits(options, surface->net, diags) || !writeTerrainPngs(spec, *surface, *view, options, terrain, diags))
         return std::nullopt;
     recordSurface(r, loaded, *surface, view->where, view->sunRecord);

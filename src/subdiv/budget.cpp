@@ -69,9 +69,8 @@ int deepestWithinBudget(const Scheme& scheme, int rows, int cols, const Budget& 
     return depth;
 }
 
-bool checkBudget(const OutputEstimate& est, const Budget& budget, const SourceLoc& where,
-                 int depth, Diagnostics& diags, bool adaptive) {
-    if (withinBudget(est, budget)) return true;
+std::string overBudget(const OutputEstimate& est, const Budget& budget) {
+    if (withinBudget(est, budget)) return "";
     std::string over;
     auto add = [&](std::string s) { over += (over.empty() ? "" : "; ") + s; };
     const bool meshFigures = !est.meshAfterBuild;
@@ -87,6 +86,13 @@ bool checkBudget(const OutputEstimate& est, const Budget& budget, const SourceLo
     if (est.memoryBytes / 1e6 > budget.maxMemoryMB)
         add(fmt::format("{:.0f} MB of memory > limits.max_memory_mb = {:.0f}", est.memoryBytes / 1e6,
                         budget.maxMemoryMB));
+    return over;
+}
+
+bool checkBudget(const OutputEstimate& est, const Budget& budget, const SourceLoc& where, int depth, Diagnostics& diags,
+                 bool adaptive) {
+    const std::string over = overBudget(est, budget);
+    if (over.empty()) return true;
     if (adaptive)
         diags.error(where, fmt::format("depth {} refines the net to {} x {} vertices, and their adaptive "
                                        "mesh2 still has {}; raise geometry.tolerance_px (or tolerance_m), "

@@ -69,6 +69,10 @@ bool withinBudget(const OutputEstimate& est, const Budget& budget);
 /// (0 when not even depth 1 is).
 int deepestWithinBudget(const Scheme& scheme, int rows, int cols, const Budget& budget, int maxDepth);
 
+/// The figures of the estimate over the budget, each against its key
+/// ("2.1e+07 triangles > limits.max_triangles = 2e+07; ..."), "" when within.
+std::string overBudget(const OutputEstimate& est, const Budget& budget);
+
 /// Reports an error at `where` when the estimate exceeds the budget, naming
 /// each exceeded figure and the ways out (`adaptive`: the built adaptive mesh,
 /// whose tolerance is one of them). Returns true when within budget.
