@@ -64,8 +64,8 @@ std::string sceneTextForData(const fs::path& path) {
     const auto summary = geo::rasterSummary(tiles.empty() ? data : tiles.front());
     std::string title = summary && tiles.empty() ? summary->title : std::string();
     if (title.empty() && tiles.empty()) title = data.stem().string();
-    if (title.empty()) title = fs::weakly_canonical(data, ec).filename().string();  // "." or "tiles/..": its name
     if (title.empty()) title = data.filename().string();
+    if (title == "." || title == "..") title = fs::weakly_canonical(data, ec).filename().string();  // its own name
     // Deeper than any dry land (the Dead Sea's shore, -430 m): a sea floor, in the topobathy ramp's blues.
     const bool seaFloor = summary && summary->range && (*summary->range)[0] <= kSeaFloorM;
     return fmt::format(

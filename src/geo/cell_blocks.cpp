@@ -41,7 +41,8 @@ CellBlocks cellBlocks(const RasterPlace& place, int k) {
 int blockSideOf(const GeoGrid& net, const RasterPlace& place) {
     if (net.frame.kind != scene::FrameKind::Raster || !squareCells(place) || !nearly(net.dx, net.dy)) return 0;
     const double k = net.dx / place.geo[1];
-    return k >= 1.5 && std::fabs(k - std::round(k)) <= 1e-9 * k ? static_cast<int>(std::round(k)) : 0;
+    return k >= 1.5 && k <= kMaxBlockSide && std::fabs(k - std::round(k)) <= 1e-9 * k ? static_cast<int>(std::round(k))
+                                                                                      : 0;
 }
 
 bool onBlockCentres(GeoGrid& net, const RasterPlace& place, const std::array<double, 4>& box) {

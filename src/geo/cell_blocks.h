@@ -27,8 +27,11 @@ struct CellBlocks {
 };
 CellBlocks cellBlocks(const RasterPlace& place, int k);
 
+/// The widest block, in cells: one is read whole (a quarter of a million cells).
+inline constexpr int kMaxBlockSide = 512;
+
 /// The block side, in cells, of a net in `place`'s own frame spaced a whole
-/// number k >= 2 of its square cells (within 1e-9), else 0.
+/// number k of its square cells (within 1e-9), 2 <= k <= kMaxBlockSide; else 0.
 int blockSideOf(const GeoGrid& net, const RasterPlace& place);
 
 /// `net` (in `place`'s own frame, spaced k cells: blockSideOf) moved onto the

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cctype>
 #include <memory>
+#include <optional>
 #include <set>
 #include <string_view>
 #include <vector>
@@ -173,19 +174,11 @@ std::string vrtProblem(const fs::path& vrt, VrtWalk& walk) {
 // dem.tif.msk, dem.prj, dem.tfw, ...): each must be a regular file too (a FIFO
 // would block GDAL, a link to /dev/zero fill memory), and one that is a VRT is
 // checked as one.
-std::string sidecarProblem(const fs::path& path, const FolderNames* siblings) {
+std::string sidecarProblem(const fs::path& path, const FolderNames& siblings) {
     std::error_code ec;
     const fs::path folder = fs::absolute(path, ec).parent_path();
-    const std::string name = path.filename().string(), prefix = name.substr(0, name.find('.')) + ".";
-    std::vector<std::string> beside;
-    if (siblings) {
-        beside = siblings->beside(name);
-    } else {
-        for (auto it = fs::directory_iterator(folder, ec); !ec && it != fs::directory_iterator(); it.increment(ec))
-            if (std::string other = it->path().filename().string(); other.starts_with(prefix))
-                beside.push_back(std::move(other));
-    }
-    for (const std::string& other : beside) {
+    const std::string name = path.filename().string();
+    for (const std::string& other : siblings.beside(name)) {
         const fs::path file = folder / other;
         if (other == name || fs::is_directory(file, ec)) continue;
         const std::string shown = printableExcerpt(other, 80);
@@ -212,11 +205,16 @@ FolderNames::FolderNames(const fs::path& folder) {
     std::sort(lowered_.begin(), lowered_.end());
 }
 
+FolderNames FolderNames::of(const fs::path& path) {
+    std::error_code ec;
+    return FolderNames(fs::absolute(path, ec).parent_path());
+}
+
 std::vector<std::string> FolderNames::beside(const std::string& name) const {
     const std::string own = lowered(name), prefix = own.substr(0, own.find('.')) + ".";
     std::vector<std::string> out;
     for (auto it = std::lower_bound(lowered_.begin(), lowered_.end(), std::make_pair(prefix, size_t{0}));
-         it != lowered_.end() && (it->first.starts_with(prefix) || it->first == own); ++it)
+         it != lowered_.end() && it->first.starts_with(prefix); ++it)
         out.push_back(names_[it->second]);
     if (std::find(out.begin(), out.end(), name) == out.end()) out.push_back(name);
     return out;
@@ -232,17 +230,18 @@ std::vector<const char*> gdalNameList(const std::vector<std::string>& names) {
 std::string gdalInputProblem(const fs::path& path, const FolderNames* siblings) {
     if (std::string problem = inputFileProblem(path); !problem.empty()) return problem;
     setUpGdal();
-    const std::vector<std::string> beside =
-        siblings ? siblings->beside(path.filename().string()) : std::vector<std::string>{};
+    std::optional<FolderNames> listedHere;
+    const FolderNames& names = siblings ? *siblings : listedHere.emplace(FolderNames::of(path));
+    const std::vector<std::string> beside = names.beside(path.filename().string());
     const std::vector<const char*> list = gdalNameList(beside);
     CPLPushErrorHandler(CPLQuietErrorHandler);
-    GDALDriverH driver = GDALIdentifyDriverEx(path.c_str(), GDAL_OF_RASTER, nullptr, siblings ? list.data() : nullptr);
+    GDALDriverH driver = GDALIdentifyDriverEx(path.c_str(), GDAL_OF_RASTER, nullptr, list.data());
     CPLPopErrorHandler();
     if ((driver && std::string_view(GDALGetDriverShortName(driver)) == "VRT") || looksLikeVrt(path)) {
         VrtWalk walk;
         if (const std::string problem = vrtProblem(path, walk); !problem.empty()) return "it is a VRT, and " + problem;
     }
-    return driver ? sidecarProblem(path, siblings) : "";  // a file GDAL does not take for a raster brings no sidecars
+    return driver ? sidecarProblem(path, names) : "";  // a file GDAL does not take for a raster brings no sidecars
 }
 
 }  // namespace relief::geo

@@ -24,18 +24,22 @@ namespace relief::geo {
 /// (safe to call from any thread, any number of times).
 void setUpGdal();
 
-/// The names in a folder, read once for the many rasters of a folder of
-/// tiles: GDAL lists a raster's folder each time it identifies or opens it
-/// (its sibling files), and so does the check of the files beside it, which
-/// for n tiles is n^2 directory entries read (49 s for 2,500 tiles).
+/// The names in a raster's folder: GDAL is given those beside the raster
+/// (its sibling files) instead of listing the folder itself, so that it sees
+/// exactly the files the check beside it has checked; and a folder of tiles
+/// is listed once, not once a tile by GDAL and again by the check (n^2
+/// directory entries).
 class FolderNames {
 public:
     explicit FolderNames(const std::filesystem::path& folder);
+    /// The folder of the file `path`.
+    static FolderNames of(const std::filesystem::path& path);
 
     /// In byte order; empty when the folder cannot be read.
     const std::vector<std::string>& sorted() const { return names_; }
-    /// The names GDAL may read with the file `name` (its own, and those that
-    /// start with its stem and a dot, in any case, as GDAL looks for them).
+    /// The names beside the file `name` that GDAL may read with it: its own,
+    /// and those that start with its stem and a dot, in any case (dem.tif.ovr,
+    /// DEM.TFW, dem.prj for dem.tif), as GDAL looks for them.
     std::vector<std::string> beside(const std::string& name) const;
 
 private:
@@ -49,8 +53,9 @@ std::vector<const char*> gdalNameList(const std::vector<std::string>& names);
 /// Why GDAL must not open `path` for a scene, as the end of a sentence, or
 /// "": it is not a regular file (inputFileProblem), or "it is a VRT, and it
 /// holds ..." a file outside its folder, a network or virtual path, or a raw,
-/// derived, warped or pansharpened band or dataset. `siblings`, when given,
-/// are the names in `path`'s folder.
+/// derived, warped or pansharpened band or dataset; or a file beside it that
+/// GDAL would read with it is. `siblings`: the names in `path`'s folder,
+/// listed here when not given.
 std::string gdalInputProblem(const std::filesystem::path& path, const FolderNames* siblings = nullptr);
 
 }  // namespace relief::geo

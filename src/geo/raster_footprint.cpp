@@ -182,7 +182,7 @@ OwnCrs ownCrsFrame(const RasterPlace& place, const PixelBox& box, const scene::F
                    Diagnostics& diags) {
     OGRSpatialReferenceH srs = place.crs.srs.get();
     if (spec.kind == scene::FrameKind::Raster) {
-        if (Frame own = crsFrame(srs); projectedInMetres(srs) && !own.crsWkt.empty()) {
+        if (Frame own = projectedInMetres(srs) ? crsFrame(srs) : Frame{}; !own.crsWkt.empty()) {
             if (const double off = scaleError(place, box); off > kOwnCrsScaleError)
                 diags.warning(spec.locs.at("frame.kind"),
                               fmt::format("{} is {:.1f} % off true scale over the data: lengths, the scale bar and "

@@ -102,6 +102,10 @@ std::vector<fs::path> rasterTilesIn(const fs::path& folder, std::string& problem
         return {};
     }
     const FolderNames names(folder);
+    if (names.sorted().size() > 8 * kMaxTiles) {  // a folder of everything: no scan of all of it
+        problem = fmt::format("the folder holds more than the {} tiles a scene may mosaic", kMaxTiles);
+        return {};
+    }
     std::vector<fs::path> tiles;
     size_t files = 0;
     for (const std::string& name : names.sorted()) {  // in name order

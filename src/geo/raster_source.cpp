@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <initializer_list>
+#include <limits>
+#include <optional>
 #include <string_view>
 #include <tuple>
 
@@ -31,17 +33,18 @@ std::pair<Transform, Transform> wgs84Transforms(OGRSpatialReferenceH srs) {
 }
 
 Dataset openRaster(const std::filesystem::path& path, std::string& problem, const FolderNames* siblings) {
+    std::optional<FolderNames> listedHere;
+    if (!siblings) siblings = &listedHere.emplace(FolderNames::of(path));
     problem = gdalInputProblem(path, siblings);
     if (!problem.empty()) return Dataset();
     // Absolute: a relative name is never taken for a driver's prefix ("NETCDF:...").
     std::error_code ec;
     const std::string name = std::filesystem::absolute(path, ec).string();
-    const std::vector<std::string> beside =
-        siblings ? siblings->beside(path.filename().string()) : std::vector<std::string>{};
+    // Only the files beside it that were checked: GDAL lists no folder itself.
+    const std::vector<std::string> beside = siblings->beside(path.filename().string());
     const std::vector<const char*> list = gdalNameList(beside);
     CPLPushErrorHandler(CPLQuietErrorHandler);
-    Dataset ds(GDALOpenEx(name.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr,
-                          siblings ? list.data() : nullptr));
+    Dataset ds(GDALOpenEx(name.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, list.data()));
     CPLPopErrorHandler();
     return ds;
 }
@@ -251,6 +254,12 @@ HeightBand heightBand(GDALDatasetH src, int number) {
     b.declaredNoData = GDALGetRasterNoDataValue(b.band, &hasNoData);
     b.hasNoData = hasNoData;
     b.noData = hasNoData ? b.declaredNoData : std::nan("");
+    // As a Float32 cell holds it (-9999.1 is -9999.099609375 there), as GTiff says but not every
+    // driver does: the cells, read as doubles, must compare equal to it.
+    constexpr double kFloatMax = std::numeric_limits<float>::max();
+    if (hasNoData && GDALGetRasterDataType(b.band) == GDT_Float32 && std::isfinite(b.noData) &&
+        std::fabs(b.noData) <= kFloatMax * (1 + 1e-7))
+        b.noData = static_cast<float>(std::clamp(b.noData, -kFloatMax, kFloatMax));
     return b;
 }
 
@@ -273,6 +282,8 @@ std::optional<RasterSummary> rasterSummary(const std::filesystem::path& path) {
 }
 
 bool isRasterDem(const std::filesystem::path& path, const FolderNames* siblings) {
+    std::optional<FolderNames> listedHere;
+    if (!siblings) siblings = &listedHere.emplace(FolderNames::of(path));
     std::string problem;
     if (openRaster(path, problem, siblings)) return true;
     // A VRT relief refuses, or a file identified as a raster format but not
@@ -280,10 +291,9 @@ bool isRasterDem(const std::filesystem::path& path, const FolderNames* siblings)
     // the raster, not about a CSV header made of binary bytes.
     if (!problem.empty()) return inputFileProblem(path).empty();  // refused for what it brings with it
     CPLPushErrorHandler(CPLQuietErrorHandler);
-    const std::vector<std::string> beside =
-        siblings ? siblings->beside(path.filename().string()) : std::vector<std::string>{};
+    const std::vector<std::string> beside = siblings->beside(path.filename().string());
     const std::vector<const char*> list = gdalNameList(beside);
-    GDALDriverH driver = GDALIdentifyDriverEx(path.c_str(), GDAL_OF_RASTER, nullptr, siblings ? list.data() : nullptr);
+    GDALDriverH driver = GDALIdentifyDriverEx(path.c_str(), GDAL_OF_RASTER, nullptr, list.data());
     CPLPopErrorHandler();
     return driver != nullptr;
 }

@@ -50,14 +50,15 @@ void onBlocksWhenAveraged(ControlNet& net, const RasterPlace& place, const NetEx
         return;
     const bool chosen = averagesWhenCoarser(samples, netSpec);
     const double cells = net.dx / extent.cellM;
-    for (const double k : {std::max(2.0, std::round(cells)), std::max(2.0, std::ceil(cells))}) {
+    const double up = std::max(2.0, std::ceil(cells));
+    for (const double k : {std::max(2.0, std::round(cells)), up}) {
         GeoGrid blocks = net;
         if (chosen) blocks.dx = blocks.dy = k * extent.cellM;
         if (!onBlockCentres(blocks, place, extent.box)) return;
         const bool more = double(blocks.rows()) * blocks.cols() > double(net.rows()) * net.cols();
         Diagnostics aside;
         if (more && budget.fits && !budget.fits(blocks.rows(), blocks.cols(), aside)) {
-            if (chosen) continue;
+            if (chosen && k < up) continue;  // one block wider a side, fewer nodes
             return;
         }
         const int side = blockSideOf(blocks, place);
@@ -115,34 +116,40 @@ struct AveragedCells {
 // whose cells are not these blocks (gdaladdo's are the nearest cell by default).
 template <class Cell>
 bool readBlockMeansAs(GDALDataType type, const HeightBand& band, const CellBlocks& b, double* means) {
-    const int k = b.k, width = b.columns * k;
-    const int blockRowsPerRead = std::max(1, (1 << 19) / (width * k));  // 2 to 4 MB of cells, read again and again
+    // Windows of whole blocks of at most 2^19 cells (2 to 4 MB), one buffer read into again and again:
+    // fresh pages cost more than the sums here.
+    constexpr size_t kCellsPerRead = size_t{1} << 19;
+    const int k = b.k;
+    const size_t blockCells = static_cast<size_t>(k) * k;
+    const int across = static_cast<int>(std::clamp<size_t>(kCellsPerRead / blockCells, 1, b.columns));
+    const int down = static_cast<int>(std::clamp<size_t>(kCellsPerRead / (blockCells * across), 1, b.rows));
     std::vector<Cell> cells;
-    std::vector<double> sum(b.columns);
-    std::vector<int> count(b.columns);
-    for (int i0 = 0; i0 < b.rows; i0 += blockRowsPerRead) {
-        const int n = std::min(blockRowsPerRead, b.rows - i0);
-        cells.resize(static_cast<size_t>(width) * n * k);
-        if (GDALRasterIO(band.band, GF_Read, b.column0, b.row0 + i0 * k, width, n * k, cells.data(), width, n * k, type,
-                         0, 0) != CE_None)
-            return false;
-        for (int i = 0; i < n; ++i) {
-            std::fill(sum.begin(), sum.end(), 0.0);
-            std::fill(count.begin(), count.end(), 0);
-            for (int r = 0; r < k; ++r) {
-                const Cell* row = cells.data() + (static_cast<size_t>(i) * k + r) * width;
-                for (int j = 0; j < b.columns; ++j, row += k)
-                    for (int c = 0; c < k; ++c) {
-                        const double v = row[c];
-                        const bool data = !std::isnan(v) && v != band.noData;
-                        sum[j] += data ? v : 0.0;
-                        count[j] += data;
-                    }
+    std::vector<double> sum(across);
+    std::vector<int> count(across);
+    for (int i0 = 0; i0 < b.rows; i0 += down)
+        for (int j0 = 0; j0 < b.columns; j0 += across) {
+            const int n = std::min(down, b.rows - i0), m = std::min(across, b.columns - j0), width = m * k;
+            cells.resize(static_cast<size_t>(width) * n * k);
+            if (GDALRasterIO(band.band, GF_Read, b.column0 + j0 * k, b.row0 + i0 * k, width, n * k, cells.data(), width,
+                             n * k, type, 0, 0) != CE_None)
+                return false;
+            for (int i = 0; i < n; ++i) {
+                std::fill(sum.begin(), sum.end(), 0.0);
+                std::fill(count.begin(), count.end(), 0);
+                for (int r = 0; r < k; ++r) {
+                    const Cell* row = cells.data() + (static_cast<size_t>(i) * k + r) * width;
+                    for (int j = 0; j < m; ++j, row += k)
+                        for (int c = 0; c < k; ++c) {
+                            const double v = row[c];
+                            const bool data = !std::isnan(v) && v != band.noData;
+                            sum[j] += data ? v : 0.0;
+                            count[j] += data;
+                        }
+                }
+                double* out = means + static_cast<size_t>(i0 + i) * b.columns + j0;
+                for (int j = 0; j < m; ++j) out[j] = count[j] ? sum[j] / count[j] : band.noData;
             }
-            double* out = means + static_cast<size_t>(i0 + i) * b.columns;
-            for (int j = 0; j < b.columns; ++j) out[j] = count[j] ? sum[j] / count[j] : band.noData;
         }
-    }
     return true;
 }
 bool readBlockMeans(const HeightBand& band, const CellBlocks& b, double* means) {
@@ -305,10 +312,19 @@ struct Averaging {
     int factor = 1;
     bool blocks = false;
 };
-Averaging averagingFor(const PlacedNet& placed, const RasterPlace& place, const scene::SamplesSpec& samples) {
+// Whether nodata (and NaN) tell every cell without data: not a mask band or
+// an alpha band, which GDAL's average honours and the block means do not read.
+bool noDataTellsAll(const HeightBand& band) {
+    const int flags = GDALGetMaskFlags(band.band);
+    return (flags & (GMF_ALL_VALID | GMF_NODATA)) != 0 && (flags & (GMF_PER_DATASET | GMF_ALPHA)) == 0;
+}
+
+Averaging averagingFor(const PlacedNet& placed, const RasterPlace& place, const HeightBand& band,
+                       const scene::SamplesSpec& samples) {
     const ControlNet& net = placed.net;
-    if (const int k = blockSideOf(net, place);
-        k >= 2 && net.resample == scene::Resample::Average && nodesOnBlockCentres(net, place, cellBlocks(place, k)))
+    if (const int k = blockSideOf(net, place); k >= 2 && net.resample == scene::Resample::Average &&
+                                               noDataTellsAll(band) &&
+                                               nodesOnBlockCentres(net, place, cellBlocks(place, k)))
         return {k, true};
     const int factor = static_cast<int>(std::min(net.dx, net.dy) / placed.extent.cellM);
     return {net.resample != samples.resample && factor >= 2 ? factor : 1, false};
@@ -317,7 +333,7 @@ Averaging averagingFor(const PlacedNet& placed, const RasterPlace& place, const 
 // The averages the net is warped or read from: those at hand when they are the ones it needs, else new ones, or none.
 bool keepOrAverage(PlacedNet& placed, const HeightBand& band, const RasterPlace& place,
                    const scene::SamplesSpec& samples, const SourceLoc& fileLoc, Diagnostics& diags) {
-    const Averaging a = averagingFor(placed, place, samples);
+    const Averaging a = averagingFor(placed, place, band, samples);
     if (placed.averaged && placed.averaged->factor == a.factor && placed.averaged->blocks.has_value() == a.blocks)
         return true;
     placed.averaged.reset();
@@ -341,7 +357,7 @@ struct AveragedData {
 std::optional<AveragedData> dataAmongAverages(const std::optional<PlacedNet>& overAll, const HeightBand& band,
                                               const RasterPlace& place, const scene::SamplesSpec& samples,
                                               const SourceLoc& fileLoc, Diagnostics& diags) {
-    const Averaging a = overAll ? averagingFor(*overAll, place, samples) : Averaging{};
+    const Averaging a = overAll ? averagingFor(*overAll, place, band, samples) : Averaging{};
     if (a.factor < 2) return std::nullopt;
     auto averaged = averagedCells(band, place, a.factor, a.blocks);
     if (!averaged) return std::nullopt;  // the file read again below says why

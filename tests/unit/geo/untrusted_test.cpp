@@ -12,7 +12,6 @@
 #include <atomic>
 #include <cmath>
 #include <fstream>
-#include <memory>
 #include <thread>
 
 #include <cpl_conv.h>
@@ -300,9 +299,9 @@ TEST(UntrustedGdal, FilesBesideARasterAreCheckedToo) {
               "the file beside it that GDAL would read with it, dem.prj, is not a plain file "
               "(it is a device, not a file)");
     fs::remove(dir / "dem.prj");
-    // GDAL looks for side files in any case (DEM.TIF.OVR for dem.tif): so does the listed check.
+    // GDAL looks for side files in any case (DEM.TIF.OVR for dem.tif): so does the check.
     fs::create_symlink("/dev/zero", dir / "DEM.TIF.OVR");
-    EXPECT_EQ(gdalInputProblem(dem, std::make_unique<FolderNames>(dir).get()),
+    EXPECT_EQ(problems(),
               "the file beside it that GDAL would read with it, DEM.TIF.OVR, is not a plain file "
               "(it is a device, not a file)");
     EXPECT_EQ(FolderNames(dir).beside("dem.tif"), (std::vector<std::string>{"dem.tif", "DEM.TIF.OVR"}));
