@@ -12,6 +12,7 @@
 
 #include "core/input_file.h"
 #include "core/text_distance.h"
+#include "core/text_escape.h"
 #include "scene/read_sections.h"
 #include "scene/section.h"
 
@@ -76,15 +77,19 @@ std::optional<double> parseFraction(std::string_view text) {
 
 namespace {
 
+// Where an override came from: the command line's --set, named as the user wrote it.
+SourceLoc overrideLoc(const std::string& dotted) {
+    return {"--set " + terminalText(dotted, 200), 0, 0};
+}
+
 // Applies `section.key = value` overrides to the parsed document.
 bool applyOverrides(toml::table& root, const SceneOverrides& overrides, Diagnostics& diags) {
     bool ok = true;
     for (const auto& [dotted, text] : overrides) {
         const auto dot = dotted.find('.');
         if (dot == std::string::npos || dot == 0 || dot + 1 == dotted.size()) {
-            diags.error({}, fmt::format("override \"{}\" must name section.key (e.g. "
-                                        "subdivision.omega)",
-                                        dotted));
+            diags.error(overrideLoc(dotted), fmt::format("\"{}\" must name section.key (e.g. subdivision.omega)",
+                                                         terminalText(dotted, 200)));
             ok = false;
             continue;
         }
@@ -92,7 +97,8 @@ bool applyOverrides(toml::table& root, const SceneOverrides& overrides, Diagnost
         if (!root.contains(section)) root.insert(section, toml::table{});
         toml::table* t = root.get_as<toml::table>(section);
         if (!t) {
-            diags.error({}, fmt::format("override {}: \"{}\" is not a section", dotted, section));
+            diags.error(overrideLoc(dotted),
+                        fmt::format("\"{}\" is not a section: it holds a value", terminalText(section, 200)));
             ok = false;
             continue;
         }

@@ -104,6 +104,21 @@ TEST(ReadScene, EachSpecKeepsTheLocationOfEveryKey) {
     std::filesystem::remove_all(dir);
 }
 
+// An override that names no key is an error at the command line's --set, as written.
+TEST(ReadScene, ABadOverrideIsAnErrorAtItsSet) {
+    const auto dir = relief::testing::freshTestDir("relief-scene-bad-override");
+    std::ofstream(dir / "s.csv") << "lon,lat,elev\n";
+    std::ofstream(dir / "s.toml") << "title = \"a value\"\n[samples]\npath = \"s.csv\"\n";
+    for (const auto& [dotted, expected] : std::vector<std::pair<std::string, std::string>>{
+             {"omega", "--set omega: error: \"omega\" must name section.key (e.g. subdivision.omega)"},
+             {"title.x", "--set title.x: error: \"title\" is not a section: it holds a value"}}) {
+        Diagnostics diags;
+        EXPECT_FALSE(readScene(dir / "s.toml", diags, {{dotted, "1"}}));
+        ASSERT_FALSE(diags.all().empty()) << dotted;
+        EXPECT_EQ(formatDiagnostic(diags.all()[0]), expected);
+    }
+}
+
 // The report-ready keys, from the file and from overrides written as TOML
 // writes values (an inline table, a quoted string): the block's thickness or
 // false, slope and blend colouring, contours, the sun's date and time.
