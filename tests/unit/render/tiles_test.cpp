@@ -1,0 +1,81 @@
+#include "render/tiles.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "core/png_file.h"
+#include "unit/test_dirs.h"
+
+namespace relief::render {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A plan of a 5 x 7 still in 3 tiles, each tile's pixels its rows' numbers,
+// written as POV-Ray and renderTile leave them (a PNG, then its record).
+plan::RenderPlan planWithTiles(const fs::path& dir) {
+    plan::RenderPlan plan;
+    plan.dir = dir;
+    plan.width = 5, plan.height = 7, plan.tiles = 3;
+    plan.hash = "sha256:0123456789abcdef0123", plan.reliefVersion = "1.0", plan.povrayVersion = "3.7.0.10";
+    fs::create_directories(dir / "tiles");
+    for (int k = 0; k < plan.tiles; ++k) {
+        const plan::TileRows rows = plan::tileRows(plan.height, plan.tiles, k);
+        std::vector<std::uint8_t> pixels;
+        for (int row = rows.first; row <= rows.last; ++row)
+            for (int x = 0; x < plan.width * 3; ++x) pixels.push_back(static_cast<std::uint8_t>(10 * row + x % 3));
+        const int h = rows.last - rows.first + 1;
+        EXPECT_EQ(writePngAtomically(plan::tileImage(plan, k), {plan.width, h, 3, false, pixels.data()}), "");
+        plan::TileRecord record;
+        record.index = k, record.rows = rows, record.planHash = plan.hash;
+        record.reliefVersion = plan.reliefVersion, record.povrayVersion = plan.povrayVersion, record.host = "here";
+        std::ofstream(plan::tileRecordPath(plan, k)) << plan::tileRecordJson(record).dump();
+    }
+    return plan;
+}
+
+// The still is its tiles' rows in order, every byte; nothing POV-Ray runs.
+TEST(StitchTiles, TheStillIsItsTilesRowsInOrder) {
+    const plan::RenderPlan plan = planWithTiles(relief::testing::freshTestDir("relief-stitch"));
+    std::string error;
+    const auto still = stitchTiles(plan, error);
+    ASSERT_TRUE(still) << error;
+    ASSERT_EQ(still->width, 5);
+    ASSERT_EQ(still->height, 7);
+    ASSERT_EQ(still->channels, 3);
+    for (int y = 0; y < 7; ++y)
+        for (int x = 0; x < 15; ++x) ASSERT_EQ(still->pixels[y * 15 + x], 10 * (y + 1) + x % 3) << y << " " << x;
+}
+
+// A tile that is not the plan's is named, and no still is made of it.
+TEST(StitchTiles, ATileThatIsNotThePlansIsNamed) {
+    {
+        const plan::RenderPlan plan = planWithTiles(relief::testing::freshTestDir("relief-stitch-record"));
+        fs::remove(plan::tileRecordPath(plan, 1));  // a tile half-written: its PNG, no record
+        std::string error;
+        EXPECT_FALSE(stitchTiles(plan, error));
+        EXPECT_EQ(error.rfind("tile 2 of 3: ", 0), 0u) << error;
+    }
+    {
+        plan::RenderPlan plan = planWithTiles(relief::testing::freshTestDir("relief-stitch-hash"));
+        plan.hash = "sha256:ffffffffffffffffffff";  // the tiles were rendered from another plan
+        std::string error;
+        EXPECT_FALSE(stitchTiles(plan, error));
+        EXPECT_EQ(error, "tile 1 of 3: it was rendered from another plan (sha256:0123456789ab, not sha256:ffffffffffff)");
+    }
+    {
+        const plan::RenderPlan plan = planWithTiles(relief::testing::freshTestDir("relief-stitch-size"));
+        const std::vector<std::uint8_t> pixels(5 * 4 * 3, 0);  // tile 3 is rows 5..7: 3 rows, not 4
+        ASSERT_EQ(writePngAtomically(plan::tileImage(plan, 2), {5, 4, 3, false, pixels.data()}), "");
+        std::string error;
+        EXPECT_FALSE(stitchTiles(plan, error));
+        EXPECT_EQ(error, "tile 3 of 3 is 5 x 4 with 3 channels, not rows 5..7 of the plan's 5 x 7");
+    }
+}
+
+}  // namespace
+}  // namespace relief::render
