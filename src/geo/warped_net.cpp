@@ -173,17 +173,19 @@ std::optional<AveragedCells> averagedCells(const HeightBand& band, const RasterP
     const int readW = blocks ? w * factor : place.width, readH = blocks ? h * factor : place.height;
     AveragedCells out{memRaster(w, h, 1, GDT_Float64), double(w) / readW, double(h) / readH, factor, blocks};
     if (!out.raster) return std::nullopt;
-    // Into the memory raster's own cells (w x h, rows in order), not a copy: at
-    // 3 M nodes a copy's first touch of fresh pages costs a tenth of a second here.
+    // Into the memory raster's own cells (w x h, rows in order), not a copy: a
+    // copy's first touch of fresh pages costs as much as the means.
     auto* cells = static_cast<double*>(GDALGetInternalHandle(out.raster.get(), "MEMORY1"));
     if (!cells) return std::nullopt;
-    GDALRasterIOExtraArg arg;
-    INIT_RASTERIO_EXTRA_ARG(arg);
-    arg.eResampleAlg = GRIORA_Average;
-    if (blocks
-            ? !readBlockMeans(band, *blocks, cells)
-            : GDALRasterIOEx(band.band, GF_Read, 0, 0, readW, readH, cells, w, h, GDT_Float64, 0, 0, &arg) != CE_None)
-        return std::nullopt;
+    if (blocks) {
+        if (!readBlockMeans(band, *blocks, cells)) return std::nullopt;
+    } else {
+        GDALRasterIOExtraArg arg;
+        INIT_RASTERIO_EXTRA_ARG(arg);
+        arg.eResampleAlg = GRIORA_Average;
+        if (GDALRasterIOEx(band.band, GF_Read, 0, 0, readW, readH, cells, w, h, GDT_Float64, 0, 0, &arg) != CE_None)
+            return std::nullopt;
+    }
     GDALSetRasterNoDataValue(GDALGetRasterBand(out.raster.get(), 1), band.noData);
     return out;
 }

@@ -84,6 +84,26 @@ scene::SamplesSpec rasterSpec(const fs::path& path, const std::string& crs) {
     return s;
 }
 
+// The net of the scene relief init writes (net.spacing_m and resample =
+// "average" given) is the net chosen for the still, node for node.
+void expectInitsNetIsTheChosen(const fs::path& path, const std::string& crs, const scene::FrameSpec& frame,
+                               double spacingM, const ControlNet& chosen) {
+    auto spec = rasterSpec(path, crs);
+    spec.resample = scene::Resample::Average;
+    spec.locs.keys["samples.resample"] = {};
+    scene::NetSpec given;
+    given.spacingM = spacingM;
+    Diagnostics diags;
+    const auto written = rasterNet(spec, frame, given, diags);
+    ASSERT_TRUE(written) << (diags.all().empty() ? "" : formatDiagnostic(diags.all()[0]));
+    ASSERT_EQ(written->cols(), chosen.cols());
+    ASSERT_EQ(written->rows(), chosen.rows());
+    EXPECT_EQ(written->x0, chosen.x0);
+    EXPECT_EQ(written->y0, chosen.y0);
+    for (size_t i = 0; i < chosen.grid.points.size(); ++i)
+        ASSERT_EQ(written->grid.points[i].z, chosen.grid.points[i].z) << i;
+}
+
 // The whole chain: net node in UTM 60S -> WGS84 (GeographicLib) -> NZTM
 // (PROJ) -> pixel, bilinear there. A plane is reproduced exactly by bilinear
 // resampling, so each height equals the plane at the node's NZTM position
@@ -389,20 +409,7 @@ TEST(Raster, ACoarserNetInItsOwnCrsIsTheMeansOfBlocksOfCells) {
             ASSERT_NEAR(chosen->grid.at(4 - i, j).z, sum / 16, 1e-9) << i << " " << j;
         }
 
-    auto spec = rasterSpec(path, "EPSG:2193");
-    spec.resample = scene::Resample::Average;
-    spec.locs.keys["samples.resample"] = {};
-    scene::NetSpec given;
-    given.spacingM = 4 * kCell;
-    Diagnostics givenDiags;
-    const auto written = rasterNet(spec, namedFrame(scene::FrameKind::Raster), given, givenDiags);
-    ASSERT_TRUE(written) << (givenDiags.all().empty() ? "" : formatDiagnostic(givenDiags.all()[0]));
-    ASSERT_EQ(written->cols(), chosen->cols());
-    ASSERT_EQ(written->rows(), chosen->rows());
-    EXPECT_EQ(written->x0, chosen->x0);
-    EXPECT_EQ(written->y0, chosen->y0);
-    for (size_t i = 0; i < chosen->grid.points.size(); ++i)
-        ASSERT_EQ(written->grid.points[i].z, chosen->grid.points[i].z) << i;
+    expectInitsNetIsTheChosen(path, "EPSG:2193", namedFrame(scene::FrameKind::Raster), 4 * kCell, *chosen);
 }
 
 // Block means are exact whatever the file brings: a GeoTIFF wider than the
@@ -468,20 +475,7 @@ TEST(Raster, BlockMeansAreExactWithOverviewsAndANodataBorder) {
             ASSERT_NEAR(chosen->grid.at(i, j).z, sum / n, 1e-9) << i << " " << j;
         }
 
-    auto spec = rasterSpec(path, "");
-    spec.resample = scene::Resample::Average;
-    spec.locs.keys["samples.resample"] = {};
-    scene::NetSpec given;
-    given.spacingM = 4 * kCell;
-    Diagnostics givenDiags;
-    const auto written = rasterNet(spec, {}, given, givenDiags);
-    ASSERT_TRUE(written) << (givenDiags.all().empty() ? "" : formatDiagnostic(givenDiags.all()[0]));
-    ASSERT_EQ(written->cols(), chosen->cols());
-    ASSERT_EQ(written->rows(), chosen->rows());
-    EXPECT_EQ(written->x0, chosen->x0);
-    EXPECT_EQ(written->y0, chosen->y0);
-    for (size_t i = 0; i < chosen->grid.points.size(); ++i)
-        ASSERT_EQ(written->grid.points[i].z, chosen->grid.points[i].z) << i;
+    expectInitsNetIsTheChosen(path, "", {}, 4 * kCell, *chosen);
 }
 
 // At its own cells, a net over the data of a raster wider than the data scan
