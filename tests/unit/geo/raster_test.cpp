@@ -412,6 +412,33 @@ TEST(Raster, ACoarserNetInItsOwnCrsIsTheMeansOfBlocksOfCells) {
     expectInitsNetIsTheChosen(path, "EPSG:2193", namedFrame(scene::FrameKind::Raster), 4 * kCell, *chosen);
 }
 
+// Rounding the block side to the nearest whole cells may give more nodes
+// than the net the still asked for; when those pass the limits, the blocks
+// are one cell wider a side, never an error.
+TEST(Raster, BlocksOneCellWiderWhenTheNearestPassTheLimits) {
+    const fs::path path = freshDir("blocks-wider") / "nztm.asc";
+    writeCells(path, 60, 40, kX0, kY0, [](int c, int r) { return 100.0 + (c * 7 % 13) + 0.25 * r; });
+    NetBudget still;
+    still.stillWidthPx = 14;  // 600 m across: 42.9 m a pixel, 4.3 cells, nearest 4
+    Diagnostics diags;
+    const auto nearest = rasterNet(rasterSpec(path, "EPSG:2193"), {}, {}, diags, {}, still);
+    ASSERT_TRUE(nearest) << (diags.all().empty() ? "" : formatDiagnostic(diags.all()[0]));
+    ASSERT_EQ(nearest->dx, 4 * kCell);
+    const int blockNodes = nearest->rows() * nearest->cols();
+    still.fits = [&](int rows, int cols, Diagnostics& d) {
+        if (rows * cols < blockNodes) return true;
+        d.error({}, "over the limits");
+        return false;
+    };
+    Diagnostics limited;
+    const auto wider = rasterNet(rasterSpec(path, "EPSG:2193"), {}, {}, limited, {}, still);
+    ASSERT_TRUE(wider) << (limited.all().empty() ? "" : formatDiagnostic(limited.all()[0]));
+    EXPECT_FALSE(limited.hasErrors());
+    EXPECT_EQ(wider->dx, 5 * kCell);
+    EXPECT_LT(wider->rows() * wider->cols(), blockNodes);
+    EXPECT_NE(wider->raster.find("the mean of each 5 x 5 cells"), std::string::npos) << wider->raster;
+}
+
 // Block means are exact whatever the file brings: a GeoTIFF wider than the
 // data scan reads (1024 cells) and taller than one read of blocks (119 rows
 // of them here), with a nodata border (-9999.1, which a Float32 cell holds as
