@@ -38,6 +38,13 @@ scene::Resample resampleFor(const scene::SamplesSpec& samples, const scene::NetS
     return scene::Resample::Average;
 }
 
+// Whether nodata (and NaN) tell every cell without data: not a mask band or
+// an alpha band, which GDAL's average honours and the block means do not read.
+bool noDataTellsAll(const HeightBand& band) {
+    const int flags = GDALGetMaskFlags(band.band);
+    return (flags & (GMF_ALL_VALID | GMF_NODATA)) != 0 && (flags & (GMF_PER_DATASET | GMF_ALPHA)) == 0;
+}
+
 // An averaged net in the raster's own frame over no window of the scene's:
 // onto the centres of blocks of whole cells (cell_blocks.h), k = the spacing
 // in cells, rounded when relief chose the spacing for the still (up, when
@@ -79,7 +86,8 @@ std::optional<ControlNet> laidOutNet(GDALDatasetH src, const RasterPlace& place,
     if (!layoutNet(netSpec, extent.box, extent.cellM, net, diags, budget)) return std::nullopt;
     net.spacingReason = netSpacingReason(netSpec, net, extent.cellM, budget.stillWidthPx);
     net.resample = resampleFor(samples, netSpec, net, extent.cellM);
-    onBlocksWhenAveraged(net, place, extent, samples, netSpec, budget);
+    if (noDataTellsAll(heightBand(src, samples.band)))
+        onBlocksWhenAveraged(net, place, extent, samples, netSpec, budget);
     net.raster = fmt::format("{} x {} cells, band {}, {}", place.width, place.height, samples.band,
                              crsNameOf(place.crs.srs.get(), "unnamed CRS"));
     return net;
@@ -314,13 +322,6 @@ struct Averaging {
     int factor = 1;
     bool blocks = false;
 };
-// Whether nodata (and NaN) tell every cell without data: not a mask band or
-// an alpha band, which GDAL's average honours and the block means do not read.
-bool noDataTellsAll(const HeightBand& band) {
-    const int flags = GDALGetMaskFlags(band.band);
-    return (flags & (GMF_ALL_VALID | GMF_NODATA)) != 0 && (flags & (GMF_PER_DATASET | GMF_ALPHA)) == 0;
-}
-
 Averaging averagingFor(const PlacedNet& placed, const RasterPlace& place, const HeightBand& band,
                        const scene::SamplesSpec& samples) {
     const ControlNet& net = placed.net;
