@@ -1,6 +1,7 @@
 #include "geo/raster_mosaic.h"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <map>
@@ -50,8 +51,17 @@ std::array<double, 4> boxOf(GDALDatasetH ds) {
     return {std::min(x0, x1), std::min(y0, y1), std::max(x0, x1), std::max(y0, y1)};
 }
 
-// Opens every tile and checks that they share one CRS; the first problem ends it.
-bool openTiles(const std::vector<fs::path>& tiles, const SourceLoc& at, Diagnostics& diags, std::vector<Dataset>& out) {
+// The tiles as opened one at a time: the first (its band and metadata stand
+// for the mosaic's) and every tile's box in the CRS they share.
+struct OpenedTiles {
+    Dataset first;
+    std::vector<std::array<double, 4>> boxes;
+};
+
+// Opens every tile, one at a time (a folder of thousands must not hold a
+// file open each: 1024 is a common limit), and checks that they share one
+// CRS; the first problem ends it.
+bool openTiles(const std::vector<fs::path>& tiles, const SourceLoc& at, Diagnostics& diags, OpenedTiles& out) {
     Srs first;
     std::map<fs::path, std::unique_ptr<FolderNames>> folders;  // the tiles' folders, each listed once
     for (const fs::path& tile : tiles) {
@@ -67,7 +77,7 @@ bool openTiles(const std::vector<fs::path>& tiles, const SourceLoc& at, Diagnost
             return false;
         }
         Srs srs = crsOf(ds.get());
-        if (out.empty()) {
+        if (out.boxes.empty()) {
             first = std::move(srs);
         } else if (!first != !srs || (first && !OSRIsSame(first.get(), srs.get()))) {
             diags.error(at, fmt::format("samples.path: the tiles {} ({}) and {} ({}) are in different CRSs: "
@@ -76,16 +86,16 @@ bool openTiles(const std::vector<fs::path>& tiles, const SourceLoc& at, Diagnost
                                         tile.filename().string(), crsNameOf(srs.get(), "no CRS")));
             return false;
         }
-        out.push_back(std::move(ds));
+        out.boxes.push_back(boxOf(ds.get()));
+        if (!out.first) out.first = std::move(ds);
     }
     return true;
 }
 
 // The share of the tiles' bounding box they cover (overlaps counted once each: an upper bound).
-double coverage(const std::vector<Dataset>& tiles) {
+double coverage(const std::vector<std::array<double, 4>>& boxes) {
     double area = 0, xmin = 1e300, ymin = 1e300, xmax = -1e300, ymax = -1e300;
-    for (const Dataset& t : tiles) {
-        const auto b = boxOf(t.get());
+    for (const auto& b : boxes) {
         area += (b[2] - b[0]) * (b[3] - b[1]);
         xmin = std::min(xmin, b[0]), ymin = std::min(ymin, b[1]), xmax = std::max(xmax, b[2]),
         ymax = std::max(ymax, b[3]);
@@ -123,9 +133,9 @@ std::vector<fs::path> rasterTilesIn(const fs::path& folder, std::string& problem
 }
 
 Dataset mosaicOf(const std::vector<fs::path>& tiles, const SourceLoc& at, Diagnostics& diags) {
-    std::vector<Dataset> opened;
+    OpenedTiles opened;
     if (!openTiles(tiles, at, diags, opened)) return Dataset();
-    if (const double share = coverage(opened); share < 0.999)
+    if (const double share = coverage(opened.boxes); share < 0.999)
         diags.warning(at, fmt::format("samples.path: the {} tiles cover {:.1f} % of their bounding box; the rest "
                                       "has no data (samples.nodata says what becomes of it): is a tile missing?",
                                       tiles.size(), 100 * std::min(share, 1.0)));
@@ -133,7 +143,7 @@ Dataset mosaicOf(const std::vector<fs::path>& tiles, const SourceLoc& at, Diagno
     CPLStringList names;
     for (const fs::path& tile : tiles) names.AddString(fs::absolute(tile).c_str());
     CPLStringList args;
-    GDALRasterBandH band = GDALGetRasterBand(opened.front().get(), 1);
+    GDALRasterBandH band = GDALGetRasterBand(opened.first.get(), 1);
     int hasNoData = 0;
     GDALGetRasterNoDataValue(band, &hasNoData);
     const GDALDataType type = GDALGetRasterDataType(band);
@@ -150,7 +160,7 @@ Dataset mosaicOf(const std::vector<fs::path>& tiles, const SourceLoc& at, Diagno
         return vrt;
     }
     // The first tile's metadata (its title, its credit) stand for the mosaic's.
-    GDALSetMetadata(vrt.get(), GDALGetMetadata(opened.front().get(), nullptr), nullptr);
+    GDALSetMetadata(vrt.get(), GDALGetMetadata(opened.first.get(), nullptr), nullptr);
     return vrt;
 }
 

@@ -76,6 +76,16 @@ printf '[samples]\npath = "folder"\n[overlay]\ntitle = "Maungawhau / Mt Eden"\n'
 cmp -s alone/dem.png tiles/folder.png || fail "a folder of tiles did not make the still the whole DEM makes"
 "$relief" render -q tiles/folder/ -o tiles/alone/folder.png 2>tiles.err && [ -s tiles/alone/folder.png ] ||
   { fail "relief render FOLDER did not render"; cat tiles.err; }
+# A folder of more tiles than a process may hold files open (352 tiles of 2 x 2 cells, 256 files):
+# the same still, the tiles opened one at a time.
+mkdir -p tiles/many
+for x in $(seq 0 2 30); do for y in $(seq 0 2 42); do
+  gdal_translate -q "$dem" "tiles/many/t-$x-$y.tif" -srcwin "$x" "$y" "$(( x < 30 ? 2 : 1 ))" 2 || fail "could not cut tile $x $y"
+done; done
+printf '[samples]\npath = "many"\n[overlay]\ntitle = "Maungawhau / Mt Eden"\n' > tiles/many.toml
+(ulimit -n 256 && "$relief" render -q tiles/many.toml -o tiles/many.png 2>many.err) ||
+  { fail "352 tiles did not render with 256 files open at most"; cat many.err; }
+cmp -s alone/dem.png tiles/many.png || fail "352 tiles of the DEM did not make the still the whole DEM makes"
 printf '[samples]\npath = ["nw.tif", "sw.tif", "se.tif"]\nvertical_unit = "m"\n' > tiles/gap.toml
 "$relief" compile -q tiles/gap.toml -o tiles/gap.pov 2>gap.err || fail "three tiles with a gap exited $?"
 grep -qx 'tiles/gap.toml:2:8: warning: samples.path: the 3 tiles cover 75.8 % of their bounding box; the rest has no data (samples.nodata says what becomes of it): is a tile missing?' gap.err ||
