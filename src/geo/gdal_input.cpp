@@ -200,6 +200,7 @@ FolderNames::FolderNames(const fs::path& folder) {
     std::error_code ec;
     for (auto it = fs::directory_iterator(folder, ec); !ec && it != fs::directory_iterator(); it.increment(ec))
         names_.push_back(it->path().filename().string());
+    listed_ = !ec;
     std::sort(names_.begin(), names_.end());
     for (size_t i = 0; i < names_.size(); ++i) lowered_.emplace_back(lowered(names_[i]), i);
     std::sort(lowered_.begin(), lowered_.end());
@@ -241,7 +242,13 @@ std::string gdalInputProblem(const fs::path& path, const FolderNames* siblings) 
         VrtWalk walk;
         if (const std::string problem = vrtProblem(path, walk); !problem.empty()) return "it is a VRT, and " + problem;
     }
-    return driver ? sidecarProblem(path, names) : "";  // a file GDAL does not take for a raster brings no sidecars
+    if (!driver) return "";  // a file GDAL does not take for a raster brings no sidecars
+    // Told of no side file, GDAL would lose a .prj or a .tfw without a word; left to look for them
+    // by name, it would read them unchecked.
+    if (!names.listed())
+        return "its folder cannot be listed, so the files GDAL reads beside it (.prj, .tfw, .ovr, ...) cannot be "
+               "checked: let relief read the folder (chmod +r), or copy the raster and its side files elsewhere";
+    return sidecarProblem(path, names);
 }
 
 }  // namespace relief::geo

@@ -35,6 +35,8 @@ public:
     /// The folder of the file `path`.
     static FolderNames of(const std::filesystem::path& path);
 
+    /// Whether the folder could be listed (a folder one may enter but not read cannot).
+    bool listed() const { return listed_; }
     /// In byte order; empty when the folder cannot be read.
     const std::vector<std::string>& sorted() const { return names_; }
     /// The names beside the file `name` that GDAL may read with it: its own,
@@ -43,6 +45,7 @@ public:
     std::vector<std::string> beside(const std::string& name) const;
 
 private:
+    bool listed_ = false;
     std::vector<std::string> names_;
     std::vector<std::pair<std::string, size_t>> lowered_;  ///< names in lower case, sorted, and where in names_
 };
