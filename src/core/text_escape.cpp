@@ -70,6 +70,12 @@ std::string terminalText(std::string_view text, std::size_t maxBytes, bool keepL
     return out;
 }
 
+std::string asciiLower(std::string text) {
+    for (char& c : text)
+        if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+    return text;
+}
+
 std::string shellQuoted(std::string_view text) {
     const bool plain = !text.empty() && std::all_of(text.begin(), text.end(), [](char ch) {
         const auto c = static_cast<unsigned char>(ch);

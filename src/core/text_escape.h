@@ -32,6 +32,10 @@ std::string terminalText(std::string_view text, std::size_t maxBytes = 2000, boo
 /// inside as '\'').
 std::string shellQuoted(std::string_view text);
 
+/// `text` with the letters A-Z in lower case (the rest as it is): names
+/// compared in any case, as GDAL compares file names and units.
+std::string asciiLower(std::string text);
+
 /// Whether `text` is well-formed UTF-8 (RFC 3629).
 bool isUtf8(std::string_view text);
 

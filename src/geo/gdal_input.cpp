@@ -25,11 +25,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string lowered(std::string text) {
-    std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::tolower(c); });
-    return text;
-}
-
 bool sameWord(std::string_view a, std::string_view b) {  // as GDAL's EQUAL: letters in any case
     return a.size() == b.size() &&
            std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) { return std::tolower(x) == std::tolower(y); });
@@ -73,8 +68,7 @@ bool looksLikeVrt(const fs::path& path) {
     std::string problem;
     auto head = readInputHead(path, 1024, problem);
     if (!head) return false;
-    std::transform(head->begin(), head->end(), head->begin(), [](unsigned char c) { return std::tolower(c); });
-    return head->find("<vrtdataset") != std::string::npos;
+    return asciiLower(*head).find("<vrtdataset") != std::string::npos;
 }
 
 // The VRTs being checked (the chain from the scene's down) and those found
@@ -174,11 +168,11 @@ std::string vrtProblem(const fs::path& vrt, VrtWalk& walk) {
 // dem.tif.msk, dem.prj, dem.tfw, ...): each must be a regular file too (a FIFO
 // would block GDAL, a link to /dev/zero fill memory), and one that is a VRT is
 // checked as one.
-std::string sidecarProblem(const fs::path& path, const FolderNames& siblings) {
+std::string sidecarProblem(const fs::path& path, const SiblingFiles& beside) {
     std::error_code ec;
     const fs::path folder = fs::absolute(path, ec).parent_path();
     const std::string name = path.filename().string();
-    for (const std::string& other : siblings.beside(name)) {
+    for (const std::string& other : beside.names()) {
         const fs::path file = folder / other;
         if (other == name || fs::is_directory(file, ec)) continue;
         const std::string shown = printableExcerpt(other, 80);
@@ -202,7 +196,7 @@ FolderNames::FolderNames(const fs::path& folder) {
         names_.push_back(it->path().filename().string());
     listed_ = !ec;
     std::sort(names_.begin(), names_.end());
-    for (size_t i = 0; i < names_.size(); ++i) lowered_.emplace_back(lowered(names_[i]), i);
+    for (size_t i = 0; i < names_.size(); ++i) lowered_.emplace_back(asciiLower(names_[i]), i);
     std::sort(lowered_.begin(), lowered_.end());
 }
 
@@ -212,7 +206,7 @@ FolderNames FolderNames::of(const fs::path& path) {
 }
 
 std::vector<std::string> FolderNames::beside(const std::string& name) const {
-    const std::string own = lowered(name), prefix = own.substr(0, own.find('.')) + ".";
+    const std::string own = asciiLower(name), prefix = own.substr(0, own.find('.')) + ".";
     std::vector<std::string> out;
     for (auto it = std::lower_bound(lowered_.begin(), lowered_.end(), std::make_pair(prefix, size_t{0}));
          it != lowered_.end() && it->first.starts_with(prefix); ++it)
@@ -221,11 +215,9 @@ std::vector<std::string> FolderNames::beside(const std::string& name) const {
     return out;
 }
 
-std::vector<const char*> gdalNameList(const std::vector<std::string>& names) {
-    std::vector<const char*> list;
-    for (const std::string& name : names) list.push_back(name.c_str());
-    list.push_back(nullptr);
-    return list;
+SiblingFiles::SiblingFiles(const FolderNames& folder, const std::string& name) : names_(folder.beside(name)) {
+    for (const std::string& n : names_) list_.push_back(n.c_str());
+    list_.push_back(nullptr);
 }
 
 std::string gdalInputProblem(const fs::path& path, const FolderNames* siblings) {
@@ -233,10 +225,9 @@ std::string gdalInputProblem(const fs::path& path, const FolderNames* siblings) 
     setUpGdal();
     std::optional<FolderNames> listedHere;
     const FolderNames& names = siblings ? *siblings : listedHere.emplace(FolderNames::of(path));
-    const std::vector<std::string> beside = names.beside(path.filename().string());
-    const std::vector<const char*> list = gdalNameList(beside);
+    const SiblingFiles beside(names, path.filename().string());
     CPLPushErrorHandler(CPLQuietErrorHandler);
-    GDALDriverH driver = GDALIdentifyDriverEx(path.c_str(), GDAL_OF_RASTER, nullptr, list.data());
+    GDALDriverH driver = GDALIdentifyDriverEx(path.c_str(), GDAL_OF_RASTER, nullptr, beside.forGdal());
     CPLPopErrorHandler();
     if ((driver && std::string_view(GDALGetDriverShortName(driver)) == "VRT") || looksLikeVrt(path)) {
         VrtWalk walk;
@@ -248,7 +239,7 @@ std::string gdalInputProblem(const fs::path& path, const FolderNames* siblings) 
     if (!names.listed())
         return "its folder cannot be listed, so the files GDAL reads beside it (.prj, .tfw, .ovr, ...) cannot be "
                "checked: let relief read the folder (chmod +r), or copy the raster and its side files elsewhere";
-    return sidecarProblem(path, names);
+    return sidecarProblem(path, beside);
 }
 
 }  // namespace relief::geo

@@ -50,8 +50,22 @@ private:
     std::vector<std::pair<std::string, size_t>> lowered_;  ///< names in lower case, sorted, and where in names_
 };
 
-/// `names` as GDAL takes a list of files: pointers into them, null-terminated.
-std::vector<const char*> gdalNameList(const std::vector<std::string>& names);
+/// What GDAL is given as the sibling files of the file `name` in `folder`
+/// (FolderNames::beside), and the null-terminated list of them that GDAL's
+/// identify and open take.
+class SiblingFiles {
+public:
+    SiblingFiles(const FolderNames& folder, const std::string& name);
+    SiblingFiles(const SiblingFiles&) = delete;  // forGdal points into names
+    SiblingFiles& operator=(const SiblingFiles&) = delete;
+
+    const std::vector<std::string>& names() const { return names_; }
+    const char* const* forGdal() const { return list_.data(); }
+
+private:
+    std::vector<std::string> names_;
+    std::vector<const char*> list_;
+};
 
 /// Why GDAL must not open `path` for a scene, as the end of a sentence, or
 /// "": it is not a regular file (inputFileProblem), or "it is a VRT, and it

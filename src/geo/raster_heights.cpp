@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "core/number_format.h"
+#include "core/text_escape.h"
 
 namespace relief::geo {
 
@@ -17,7 +18,7 @@ namespace {
 // Metres per unit: 1 for metres, 0.3048 for feet (1200/3937 for US survey
 // feet); 0 when the unit is not a length relief knows.
 double metresPerUnit(std::string unit) {
-    std::transform(unit.begin(), unit.end(), unit.begin(), [](unsigned char c) { return std::tolower(c); });
+    unit = asciiLower(std::move(unit));
     if (unit == "m" || unit == "metre" || unit == "meter" || unit == "metres" || unit == "meters") return 1;
     if (unit == "ft" || unit == "foot" || unit == "feet" || unit == "international foot") return 0.3048;
     if (unit == "us-ft" || unit == "us survey foot" || unit == "ftus") return 1200.0 / 3937.0;

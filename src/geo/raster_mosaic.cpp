@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <cctype>
 #include <cmath>
 #include <map>
 #include <memory>
@@ -15,6 +14,7 @@
 #include <fmt/format.h>
 #include <gdal_utils.h>
 
+#include "core/text_escape.h"
 #include "geo/crs_frame.h"
 #include "geo/raster.h"
 
@@ -27,9 +27,8 @@ namespace {
 // GDAL's files beside a raster, which GDAL may read as rasters of their own:
 // overviews (.ovr, and Erdas's .aux and .rrd), masks, PAM metadata; in any case.
 bool sideFile(const fs::path& file) {
-    std::string name = file.filename().string();
+    const std::string name = asciiLower(file.filename().string());
     if (name.empty() || name.front() == '.') return true;
-    std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return std::tolower(c); });
     for (std::string_view end : {".ovr", ".msk", ".aux.xml", ".aux", ".rrd"})
         if (name.size() > end.size() && name.compare(name.size() - end.size(), end.size(), end) == 0) return true;
     return false;

@@ -41,10 +41,9 @@ Dataset openRaster(const std::filesystem::path& path, std::string& problem, cons
     std::error_code ec;
     const std::string name = std::filesystem::absolute(path, ec).string();
     // Only the files beside it that were checked: GDAL lists no folder itself.
-    const std::vector<std::string> beside = siblings->beside(path.filename().string());
-    const std::vector<const char*> list = gdalNameList(beside);
+    const SiblingFiles beside(*siblings, path.filename().string());
     CPLPushErrorHandler(CPLQuietErrorHandler);
-    Dataset ds(GDALOpenEx(name.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, list.data()));
+    Dataset ds(GDALOpenEx(name.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, beside.forGdal()));
     CPLPopErrorHandler();
     return ds;
 }
@@ -291,9 +290,8 @@ bool isRasterDem(const std::filesystem::path& path, const FolderNames* siblings)
     // the raster, not about a CSV header made of binary bytes.
     if (!problem.empty()) return inputFileProblem(path).empty();  // refused for what it brings with it
     CPLPushErrorHandler(CPLQuietErrorHandler);
-    const std::vector<std::string> beside = siblings->beside(path.filename().string());
-    const std::vector<const char*> list = gdalNameList(beside);
-    GDALDriverH driver = GDALIdentifyDriverEx(path.c_str(), GDAL_OF_RASTER, nullptr, list.data());
+    const SiblingFiles beside(*siblings, path.filename().string());
+    GDALDriverH driver = GDALIdentifyDriverEx(path.c_str(), GDAL_OF_RASTER, nullptr, beside.forGdal());
     CPLPopErrorHandler();
     return driver != nullptr;
 }
