@@ -296,11 +296,11 @@ void BM_Mesh2Fprintf(benchmark::State& state) {
     for (auto _ : state) {
         bytes = 0;
         for (size_t i = 0; i < m.vertices; ++i) {
-            const Vec3 p = m.position(i);
+            const SceneVec3 p = m.position(i);
             bytes += std::fprintf(devnull, ",\n<%.9g,%.9g,%.9g>", p.x, p.y, p.z);
         }
         for (size_t i = 0; i < m.vertices; ++i) {
-            const Vec3 n = m.normal(i);
+            const SceneVec3 n = m.normal(i);
             bytes += std::fprintf(devnull, ",\n<%.9g,%.9g,%.9g>", n.x, n.y, n.z);
         }
         const size_t cols = static_cast<size_t>(m.cols);
@@ -522,7 +522,7 @@ void BM_NearestFill(benchmark::State& state) {
     const auto& s = scattered(static_cast<int>(state.range(0)));
     scene::NetSpec spec;
     spec.rows = spec.cols = s.side;
-    spec.extentM = std::array<double, 4>{0, 0, 1000, 1000};
+    spec.extentM = FrameBox{0, 0, 1000, 1000};
     spec.gridding = scene::Gridding::Nearest;
     for (auto _ : state) {
         Diagnostics diags;

@@ -36,15 +36,15 @@ std::optional<std::pair<emit::SunDirection, CompileResult::Sun>> sunOf(const sce
     if (!look.lighting.sunTime)
         return std::pair{given, CompileResult::Sun{given.azimuthDeg, given.altitudeDeg, false, {}, 0, 0}};
     const double cx = (net.x0 + net.xMax()) / 2, cy = (net.y0 + net.yMax()) / 2;
-    double lat = 0, lon = 0, h = 0;
-    if (!geo::frameToGeodetic(net.frame, Vec3{cx, cy, 0}, lat, lon, h)) {
+    const auto centre = geo::reverse(net.frame, Vec3{cx, cy, 0});
+    if (!centre) {
         diags.error(look.lighting.locs.at("lighting.datetime"),
                     "lighting.datetime: the terrain's centre has no longitude and "
                     "latitude in its frame; give sun_azimuth_deg and "
                     "sun_altitude_deg instead");
         return std::nullopt;
     }
-    const geo::SunPosition sun = geo::sunPosition(lon, lat, look.lighting.sunTime->utcSeconds);
+    const geo::SunPosition sun = geo::sunPosition(centre->lonDeg, centre->latDeg, look.lighting.sunTime->utcSeconds);
     if (!(sun.altitudeDeg > 0)) {
         diags.error(look.lighting.locs.at("lighting.datetime"),
                     fmt::format("lighting.datetime = \"{}\"{}: the sun is {:.1f} degrees below the horizon at the "
@@ -54,12 +54,13 @@ std::optional<std::pair<emit::SunDirection, CompileResult::Sun>> sunOf(const sce
                                 look.lighting.sunTime->offsetMinutes != 0
                                     ? " (" + formatUtc(look.lighting.sunTime->utcSeconds) + ")"
                                     : std::string(),
-                                -sun.altitudeDeg, lon, lat));
+                                -sun.altitudeDeg, centre->lonDeg, centre->latDeg));
         return std::nullopt;
     }
     const double convergenceDeg = geo::gridConvergenceDeg(net.frame, cx, cy);
     return std::pair{emit::SunDirection{std::fmod(sun.azimuthDeg - convergenceDeg + 360, 360), sun.altitudeDeg},
-                     CompileResult::Sun{sun.azimuthDeg, sun.altitudeDeg, true, look.lighting.sunTimeText, lon, lat}};
+                     CompileResult::Sun{sun.azimuthDeg, sun.altitudeDeg, true, look.lighting.sunTimeText,
+                                        centre->lonDeg, centre->latDeg}};
 }
 
 // Where the terrain sits in the scene, where the camera is and where the
@@ -203,15 +204,9 @@ void describeView(const scene::SceneSpec& spec, const geo::ControlNet& net, cons
                                                                                                where.originM.y));
     f.credits = spec.overlay.credits ? *spec.overlay.credits : r.dataAttribution;
     // The eye and the target back in metres (heights unexaggerated), then degrees.
-    const auto toFrame = [&](const Vec3& p) {
-        return Vec3{p.x * where.metresPerUnit + where.originM.x, p.z * where.metresPerUnit + where.originM.y,
-                    p.y * where.metresPerUnit / where.exaggeration};
-    };
-    const Vec3 eye = toFrame(camera.eye), target = toFrame(camera.target);
-    for (auto [p, out] : {std::pair{eye, &r.cameraEyeLonLatH}, std::pair{target, &r.cameraTargetLonLatH}}) {
-        double lat = 0, lon = 0, h = 0;
-        if (geo::frameToGeodetic(net.frame, p, lat, lon, h)) *out = {lon, lat, h};
-    }
+    const Vec3 eye = where.unexaggerated(camera.eye), target = where.unexaggerated(camera.target);
+    for (auto [p, out] : {std::pair{eye, &r.cameraEye}, std::pair{target, &r.cameraTarget}})
+        if (auto g = geo::reverse(net.frame, p)) *out = *g;
     const Vec3 d = eye - target;
     r.cameraDistanceM = length(d);
     r.cameraAzimuthDeg = std::fmod(std::atan2(d.x, d.y) * 180 / std::numbers::pi + 360, 360);

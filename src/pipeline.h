@@ -163,7 +163,7 @@ struct CompileResult {
     annotate::OverlayFacts overlayFacts;            ///< what the still's overlays say
     /// The camera both ways: the eye and the point looked at as [lon, lat,
     /// height_m], and as an orbit around the point (azimuth, elevation, distance).
-    std::array<double, 3> cameraEyeLonLatH{}, cameraTargetLonLatH{};
+    GeoPoint cameraEye, cameraTarget;
     double cameraAzimuthDeg = 0, cameraElevationDeg = 0, cameraDistanceM = 0;
 };
 

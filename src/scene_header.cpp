@@ -124,8 +124,9 @@ void addTextureAndSun(Header& h, const scene::LookSpec& look, const CompileResul
 void addCameraAndRender(Header& h, const scene::CameraSpec& camera, const scene::RenderSpec& render,
                         double metresPerUnit) {
     const char* projection = scene::nameOf(camera.projection);
-    const auto lonLatH = [](const std::array<double, 3>& p) {
-        return fmt::format("lon {} lat {} height {} m", formatShortest(p[0]), formatShortest(p[1]), formatShortest(p[2]));
+    const auto lonLatH = [](const GeoPoint& p) {
+        return fmt::format("lon {} lat {} height {} m", formatShortest(p.lonDeg), formatShortest(p.latDeg),
+                           formatShortest(p.heightM));
     };
     if (camera.position)
         h.add("camera", fmt::format("{}, at {}, looking at {}, fov {} deg", projection, lonLatH(*camera.position),

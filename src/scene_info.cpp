@@ -20,10 +20,10 @@ ordered_json lonLatBox(const geo::ControlNet& net) {
     double lonMin = 1e9, lonMax = -1e9, latMin = 1e9, latMax = -1e9;
     for (double x : {net.x0, net.xMax()})
         for (double y : {net.y0, net.yMax()}) {
-            double lat = 0, lon = 0, h = 0;
-            if (!geo::frameToGeodetic(net.frame, Vec3{x, y, 0}, lat, lon, h)) continue;
-            lonMin = std::min(lonMin, lon), lonMax = std::max(lonMax, lon);
-            latMin = std::min(latMin, lat), latMax = std::max(latMax, lat);
+            const auto g = geo::reverse(net.frame, Vec3{x, y, 0});
+            if (!g) continue;
+            lonMin = std::min(lonMin, g->lonDeg), lonMax = std::max(lonMax, g->lonDeg);
+            latMin = std::min(latMin, g->latDeg), latMax = std::max(latMax, g->latDeg);
         }
     return ordered_json::array({lonMin, latMin, lonMax, latMax});
 }

@@ -79,12 +79,11 @@ ordered_json sidecarJson(const CompileResult& c, const OutputPaths& paths) {
         j["sun"]["datetime"] = c.sun.datetime;
         j["sun"]["at_lonlat"] = {c.sun.lonDeg, c.sun.latDeg};
     }
-    j["camera"] = {{"eye_lonlat_h", c.cameraEyeLonLatH},
-                   {"look_at_lonlat_h", c.cameraTargetLonLatH},
-                   {"azimuth_deg", c.cameraAzimuthDeg},
-                   {"elevation_deg", c.cameraElevationDeg},
-                   {"distance_m", c.cameraDistanceM},
-                   {"placed_by", c.scene.look.camera.position ? "position" : "orbit"}};
+    const auto lonLatH = [](const GeoPoint& p) { return std::array{p.lonDeg, p.latDeg, p.heightM}; };
+    j["camera"] = {
+        {"eye_lonlat_h", lonLatH(c.cameraEye)}, {"look_at_lonlat_h", lonLatH(c.cameraTarget)},
+        {"azimuth_deg", c.cameraAzimuthDeg},    {"elevation_deg", c.cameraElevationDeg},
+        {"distance_m", c.cameraDistanceM},      {"placed_by", c.scene.look.camera.position ? "position" : "orbit"}};
     j["seconds"] = times;
     j["geometry"] = {{"kind", scene::nameOf(c.geometry.kind)}, {"reason", c.geometry.reason}};
     if (!c.heightPng.empty()) j["geometry"]["height_step_m"] = c.heightStepM;

@@ -237,7 +237,7 @@ double northOnImageDeg(const emit::CameraView& view, double convergenceDeg, int 
     // (x east, z north) the direction (-sin g, 0, cos g).
     const double g = convergenceDeg * kPi / 180;
     const double step = 1e-3 * view.radius;
-    const Vec3 north{-std::sin(g) * step, 0, std::cos(g) * step};
+    const SceneVec3 north{-std::sin(g) * step, 0, std::cos(g) * step};
     const auto a = emit::projectToImage(view, view.target, widthPx, heightPx);
     const auto b = emit::projectToImage(view, view.target + north, widthPx, heightPx);
     return std::atan2(b[0] - a[0], a[1] - b[1]) * 180 / kPi;
@@ -518,8 +518,8 @@ OverlayFacts overlayFacts(const scene::LookSpec& look, const emit::ScenePlacemen
     f.northDeg = northOnImageDeg(view, convergenceDeg, render.width, render.height);
     // Where the terrain lies on the still (points in front of the eye only).
     std::vector<std::array<double, 2>> onImage;
-    const Vec3 forward = view.target - view.eye;
-    for (const Vec3& p : where.outline)
+    const SceneVec3 forward = view.target - view.eye;
+    for (const SceneVec3& p : where.outline)
         if (!view.perspective || dot(p - view.eye, forward) > 0)
             onImage.push_back(emit::projectToImage(view, p, render.width, render.height));
     f.terrain = TerrainOnImage::fromPoints(onImage, render.width);

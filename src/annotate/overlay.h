@@ -35,7 +35,7 @@ struct TerrainOnImage {
 struct OverlayFacts {
     std::string credits;  ///< the scene's, or the samples' attribution
     // The legend: the ramp as drawn (linear RGB), over true elevations.
-    std::vector<scene::ColorStop> palette;
+    std::vector<LinearRgb> palette;
     double zMinM = 0, zMaxM = 0;
     std::string legendTitle = "Elevation (m)";  ///< slope colouring: "Slope (°)", its range 0-60
     std::string legendNote;                     ///< a line under the bar, e.g. where rock begins

@@ -13,21 +13,66 @@
 
 namespace relief {
 
-/// A point or vector in a local frame, metres unless a name says otherwise:
-/// x = east, y = north, z = up.
-struct Vec3 {
+/// Three components and their arithmetic, tagged with the axes they are in so
+/// that a point in one cannot be passed where the other is meant.
+template <class Axes>
+struct Vector3 {
     double x = 0, y = 0, z = 0;
-    friend Vec3 operator+(Vec3 a, Vec3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-    friend Vec3 operator-(Vec3 a, Vec3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-    friend Vec3 operator*(double s, Vec3 a) { return {s * a.x, s * a.y, s * a.z}; }
-    friend bool operator==(const Vec3&, const Vec3&) = default;
+    friend Vector3 operator+(Vector3 a, Vector3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+    friend Vector3 operator-(Vector3 a, Vector3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+    friend Vector3 operator*(double s, Vector3 a) { return {s * a.x, s * a.y, s * a.z}; }
+    friend bool operator==(const Vector3&, const Vector3&) = default;
 };
-
-inline Vec3 cross(Vec3 a, Vec3 b) {
+template <class Axes>
+Vector3<Axes> cross(Vector3<Axes> a, Vector3<Axes> b) {
     return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
-inline double dot(Vec3 a, Vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-inline double length(Vec3 a) { return std::sqrt(dot(a, a)); }
+template <class Axes>
+double dot(Vector3<Axes> a, Vector3<Axes> b) {
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+template <class Axes>
+double length(Vector3<Axes> a) {
+    return std::sqrt(dot(a, a));
+}
+
+struct FrameAxes;
+struct SceneAxes;
+/// A point or vector in a local frame, metres unless a name says otherwise:
+/// x = east, y = north, z = up (right-handed).
+using Vec3 = Vector3<FrameAxes>;
+/// A point or vector in POV-Ray's scene: x = east, y = up, z = north
+/// (left-handed, so the map is not mirrored), in scene units
+/// (emit::ScenePlacement says how many metres one is).
+using SceneVec3 = Vector3<SceneAxes>;
+
+/// A point on or above the WGS84 ellipsoid: longitude and latitude in degrees,
+/// height in metres. In this order everywhere, as scene files write it
+/// ([lon, lat, height_m]).
+struct GeoPoint {
+    double lonDeg = 0, latDeg = 0, heightM = 0;
+};
+
+/// A box in a frame's metres: x from west to east, y from south to north.
+struct FrameBox {
+    double west = 0, south = 0, east = 0, north = 0;
+    double width() const { return east - west; }
+    double height() const { return north - south; }
+};
+/// A box of longitudes (west to east) and latitudes (south to north), degrees.
+struct LonLatBox {
+    double west = 0, south = 0, east = 0, north = 0;
+};
+
+/// A colour as light adds up: linear 0..1 components of an sRGB colour.
+struct LinearRgb {
+    double r = 0, g = 0, b = 0;
+    friend bool operator==(const LinearRgb&, const LinearRgb&) = default;
+};
+/// The colour a fraction `t` of the way from `a` to `b`.
+inline LinearRgb mix(const LinearRgb& a, const LinearRgb& b, double t) {
+    return {a.r + t * (b.r - a.r), a.g + t * (b.g - a.g), a.b + t * (b.b - a.b)};
+}
 
 /// Allocator for the large point arrays of refined grids. Big blocks are
 /// 2 MiB aligned and marked for transparent huge pages: a refined 2049^2 grid

@@ -25,7 +25,7 @@ public:
     // the interpolation misses by more than kColourTolerance forces a split as a
     // node without data does.
     // Heights are the drawn ones (ScenePlacement::drawnHeight), colours by elevation.
-    Rtin(const geo::GeoGrid& grid, const ScenePlacement& where, std::function<scene::ColorStop(double)> colour)
+    Rtin(const geo::GeoGrid& grid, const ScenePlacement& where, std::function<LinearRgb(double)> colour)
         : grid_(grid), where_(where), cols_(grid.cols()), rows_(grid.rows()), colour_(std::move(colour)) {
         size_ = 1;
         while (size_ < std::max(cols_ - 1, rows_ - 1)) size_ *= 2;
@@ -42,7 +42,7 @@ public:
 private:
     size_t index(Node n) const { return static_cast<size_t>(n.y) * (size_ + 1) + n.x; }
     double z(Node n) const { return where_.drawnHeight(grid_.grid.at(n.y, n.x)); }
-    scene::ColorStop colourOf(Node n) const { return colour_(where_.elevation(grid_.grid.at(n.y, n.x))); }
+    LinearRgb colourOf(Node n) const { return colour_(where_.elevation(grid_.grid.at(n.y, n.x))); }
 
     // The vertical error at midpoint m of hypotenuse (a, b); infinite when the
     // triangle pair around it touches a node without data (the right-angle
@@ -53,7 +53,7 @@ private:
         const bool in1 = c1.x >= 0 && c1.y >= 0 && c1.x <= size_ && c1.y <= size_;
         const bool in2 = c2.x >= 0 && c2.y >= 0 && c2.x <= size_ && c2.y <= size_;
         if ((in1 && !hasData(c1)) || (in2 && !hasData(c2))) return kInf;
-        const scene::ColorStop ca = colourOf(a), cb = colourOf(b), cm = colourOf(m);
+        const LinearRgb ca = colourOf(a), cb = colourOf(b), cm = colourOf(m);
         const double miss = std::max({std::fabs(cm.r - 0.5 * (ca.r + cb.r)), std::fabs(cm.g - 0.5 * (ca.g + cb.g)),
                                       std::fabs(cm.b - 0.5 * (ca.b + cb.b))});
         if (miss > kColourTolerance) return kInf;
@@ -120,7 +120,7 @@ private:
     const geo::GeoGrid& grid_;
     const ScenePlacement& where_;
     int cols_, rows_;
-    std::function<scene::ColorStop(double)> colour_;
+    std::function<LinearRgb(double)> colour_;
     int size_ = 1;
     std::vector<float> error_;
 };

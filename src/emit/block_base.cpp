@@ -12,7 +12,9 @@ namespace relief::emit {
 
 namespace {
 
-std::string point(const Vec3& v) { return fixedVector(v.x, v.y, v.z, 5); }
+std::string point(const SceneVec3& v) {
+    return fixedVector(v.x, v.y, v.z, 5);
+}
 
 }  // namespace
 
@@ -128,7 +130,7 @@ void writeBlockBase(std::FILE* out, const geo::GeoGrid& refined, const ScenePlac
     fmt::format_to(std::back_inserter(sdl), "\n  }}\n  texture_list {{\n    {}", where.paletteColors.size());
     for (const auto& c : where.paletteColors)
         fmt::format_to(std::back_inserter(sdl), ",\n    texture {{ pigment {{ rgb {} }} finish {{ TerrainFinish }} }}",
-                   point({kBlockWallShade * c.r, kBlockWallShade * c.g, kBlockWallShade * c.b}));
+                       fixedVector(kBlockWallShade * c.r, kBlockWallShade * c.g, kBlockWallShade * c.b, 5));
     // The walls' colours: the surface's at the top, the lowest at the floor.
     const auto shade = [&](std::uint32_t v) {
         const auto& vertex = block.vertices[v];

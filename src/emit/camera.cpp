@@ -17,7 +17,7 @@ namespace {
 constexpr double kDeg = std::numbers::pi / 180.0;
 }  // namespace
 
-Vec3 sceneDirection(double azimuthDeg, double altitudeDeg) {
+SceneVec3 sceneDirection(double azimuthDeg, double altitudeDeg) {
     const double a = azimuthDeg * kDeg, e = altitudeDeg * kDeg;
     return {std::sin(a) * std::cos(e), std::sin(e), std::cos(a) * std::cos(e)};
 }
@@ -28,7 +28,7 @@ namespace {
 // `u` completing them (left-handed axes: u points up); POV-Ray's `angle` is
 // the horizontal field of view.
 struct OrbitAxes {
-    Vec3 back, right, r, u;
+    SceneVec3 back, right, r, u;
     double rightLen = 0, tanH = 0, tanV = 0;
 };
 
@@ -46,12 +46,12 @@ OrbitAxes orbitAxes(const scene::CameraSpec& camera, double aspect) {
 
 // The nearest distance at which all eight corners of the bounding box are in
 // view, plus a 6 % margin.
-double boxFitDistance(const ScenePlacement& where, const Vec3& target, const OrbitAxes& a) {
-    const Vec3 lo = where.boundsMin, hi = where.boundsMax;
+double boxFitDistance(const ScenePlacement& where, const SceneVec3& target, const OrbitAxes& a) {
+    const SceneVec3 lo = where.boundsMin, hi = where.boundsMax;
     double fitDistance = 0;
     for (int corner = 0; corner < 8; ++corner) {
-        const Vec3 c{corner & 1 ? hi.x : lo.x, corner & 2 ? hi.y : lo.y, corner & 4 ? hi.z : lo.z};
-        const Vec3 v = c - target;
+        const SceneVec3 c{corner & 1 ? hi.x : lo.x, corner & 2 ? hi.y : lo.y, corner & 4 ? hi.z : lo.z};
+        const SceneVec3 v = c - target;
         fitDistance = std::max({fitDistance, dot(v, a.back) + std::fabs(dot(v, a.r)) / a.tanH,
                                 dot(v, a.back) + std::fabs(dot(v, a.u)) / a.tanV});
     }
@@ -64,17 +64,17 @@ double boxFitDistance(const ScenePlacement& where, const Vec3& target, const Orb
 void fitOutline(const ScenePlacement& where, const scene::CameraSpec& camera, const OrbitAxes& a, double aspect,
                 double distance, CameraView& view) {
     const bool perspective = camera.projection == scene::Projection::Perspective;
-    const Vec3 screenRight = (-1.0 / a.rightLen) * a.right, screenUp = (-1.0 / length(a.u)) * a.u;
-    const Vec3 forward = -1.0 * a.back;
+    const SceneVec3 screenRight = (-1.0 / a.rightLen) * a.right, screenUp = (-1.0 / length(a.u)) * a.u;
+    const SceneVec3 forward = -1.0 * a.back;
     constexpr double kMargin = 0.04;  // of the half-frame, on the widest side
-    Vec3 t = view.target;
+    SceneVec3 t = view.target;
     double d = distance;
     for (int round = 0; round < 40; ++round) {
-        const Vec3 eye = t + d * a.back;
+        const SceneVec3 eye = t + d * a.back;
         double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300;
         bool behind = false;
-        for (const Vec3& p : where.outline) {
-            const Vec3 v = p - eye;
+        for (const SceneVec3& p : where.outline) {
+            const SceneVec3 v = p - eye;
             double x = dot(v, screenRight), y = dot(v, screenUp);
             if (perspective) {
                 const double z = dot(v, forward);
@@ -110,15 +110,16 @@ void fitOutline(const ScenePlacement& where, const scene::CameraSpec& camera, co
 // A camera placed by geography: the eye and the target as given. Returns the
 // image's left and down axes as plain numbers; looking straight down, east
 // stays right.
-std::pair<Vec3, Vec3> placeAtPoints(const ScenePlacement& where, const CameraPoints& points, CameraView& view) {
+std::pair<SceneVec3, SceneVec3> placeAtPoints(const ScenePlacement& where, const CameraPoints& points,
+                                              CameraView& view) {
     view.eye = where.scenePoint(*points.eyeM);
     if (points.targetM) view.target = where.scenePoint(*points.targetM);
-    const Vec3 toEye = view.eye - view.target;
+    const SceneVec3 toEye = view.eye - view.target;
     const double d = length(toEye);
-    const Vec3 b = d > 0 ? (1.0 / d) * toEye : Vec3{0, 1, 0};
-    Vec3 side{b.z, 0, -b.x};
+    const SceneVec3 b = d > 0 ? (1.0 / d) * toEye : SceneVec3{0, 1, 0};
+    SceneVec3 side{b.z, 0, -b.x};
     if (length(side) < 1e-9) side = {-1, 0, 0};
-    const Vec3 left = (1.0 / length(side)) * side;
+    const SceneVec3 left = (1.0 / length(side)) * side;
     return {left, cross(left, b)};
 }
 
@@ -126,8 +127,8 @@ std::pair<Vec3, Vec3> placeAtPoints(const ScenePlacement& where, const CameraPoi
 
 CameraView placeCamera(const ScenePlacement& where, const scene::CameraSpec& camera, const CameraPoints& points,
                        const scene::RenderSpec& render) {
-    const Vec3 lo = where.boundsMin, hi = where.boundsMax;
-    const Vec3 target{0.5 * (lo.x + hi.x), 0.5 * (lo.y + hi.y), 0.5 * (lo.z + hi.z)};
+    const SceneVec3 lo = where.boundsMin, hi = where.boundsMax;
+    const SceneVec3 target{0.5 * (lo.x + hi.x), 0.5 * (lo.y + hi.y), 0.5 * (lo.z + hi.z)};
     const double radius = 0.5 * length(hi - lo);
     const double aspect = static_cast<double>(render.width) / render.height;
     const OrbitAxes axes = orbitAxes(camera, aspect);
@@ -140,7 +141,7 @@ CameraView placeCamera(const ScenePlacement& where, const scene::CameraSpec& cam
     if (camera.distanceM <= 0 && !points.eyeM && !where.outline.empty())
         fitOutline(where, camera, axes, aspect, distance, view);
     // The image's axes as plain numbers (r and u for the orbit).
-    Vec3 leftPlain = axes.r, downPlain = axes.u;
+    SceneVec3 leftPlain = axes.r, downPlain = axes.u;
     if (points.eyeM) std::tie(leftPlain, downPlain) = placeAtPoints(where, points, view);
     // As POV-Ray draws the image (left-handed: its right is cross(y, direction)
     // taken as plain numbers), those point left and down.
@@ -153,8 +154,8 @@ CameraView placeCamera(const ScenePlacement& where, const scene::CameraSpec& cam
     return view;
 }
 
-std::array<double, 2> projectToImage(const CameraView& view, const Vec3& p, int widthPx, int heightPx) {
-    const Vec3 v = p - view.eye;
+std::array<double, 2> projectToImage(const CameraView& view, const SceneVec3& p, int widthPx, int heightPx) {
+    const SceneVec3 v = p - view.eye;
     const double x = dot(v, view.right), y = dot(v, view.up);
     if (!view.perspective) {
         const double h = view.orthoHeight, w = h * view.aspect;
@@ -168,22 +169,21 @@ std::array<double, 2> projectToImage(const CameraView& view, const Vec3& p, int 
 double finestMetresPerPixel(const CameraView& view, const ScenePlacement& where, int widthPx) {
     if (!view.perspective) return view.orthoHeight * view.aspect * where.metresPerUnit / widthPx;
     // The terrain's nearest point to the eye: there one pixel covers the least ground.
-    const Vec3 lo = where.boundsMin, hi = where.boundsMax;
-    const Vec3 nearest{std::clamp(view.eye.x, lo.x, hi.x), std::clamp(view.eye.y, lo.y, hi.y),
-                       std::clamp(view.eye.z, lo.z, hi.z)};
+    const SceneVec3 lo = where.boundsMin, hi = where.boundsMax;
+    const SceneVec3 nearest{std::clamp(view.eye.x, lo.x, hi.x), std::clamp(view.eye.y, lo.y, hi.y),
+                            std::clamp(view.eye.z, lo.z, hi.z)};
     const double distance = std::max(length(view.eye - nearest), 1e-9);
     return 2 * distance * view.tanHalfFov * where.metresPerUnit / widthPx;
 }
 
 std::optional<CameraPoints> cameraPointsInFrame(const scene::CameraSpec& camera, const geo::Frame& frame,
                                                 Diagnostics& diags) {
-    const auto toFrame = [&](const std::array<double, 3>& lonLatH, const char* key) -> std::optional<Vec3> {
-        Vec3 p;
-        if (geo::geodeticToFrame(frame, lonLatH[1], lonLatH[0], lonLatH[2], p)) return p;
+    const auto toFrame = [&](const GeoPoint& g, const char* key) -> std::optional<Vec3> {
+        if (auto p = geo::forward(frame, g)) return p;
         diags.error(camera.locs.at(key), fmt::format("{} = [{}, {}, {}] cannot be placed in the scene's frame ({}): "
                                                      "put it nearer the terrain, or use frame.kind = \"local\"",
-                                                     key, formatShortest(lonLatH[0]), formatShortest(lonLatH[1]),
-                                                     formatShortest(lonLatH[2]), frame.describe()));
+                                                     key, formatShortest(g.lonDeg), formatShortest(g.latDeg),
+                                                     formatShortest(g.heightM), frame.describe()));
         return std::nullopt;
     };
     CameraPoints points;

@@ -16,14 +16,14 @@ namespace relief::emit {
 /// The unit vector, in scene axes, towards compass bearing `azimuthDeg` at
 /// `altitudeDeg` above the horizon: where the camera's orbit puts the eye,
 /// and where the sun's light comes from.
-Vec3 sceneDirection(double azimuthDeg, double altitudeDeg);
+SceneVec3 sceneDirection(double azimuthDeg, double altitudeDeg);
 
 /// Where relief puts the camera: on an orbit around the terrain's centre at
 /// the scene's azimuth and elevation, at the scene's distance or the nearest
 /// that keeps the terrain's bounding box in view (scene units and axes).
 struct CameraView {
-    Vec3 eye, target;
-    Vec3 right, up;         ///< unit vectors of the image's x (to the right) and y (up), scene axes
+    SceneVec3 eye, target;
+    SceneVec3 right, up;    ///< unit vectors of the image's x (to the right) and y (up)
     double radius = 0;      ///< of the bounding box
     double aspect = 1;      ///< width / height
     double tanHalfFov = 0;  ///< horizontal
@@ -49,7 +49,7 @@ inline CameraView placeCamera(const ScenePlacement& where, const scene::LookSpec
 
 /// Where a scene point lands in a still `widthPx` x `heightPx` as POV-Ray
 /// draws it: pixels, x to the right, y down, (0, 0) the top-left corner.
-std::array<double, 2> projectToImage(const CameraView& view, const Vec3& p, int widthPx, int heightPx);
+std::array<double, 2> projectToImage(const CameraView& view, const SceneVec3& p, int widthPx, int heightPx);
 
 /// Metres of terrain one pixel of a still `widthPx` wide covers at the
 /// terrain's nearest point to the eye (the finest detail the still can show).

@@ -77,8 +77,9 @@ void writeHeightFieldSdl(std::FILE* out, const HeightField& field, const geo::Ge
     // The unit square's corners and the unit height, in scene units: exactly
     // where the mesh2 would put the nodes.
     const double s = 1.0 / where.metresPerUnit, zs = where.exaggeration * s;
-    const Vec3 sw{(refined.x0 - where.originM.x) * s, field.zMinM * zs, (refined.y0 - where.originM.y) * s};
-    const Vec3 ne{(refined.xMax() - where.originM.x) * s, field.zMaxM * zs, (refined.yMax() - where.originM.y) * s};
+    const SceneVec3 sw{(refined.x0 - where.originM.x) * s, field.zMinM * zs, (refined.y0 - where.originM.y) * s};
+    const SceneVec3 ne{(refined.xMax() - where.originM.x) * s, field.zMaxM * zs,
+                       (refined.yMax() - where.originM.y) * s};
     const double height = field.zMaxM > field.zMinM ? ne.y - sw.y : 1e-6;
     // The image map spans the unit square with its pixels' edges; the nodes
     // are at i / (n - 1): so pixel centres (i + 0.5) / n go onto them.

@@ -54,7 +54,7 @@ ScenePlacement placeTerrain(const geo::GeoGrid& refined, const scene::LookSpec& 
             if (!refined.isMasked(r, c)) {
                 where.outline.push_back(where.scenePoint(g.at(r, c)));
                 if (where.baseElevationM) {
-                    const Vec3 floor = where.scenePointAtElevation(g.at(r, c), *where.baseElevationM);
+                    const SceneVec3 floor = where.scenePointAtElevation(g.at(r, c), *where.baseElevationM);
                     where.outline.push_back(floor);
                     where.boundsMin.y = std::min(where.boundsMin.y, floor.y);
                 }
@@ -69,21 +69,18 @@ ScenePlacement placeTerrain(const geo::GeoGrid& refined, const scene::LookSpec& 
     where.colouring = look.texture.colouring;
     where.rockFromDeg = look.texture.rockFromDeg;
     where.rockToDeg = look.texture.rockToDeg;
-    const scene::ColorStop& rock = look.texture.rockColour;
-    const auto mix = [](const scene::ColorStop& a, const scene::ColorStop& b, double t) {
-        return scene::ColorStop{0, a.r + t * (b.r - a.r), a.g + t * (b.g - a.g), a.b + t * (b.b - a.b)};
-    };
+    const LinearRgb& rock = look.texture.rockColour;
     using C = scene::TextureSpec::Colouring;
     if (look.texture.colouring == C::Blend) {
-        const std::vector<scene::ColorStop> ground = where.paletteColors;
+        const std::vector<LinearRgb> ground = where.paletteColors;
         for (int k = 1; k < kBlendClasses; ++k)
             for (const auto& colour : ground)
                 where.paletteColors.push_back(mix(colour, rock, double(k) / (kBlendClasses - 1)));
     } else if (look.texture.colouring == C::Slope) {
         // Pale on the flat, tan where rock begins, the rock colour where it has
         // taken over, darker on cliffs.
-        const scene::ColorStop pale{0, 0.90, 0.87, 0.79}, tan{0, 0.58, 0.52, 0.40};
-        const scene::ColorStop cliff = mix(rock, {0, 0, 0, 0}, 0.35);
+        const LinearRgb pale{0.90, 0.87, 0.79}, tan{0.58, 0.52, 0.40};
+        const LinearRgb cliff = mix(rock, {0, 0, 0}, 0.35);
         for (int k = 0; k < kPaletteSize; ++k) {
             const double slope = kSlopePaletteMaxDeg * k / (kPaletteSize - 1);
             where.paletteColors[k] =
@@ -99,16 +96,16 @@ ScenePlacement placeTerrain(const geo::GeoGrid& refined, const scene::LookSpec& 
     return where;
 }
 
-Vec3 surfaceNormal(const geo::GeoGrid& refined, const ScenePlacement& where, int r, int c) {
+SceneVec3 surfaceNormal(const geo::GeoGrid& refined, const ScenePlacement& where, int r, int c) {
     const Grid& g = refined.grid;
     auto at = [&](int row, int col) { return where.scenePoint(g.at(row, col)); };
     const int c0 = c > 0 && !refined.isMasked(r, c - 1) ? c - 1 : c;
     const int c1 = c + 1 < g.cols && !refined.isMasked(r, c + 1) ? c + 1 : c;
     const int r0 = r > 0 && !refined.isMasked(r - 1, c) ? r - 1 : r;
     const int r1 = r + 1 < g.rows && !refined.isMasked(r + 1, c) ? r + 1 : r;
-    const Vec3 n = cross(at(r1, c) - at(r0, c), at(r, c1) - at(r, c0));
+    const SceneVec3 n = cross(at(r1, c) - at(r0, c), at(r, c1) - at(r, c0));
     const double len = length(n);
-    return len > 0 ? (1.0 / len) * n : Vec3{0, 1, 0};
+    return len > 0 ? (1.0 / len) * n : SceneVec3{0, 1, 0};
 }
 
 double slopeDeg(const geo::GeoGrid& refined, const ScenePlacement& where, int r, int c) {
@@ -123,7 +120,7 @@ double slopeDeg(const geo::GeoGrid& refined, const ScenePlacement& where, int r,
     return std::atan(std::hypot(dzdx, dzdy)) * 180 / 3.14159265358979323846;
 }
 
-Vec3 Mesh::normal(size_t node) const {
+SceneVec3 Mesh::normal(size_t node) const {
     return surfaceNormal(*grid, *this, static_cast<int>(node / static_cast<size_t>(cols)),
                          static_cast<int>(node % static_cast<size_t>(cols)));
 }

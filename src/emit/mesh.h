@@ -29,11 +29,11 @@ struct ScenePlacement {
     Vec3 originM;                 ///< frame position (metres) of the scene origin (x, y; z = 0)
     double exaggeration = 1;
     double zMinM = 0, zMaxM = 0;  ///< elevation range of the nodes with data, metres
-    Vec3 boundsMin, boundsMax;    ///< scene units, scene axes
+    SceneVec3 boundsMin, boundsMax;
     /// Nodes with data on a coarse lattice (at most about 100 x 100), scene
     /// units: what the camera frames (emit::placeCamera), not the bounding box.
-    std::vector<Vec3> outline;
-    std::vector<scene::ColorStop> paletteColors;  ///< kPaletteSize entries (linear RGB) over zMinM..zMaxM
+    std::vector<SceneVec3> outline;
+    std::vector<LinearRgb> paletteColors;  ///< kPaletteSize entries over zMinM..zMaxM
     /// What colours the surface ([texture] mode), and how paletteColors is
     /// laid out: Elevation, kPaletteSize entries over zMinM..zMaxM; Slope,
     /// kPaletteSize entries over 0..kSlopePaletteMaxDeg; Blend, kBlendClasses
@@ -60,13 +60,19 @@ struct ScenePlacement {
     }
     /// Frame point p moved down (or up) to true elevation `elevationM`, in
     /// scene units: the block model's floor under a node.
-    Vec3 scenePointAtElevation(const Vec3& p, double elevationM) const {
+    SceneVec3 scenePointAtElevation(const Vec3& p, double elevationM) const {
         return scenePoint({p.x, p.y, elevationM + fallAt(p)});
     }
     /// A frame point (metres) in scene units and axes, exaggerated.
-    Vec3 scenePoint(const Vec3& p) const {
+    SceneVec3 scenePoint(const Vec3& p) const {
         const double s = 1.0 / metresPerUnit, zs = exaggeration * s;
         return {(p.x - originM.x) * s, drawnHeight(p) * zs, (p.y - originM.y) * s};
+    }
+    /// A scene point back in frame metres, its height divided by the
+    /// exaggeration (the Earth's fall left in: a point in the air, such as the
+    /// camera's eye, not one of the surface's).
+    Vec3 unexaggerated(const SceneVec3& p) const {
+        return {p.x * metresPerUnit + originM.x, p.z * metresPerUnit + originM.y, p.y * metresPerUnit / exaggeration};
     }
 };
 
@@ -125,7 +131,7 @@ ScenePlacement placeTerrain(const geo::GeoGrid& refined, const scene::LookSpec& 
 /// differences over the refined lattice (one-sided at its edges and next to
 /// masked nodes); d/dcol runs east, d/drow north, and cross(north, east)
 /// points up in POV-Ray's (x, y, z) = (E, U, N).
-Vec3 surfaceNormal(const geo::GeoGrid& refined, const ScenePlacement& where, int r, int c);
+SceneVec3 surfaceNormal(const geo::GeoGrid& refined, const ScenePlacement& where, int r, int c);
 
 /// The terrain as one mesh2, as a view of the refined grid: its vertices are
 /// grid nodes, whose position, normal (the full surface's) and palette index
@@ -151,9 +157,9 @@ struct Mesh : ScenePlacement {
         return vertexOfNode.empty() ? static_cast<std::uint32_t>(node) : vertexOfNode[node];
     }
     /// Node `node`'s vertex in scene units, relative to `originM`.
-    Vec3 position(size_t node) const { return scenePoint(grid->grid.points[node]); }
+    SceneVec3 position(size_t node) const { return scenePoint(grid->grid.points[node]); }
     /// The full surface's unit normal at node `node`, scene axes (surfaceNormal).
-    Vec3 normal(size_t node) const;
+    SceneVec3 normal(size_t node) const;
     /// Node `node`'s entry of paletteColors: its true elevation on the ramp
     /// (and its slope, when the colouring uses it).
     unsigned palette(size_t node) const {

@@ -14,7 +14,9 @@ namespace relief::emit {
 
 namespace {
 
-std::string point(const Vec3& v) { return fixedVector(v.x, v.y, v.z, 5); }
+std::string point(const SceneVec3& v) {
+    return fixedVector(v.x, v.y, v.z, 5);
+}
 
 std::vector<double> levelsOf(const ScenePlacement& where, const scene::ContourSpec& spec) {
     std::vector<double> levels;
@@ -40,7 +42,7 @@ ContourRibbons buildSurfaceContours(const geo::GeoGrid& refined, const ScenePlac
     const auto lines = measure::contourLines(refined, levels, error);
     if (!error.empty()) return ribbons;
 
-    std::vector<Vec3>& vertices = ribbons.vertices;
+    std::vector<SceneVec3>& vertices = ribbons.vertices;
     std::vector<std::array<std::uint32_t, 3>>& faces = ribbons.faces;
     for (size_t li = 0; li < lines.size(); ++li) {
         const long long index = std::llround(levels[li] / spec.intervalM);
@@ -121,11 +123,13 @@ void writeSurfaceContours(std::FILE* out, const ContourRibbons& ribbons, const s
     fmt::format_to(std::back_inserter(sdl), "// Contour lines every {} m ([overlay] contours), lying on the surface.\n",
                formatShortest(spec.intervalM));
     fmt::format_to(std::back_inserter(sdl), "mesh2 {{\n  vertex_vectors {{\n    {}", vertices.size());
-    for (const Vec3& v : vertices) fmt::format_to(std::back_inserter(sdl), ",\n{}", point(v));
+    for (const SceneVec3& v : vertices) fmt::format_to(std::back_inserter(sdl), ",\n{}", point(v));
     fmt::format_to(std::back_inserter(sdl), "\n  }}\n  face_indices {{\n    {}", faces.size());
     for (const auto& f : faces) fmt::format_to(std::back_inserter(sdl), ",\n<{},{},{}>", f[0], f[1], f[2]);
-    fmt::format_to(std::back_inserter(sdl), "\n  }}\n  texture {{ pigment {{ rgb {} }} finish {{ ambient 0.35 diffuse 0.4 }} }}\n  no_shadow\n}}\n",
-               point({c.r, c.g, c.b}));
+    fmt::format_to(
+        std::back_inserter(sdl),
+        "\n  }}\n  texture {{ pigment {{ rgb {} }} finish {{ ambient 0.35 diffuse 0.4 }} }}\n  no_shadow\n}}\n",
+        fixedVector(c.r, c.g, c.b, 5));
     std::fwrite(sdl.data(), 1, sdl.size(), out);
 }
 

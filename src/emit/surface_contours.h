@@ -24,7 +24,7 @@ struct SurfaceContours {
 /// between consecutive points.
 struct ContourRibbons {
     SurfaceContours made;
-    std::vector<Vec3> vertices;
+    std::vector<SceneVec3> vertices;
     std::vector<std::array<std::uint32_t, 3>> faces;
     /// The SDL they will take, in bytes (about 30 a vertex, 20 a face).
     double sdlBytes() const { return 30.0 * vertices.size() + 20.0 * faces.size(); }

@@ -53,18 +53,22 @@ private:
     size_t total_ = 0;
 };
 
-inline char* writeVector(char* p, const Vec3& v, int decimals) {
+// <a,b,c>: a point, a direction or a colour.
+inline char* writeTriple(char* p, double a, double b, double c, int decimals) {
     *p++ = '<';
-    p = writeFixed(p, v.x, decimals);
+    p = writeFixed(p, a, decimals);
     *p++ = ',';
-    p = writeFixed(p, v.y, decimals);
+    p = writeFixed(p, b, decimals);
     *p++ = ',';
-    p = writeFixed(p, v.z, decimals);
+    p = writeFixed(p, c, decimals);
     *p++ = '>';
     return p;
 }
+inline char* writeVector(char* p, const SceneVec3& v, int decimals) {
+    return writeTriple(p, v.x, v.y, v.z, decimals);
+}
 
-std::string vec(const Vec3& v, int decimals = 6) {
+std::string vec(const SceneVec3& v, int decimals = 6) {
     char buf[120];
     return std::string(buf, writeVector(buf, v, decimals));
 }
@@ -109,12 +113,12 @@ size_t writeMesh2(const Mesh& mesh, std::FILE* out, const WriteProgressFn& progr
         char* p = w->reserve(24);
         w->commit(writeUnsigned(p, mesh.paletteColors.size()));
     }
-    for (const auto& c : perVertex ? mesh.paletteColors : std::vector<scene::ColorStop>{}) {
+    for (const LinearRgb& c : perVertex ? mesh.paletteColors : std::vector<LinearRgb>{}) {
         char* p = w->reserve(160);
         const char open[] = ",\n    texture { pigment { rgb ";
         std::memcpy(p, open, sizeof open - 1);
         p += sizeof open - 1;
-        p = writeVector(p, {c.r, c.g, c.b}, kColorDecimals);
+        p = writeTriple(p, c.r, c.g, c.b, kColorDecimals);
         const char close[] = " } finish { TerrainFinish } }";
         std::memcpy(p, close, sizeof close - 1);
         p += sizeof close - 1;
@@ -182,7 +186,7 @@ Bindings sceneBindings(const ScenePlacement& where, const CameraView& view, cons
         head += fmt::format("// {}: {}\n", oneLineText(key), oneLineText(value));
     b["header"].text = head;
 
-    const Vec3 target = view.target;
+    const SceneVec3 target = view.target;
     const double radius = view.radius;
     b["camera_location"].text = vec(view.eye);
     b["camera_look_at"].text = vec(target);
@@ -197,7 +201,7 @@ Bindings sceneBindings(const ScenePlacement& where, const CameraView& view, cons
         b["camera_up"].text = fmt::format("y*{}", num(view.orthoHeight));
         b["camera_angle"].text = "";
     }
-    const Vec3 sunDir = sceneDirection(sun.azimuthDeg, sun.altitudeDeg);
+    const SceneVec3 sunDir = sceneDirection(sun.azimuthDeg, sun.altitudeDeg);
     b["sun_position"].text = vec(target + (100.0 * radius) * sunDir);
     b["scene_center"].text = vec(target);
     switch (render.background) {

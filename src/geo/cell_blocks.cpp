@@ -45,14 +45,15 @@ int blockSideOf(const GeoGrid& net, const RasterPlace& place) {
                                                                                       : 0;
 }
 
-bool onBlockCentres(GeoGrid& net, const RasterPlace& place, const std::array<double, 4>& box) {
+bool onBlockCentres(GeoGrid& net, const RasterPlace& place, const FrameBox& box) {
     const int k = blockSideOf(net, place);
     if (k < 2) return false;
     const CellBlocks blocks = cellBlocks(place, k);
     const auto& g = place.geo;
     // The box's cell centres, in cells from the raster's west and north edges.
-    const auto across = blocksWithin((box[0] - g[0]) / g[1], (box[2] - g[0]) / g[1], blocks.column0, k, blocks.columns);
-    const auto down = blocksWithin((box[3] - g[3]) / g[5], (box[1] - g[3]) / g[5], blocks.row0, k, blocks.rows);
+    const auto across =
+        blocksWithin((box.west - g[0]) / g[1], (box.east - g[0]) / g[1], blocks.column0, k, blocks.columns);
+    const auto down = blocksWithin((box.north - g[3]) / g[5], (box.south - g[3]) / g[5], blocks.row0, k, blocks.rows);
     const int cols = across[1] - across[0] + 1, rows = down[1] - down[0] + 1;
     if (cols < 4 || rows < 4) return false;
     const auto bg = blocks.geo(place);

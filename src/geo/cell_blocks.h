@@ -35,11 +35,11 @@ inline constexpr int kMaxBlockSide = 512;
 int blockSideOf(const GeoGrid& net, const RasterPlace& place);
 
 /// `net` (in `place`'s own frame, spaced k cells: blockSideOf) moved onto the
-/// centres of the blocks whose centres lie inside `box` (xmin, ymin, xmax,
-/// ymax of cell centres in the frame): a shift of less than half a block, and
+/// centres of the blocks whose centres lie inside `box` (of cell centres in
+/// the frame): a shift of less than half a block, and
 /// a node fewer or more a side. False, with the net as it was, when fewer than
 /// 4 x 4 blocks are inside.
-bool onBlockCentres(GeoGrid& net, const RasterPlace& place, const std::array<double, 4>& box);
+bool onBlockCentres(GeoGrid& net, const RasterPlace& place, const FrameBox& box);
 
 /// The block of `blocks` (or the cell, for k = 1) under the net's north-west
 /// node when every node is a block's centre, all inside the raster; nullopt

@@ -17,11 +17,10 @@ CurvatureDrop::CurvatureDrop(const Frame& frame, double x0, double y0, double x1
     for (int j = 0; j < kSamples; ++j)
         for (int i = 0; i < kSamples; ++i) {
             // The point of the ellipsoid (height 0) below the plane's point (x, y).
-            double lat = 0, lon = 0, h = 0;
-            Vec3 below;
-            const bool ok = frameToGeodetic(frame, {x0 + i * stepX_, y0 + j * stepY_, 0}, lat, lon, h) &&
-                            geodeticToFrame(frame, lat, lon, 0, below);
-            fall_[static_cast<size_t>(j) * kSamples + i] = ok ? below.z : 0;
+            std::optional<Vec3> below;
+            if (auto g = reverse(frame, {x0 + i * stepX_, y0 + j * stepY_, 0}))
+                below = forward(frame, {g->lonDeg, g->latDeg, 0});
+            fall_[static_cast<size_t>(j) * kSamples + i] = below ? below->z : 0;
         }
 }
 

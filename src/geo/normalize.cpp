@@ -137,20 +137,24 @@ std::vector<FramePoint> projectSamples(const Frame& frame, const std::vector<Geo
     return out;
 }
 
-bool frameToGeodetic(const Frame& frame, Vec3 p, double& latDeg, double& lonDeg, double& heightM) {
+std::optional<GeoPoint> reverse(const Frame& frame, const Vec3& p) {
     try {
+        GeoPoint g;
         if (frame.kind == scene::FrameKind::Local) {
             const GeographicLib::LocalCartesian lc(frame.originLatDeg, frame.originLonDeg, 0.0);
-            lc.Reverse(p.x, p.y, p.z, latDeg, lonDeg, heightM);
-            return true;
+            lc.Reverse(p.x, p.y, p.z, g.latDeg, g.lonDeg, g.heightM);
+            return g;
         }
-        heightM = p.z;
-        if (frame.kind == scene::FrameKind::Raster) return crsFrameToLonLat(frame, p.x, p.y, lonDeg, latDeg);
+        g.heightM = p.z;
+        if (frame.kind == scene::FrameKind::Raster) {
+            if (!crsFrameToLonLat(frame, p.x, p.y, g.lonDeg, g.latDeg)) return std::nullopt;
+            return g;
+        }
         double gamma, k;
-        UTMUPS::Reverse(frame.utmZone, frame.northp, p.x, p.y, latDeg, lonDeg, gamma, k);
-        return true;
+        UTMUPS::Reverse(frame.utmZone, frame.northp, p.x, p.y, g.latDeg, g.lonDeg, gamma, k);
+        return g;
     } catch (const GeographicErr&) {
-        return false;
+        return std::nullopt;
     }
 }
 
@@ -161,11 +165,11 @@ namespace {
 // its ends (its azimuth at its middle, to second order): what GeographicLib's
 // gamma is for UTM, for any CRS.
 double gridNorthBearingDeg(const Frame& frame, double x, double y) {
-    double lat0, lon0, lat1, lon1, h;
-    if (!frameToGeodetic(frame, {x, y - 5, 0}, lat0, lon0, h) || !frameToGeodetic(frame, {x, y + 5, 0}, lat1, lon1, h))
-        return 0;
+    const auto south = reverse(frame, {x, y - 5, 0}), north = reverse(frame, {x, y + 5, 0});
+    if (!south || !north) return 0;
     double azimuth0, azimuth1;
-    GeographicLib::Geodesic::WGS84().Inverse(lat0, lon0, lat1, lon1, azimuth0, azimuth1);
+    GeographicLib::Geodesic::WGS84().Inverse(south->latDeg, south->lonDeg, north->latDeg, north->lonDeg, azimuth0,
+                                             azimuth1);
     return 0.5 * (azimuth0 + azimuth1);
 }
 
@@ -183,12 +187,11 @@ double gridConvergenceDeg(const Frame& frame, double x, double y) {
     }
 }
 
-bool geodeticToFrame(const Frame& frame, double latDeg, double lonDeg, double heightM, Vec3& p) {
+std::optional<Vec3> forward(const Frame& frame, const GeoPoint& point) {
     Diagnostics ignored;
-    const auto projected = projectSamples(frame, {GeoSample{lonDeg, latDeg, heightM, {}}}, ignored);
-    if (projected.empty()) return false;
-    p = projected[0].p;
-    return true;
+    const auto projected = projectSamples(frame, {GeoSample{point.lonDeg, point.latDeg, point.heightM, {}}}, ignored);
+    if (projected.empty()) return std::nullopt;
+    return projected[0].p;
 }
 
 namespace {
@@ -282,24 +285,20 @@ void fillFromNearestSample(const std::vector<double>& xs, const std::vector<doub
 
 }  // namespace
 
-std::optional<std::array<double, 4>> frameBoxInside(const Frame& frame, const std::array<double, 4>& w) {
+std::optional<FrameBox> frameBoxInside(const Frame& frame, const LonLatBox& w) {
     double west = -1e300, east = 1e300, south = -1e300, north = 1e300;
     constexpr int kEdgePoints = 64;
     for (int i = 0; i <= kEdgePoints; ++i) {
         const double f = static_cast<double>(i) / kEdgePoints;
-        const double lon = w[0] + f * (w[2] - w[0]), lat = w[1] + f * (w[3] - w[1]);
-        Vec3 p;
-        if (!geodeticToFrame(frame, lat, w[0], 0, p)) return std::nullopt;
-        west = std::max(west, p.x);
-        if (!geodeticToFrame(frame, lat, w[2], 0, p)) return std::nullopt;
-        east = std::min(east, p.x);
-        if (!geodeticToFrame(frame, w[1], lon, 0, p)) return std::nullopt;
-        south = std::max(south, p.y);
-        if (!geodeticToFrame(frame, w[3], lon, 0, p)) return std::nullopt;
-        north = std::min(north, p.y);
+        const double lon = w.west + f * (w.east - w.west), lat = w.south + f * (w.north - w.south);
+        const auto onWest = forward(frame, {w.west, lat, 0}), onEast = forward(frame, {w.east, lat, 0});
+        const auto onSouth = forward(frame, {lon, w.south, 0}), onNorth = forward(frame, {lon, w.north, 0});
+        if (!onWest || !onEast || !onSouth || !onNorth) return std::nullopt;
+        west = std::max(west, onWest->x), east = std::min(east, onEast->x);
+        south = std::max(south, onSouth->y), north = std::min(north, onNorth->y);
     }
     if (!(east > west && north > south)) return std::nullopt;
-    return std::array<double, 4>{west, south, east, north};
+    return FrameBox{west, south, east, north};
 }
 
 namespace {
@@ -315,8 +314,8 @@ double stillSpacingM(double width, double height, int widthPx) {
 
 }  // namespace
 
-bool layoutNet(const scene::NetSpec& spec, std::array<double, 4> dataBox, double defaultSpacingM,
-               GeoGrid& net, Diagnostics& diags, const NetBudget& budget) {
+bool layoutNet(const scene::NetSpec& spec, FrameBox dataBox, double defaultSpacingM, GeoGrid& net, Diagnostics& diags,
+               const NetBudget& budget) {
     if (spec.extentLonLat) {
         const auto box = frameBoxInside(net.frame, *spec.extentLonLat);
         if (!box) {
@@ -328,8 +327,8 @@ bool layoutNet(const scene::NetSpec& spec, std::array<double, 4> dataBox, double
         }
         dataBox = *box;
     }
-    const auto& e = spec.extentM ? *spec.extentM : dataBox;
-    const double xmin = e[0], ymin = e[1], xmax = e[2], ymax = e[3];
+    const FrameBox& e = spec.extentM ? *spec.extentM : dataBox;
+    const double xmin = e.west, ymin = e.south, xmax = e.east, ymax = e.north;
     const double width = xmax - xmin, height = ymax - ymin;
     int rows = spec.rows, cols = spec.cols;
     const bool countsGiven = spec.locs.has("net.rows") || spec.locs.has("net.cols");
@@ -415,7 +414,7 @@ std::optional<ControlNet> gridSamples(const scene::NetSpec& spec, const std::str
         xmin = std::min(xmin, fp.p.x), xmax = std::max(xmax, fp.p.x);
         ymin = std::min(ymin, fp.p.y), ymax = std::max(ymax, fp.p.y);
     }
-    if (!layoutNet(spec, {xmin, ymin, xmax, ymax}, 0, net, diags, budget)) return std::nullopt;
+    if (!layoutNet(spec, FrameBox{xmin, ymin, xmax, ymax}, 0, net, diags, budget)) return std::nullopt;
     net.spacingReason = spec.spacingM > 0 ? "net.spacing_m" : "net.rows and net.cols (64 x 64 when not given)";
     const int rows = net.grid.rows, cols = net.grid.cols;
 

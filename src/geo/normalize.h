@@ -39,17 +39,18 @@ struct ControlNet : GeoGrid {
     bool verticalUnitAssumed = false;  ///< rasters: the band named no length, and metres were taken (a warning)
 };
 
-/// A frame point (metres) to WGS84 latitude, longitude (degrees) and height
-/// above the ellipsoid (metres), and back: GeographicLib UTMUPS (z is the
-/// height) or LocalCartesian (z is the height above the tangent plane), as
-/// projectSamples. False when the point cannot be converted.
-bool frameToGeodetic(const Frame& frame, Vec3 p, double& latDeg, double& lonDeg, double& heightM);
+/// A geographic point in `frame`'s metres: GeographicLib's UTMUPS (z the
+/// height), LocalCartesian at the frame's origin (z the height above the
+/// tangent plane) or the raster's CRS through PROJ (z the height), as
+/// projectSamples. nullopt where the point cannot be converted.
+std::optional<Vec3> forward(const Frame& frame, const GeoPoint& point);
+/// A frame point (metres) on the WGS84 ellipsoid: the inverse of forward.
+std::optional<GeoPoint> reverse(const Frame& frame, const Vec3& p);
 
 /// The meridian convergence at frame point (x, y): the bearing of the frame's
 /// y axis (grid north) clockwise from true north, degrees (GeographicLib's
 /// gamma). 0 in a local frame, whose y axis is true north at its origin.
 double gridConvergenceDeg(const Frame& frame, double x, double y);
-bool geodeticToFrame(const Frame& frame, double latDeg, double lonDeg, double heightM, Vec3& p);
 
 /// The centre of the smallest arc of the circle of longitudes that holds all
 /// of `lons` (degrees, -180..180): 180 for data from 179 to -179, not 0.
@@ -68,10 +69,9 @@ std::optional<Frame> chooseFrame(const scene::FrameSpec& spec,
 std::vector<FramePoint> projectSamples(const Frame& frame, const std::vector<GeoSample>& samples,
                                        Diagnostics& diags);
 
-/// The largest box of `frame` (xmin, ymin, xmax, ymax) inside a lon/lat window
-/// (lon_min, lat_min, lon_max, lat_max; its edges are curves in the frame);
-/// nullopt when the window does not fit in the frame.
-std::optional<std::array<double, 4>> frameBoxInside(const Frame& frame, const std::array<double, 4>& lonLat);
+/// The largest box of `frame` inside a lon/lat window (its edges are curves
+/// in the frame); nullopt when the window does not fit in the frame.
+std::optional<FrameBox> frameBoxInside(const Frame& frame, const LonLatBox& window);
 
 /// GDAL's gridding of scattered samples (its Delaunay triangulation and search
 /// structures) at its peak, per sample: 989 MB for 458,845 samples, measured
@@ -102,15 +102,15 @@ struct NetBudget {
 std::string netSpacingReason(const scene::NetSpec& spec, const GeoGrid& net, double dataSpacingM, int stillWidthPx);
 
 /// Lays a net (origin, spacing, rows and cols; no heights) over net.extent_m,
-/// else the box inside net.extent_lonlat, else `dataBox` (xmin, ymin, xmax,
-/// ymax in net.frame, which must be set): rows x cols spanning
+/// else the box inside net.extent_lonlat, else `dataBox` (in net.frame,
+/// which must be set): rows x cols spanning
 /// it, or the largest net of net.spacing_m inside it, centred (or of
 /// `defaultSpacingM` when the scene gives neither, or coarser to suit the
 /// still: NetBudget::stillWidthPx; 0: rows and cols). False, with an error at
 /// [net], for fewer than 4 x 4 nodes, more than `budget` or work that
 /// NetBudget::fits refuses.
-bool layoutNet(const scene::NetSpec& spec, std::array<double, 4> dataBox, double defaultSpacingM,
-               GeoGrid& net, Diagnostics& diags, const NetBudget& budget = {});
+bool layoutNet(const scene::NetSpec& spec, FrameBox dataBox, double defaultSpacingM, GeoGrid& net, Diagnostics& diags,
+               const NetBudget& budget = {});
 
 /// How far the gridding is, 0..1 (GDAL reports it per row of the net).
 using GridProgressFn = std::function<void(double fraction)>;

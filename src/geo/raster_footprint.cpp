@@ -84,9 +84,10 @@ std::vector<GeoSample> footprintEdge(const RasterPlace& place, const PixelBox& b
     return edge;
 }
 
-bool framed(const RasterPlace& place, const Frame& frame, double px, double py, Vec3& p) {
-    double lon = 0, lat = 0;
-    return place.toLonLat(px, py, lon, lat) && geodeticToFrame(frame, lat, lon, 0, p);
+std::optional<Vec3> framed(const RasterPlace& place, const Frame& frame, double px, double py) {
+    GeoPoint g;
+    if (!place.toLonLat(px, py, g.lonDeg, g.latDeg)) return std::nullopt;
+    return forward(frame, g);
 }
 
 // The largest axis-aligned box inside the footprint: the west edge's
@@ -105,11 +106,26 @@ InnerBox innerBox(const RasterPlace& place, const PixelBox& box, const Frame& fr
     const double boxW = box.x1 - box.x0, boxH = box.y1 - box.y0;
     for (int i = 0; i <= kEdgePoints; ++i) {
         const double f = static_cast<double>(i) / kEdgePoints;
-        Vec3 p;
-        if (framed(place, frame, westPx, box.y0 + f * boxH, p)) in.west = std::max(in.west, p.x); else ++in.outside;
-        if (framed(place, frame, eastPx, box.y0 + f * boxH, p)) in.east = std::min(in.east, p.x); else ++in.outside;
-        if (framed(place, frame, box.x0 + f * boxW, southPx, p)) in.south = std::max(in.south, p.y); else ++in.outside;
-        if (framed(place, frame, box.x0 + f * boxW, northPx, p)) in.north = std::min(in.north, p.y); else ++in.outside;
+        const auto w = framed(place, frame, westPx, box.y0 + f * boxH),
+                   e = framed(place, frame, eastPx, box.y0 + f * boxH);
+        const auto s = framed(place, frame, box.x0 + f * boxW, southPx),
+                   n = framed(place, frame, box.x0 + f * boxW, northPx);
+        if (w)
+            in.west = std::max(in.west, w->x);
+        else
+            ++in.outside;
+        if (e)
+            in.east = std::min(in.east, e->x);
+        else
+            ++in.outside;
+        if (s)
+            in.south = std::max(in.south, s->y);
+        else
+            ++in.outside;
+        if (n)
+            in.north = std::min(in.north, n->y);
+        else
+            ++in.outside;
     }
     return in;
 }
@@ -131,20 +147,18 @@ void reportTooWide(const std::vector<GeoSample>& edge, const Frame& frame, const
 double groundCell(const RasterPlace& place, const PixelBox& box, const Frame& frame, const scene::NetSpec& net) {
     double px = 0.5 * (box.x0 + box.x1), py = 0.5 * (box.y0 + box.y1);
     if (hasWindow(net)) {
-        double lat = 0, lon = 0, h = 0;
-        if (net.extentLonLat) {
-            lon = 0.5 * ((*net.extentLonLat)[0] + (*net.extentLonLat)[2]);
-            lat = 0.5 * ((*net.extentLonLat)[1] + (*net.extentLonLat)[3]);
+        GeoPoint centre;
+        if (const auto& w = net.extentLonLat) {
+            centre = {0.5 * (w->west + w->east), 0.5 * (w->south + w->north), 0};
         } else {
             const auto& e = *net.extentM;
-            frameToGeodetic(frame, {0.5 * (e[0] + e[2]), 0.5 * (e[1] + e[3]), 0}, lat, lon, h);
+            centre = reverse(frame, {0.5 * (e.west + e.east), 0.5 * (e.south + e.north), 0}).value_or(GeoPoint{});
         }
-        place.toPixel(lon, lat, px, py);
+        place.toPixel(centre.lonDeg, centre.latDeg, px, py);
     }
-    Vec3 c0, c1, c2;
-    if (framed(place, frame, px, py, c0) && framed(place, frame, px + 1, py, c1) &&
-        framed(place, frame, px, py + 1, c2))
-        return std::min(length(c1 - c0), length(c2 - c0));
+    const auto c0 = framed(place, frame, px, py), c1 = framed(place, frame, px + 1, py),
+               c2 = framed(place, frame, px, py + 1);
+    if (c0 && c1 && c2) return std::min(length(*c1 - *c0), length(*c2 - *c0));
     return 0;
 }
 
@@ -218,8 +232,7 @@ NetExtent extentInOwnCrs(const RasterPlace& place, const PixelBox& cellBox, Fram
     const auto [py0, py1] = onCentres(cellBox.y0, cellBox.y1, place.height);
     const double xa = g[0] + px0 * g[1], xb = g[0] + px1 * g[1];
     const double ya = g[3] + py0 * g[5], yb = g[3] + py1 * g[5];
-    return {std::move(frame),
-            {std::min(xa, xb), std::min(ya, yb), std::max(xa, xb), std::max(ya, yb)},
+    return {std::move(frame), FrameBox{std::min(xa, xb), std::min(ya, yb), std::max(xa, xb), std::max(ya, yb)},
             std::min(std::fabs(g[1]), std::fabs(g[5]))};
 }
 
@@ -269,7 +282,7 @@ std::optional<NetExtent> netExtent(const RasterPlace& place, const PixelBox& box
     }
     if (net.extentLonLat) {  // the frame of the window, not of the whole raster
         const auto& w = *net.extentLonLat;
-        edge = {{w[0], w[1], 0, {}}, {w[2], w[1], 0, {}}, {w[0], w[3], 0, {}}, {w[2], w[3], 0, {}}};
+        edge = {{w.west, w.south, 0, {}}, {w.east, w.south, 0, {}}, {w.west, w.north, 0, {}}, {w.east, w.north, 0, {}}};
     }
     auto frame = chooseFrame(frameSpec, edge, diags);
     if (!frame) return std::nullopt;
@@ -293,7 +306,7 @@ std::optional<NetExtent> netExtent(const RasterPlace& place, const PixelBox& box
                                          frame->describe()));
         return std::nullopt;
     }
-    return NetExtent{*frame, {in.west, in.south, in.east, in.north}, cell};
+    return NetExtent{*frame, FrameBox{in.west, in.south, in.east, in.north}, cell};
 }
 
 }  // namespace relief::geo

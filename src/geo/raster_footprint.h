@@ -49,13 +49,13 @@ inline constexpr double kOwnCrsScaleError = 0.002;
 
 /// Where the net goes: the frame (the scene's, for the raster's footprint or
 /// the scene's lon/lat window; the raster's own CRS when the scene asks, or
-/// names none and `ownCrsByDefault`: scene::FrameSpec says when), the box (xmin, ymin, xmax, ymax, metres in the
-/// frame) inside the footprint of `box` (0, 0, 1, 1 with a window: layoutNet
+/// names none and `ownCrsByDefault`: scene::FrameSpec says when), the box
+/// inside the footprint of `box` (0, 0, 1, 1 with a window: layoutNet
 /// places the net there), and the raster's cell on the ground (metres), at
 /// its centre or the window's.
 struct NetExtent {
     Frame frame;
-    std::array<double, 4> box;
+    FrameBox box;
     double cellM = 0;
 };
 std::optional<NetExtent> netExtent(const RasterPlace& place, const PixelBox& box, const scene::FrameSpec& frameSpec,

@@ -35,12 +35,11 @@ ElevationRange elevationRange(const scene::SamplesSpec& samples) {
     return {-scene::kAnyElevationLimitM, scene::kAnyElevationLimitM};
 }
 
-// The latitude and longitude of node `i` of the warped net (row 0 north).
-void nodeLatLon(const ControlNet& net, size_t i, double& lat, double& lon) {
+// Where node `i` of the warped net (row 0 north) is; (0, 0) when it cannot be carried there.
+GeoPoint nodePlace(const ControlNet& net, size_t i) {
     const size_t cols = static_cast<size_t>(net.cols());
     const size_t r = net.rows() - 1 - i / cols, c = i % cols;
-    double h = 0;
-    frameToGeodetic(net.frame, {net.x0 + c * net.dx, net.y0 + r * net.dy, 0}, lat, lon, h);
+    return reverse(net.frame, {net.x0 + c * net.dx, net.y0 + r * net.dy, 0}).value_or(GeoPoint{});
 }
 
 // The raster's cell (column and row from its north-west corner) behind a node
@@ -67,13 +66,12 @@ HeldCell cellHolding(const RasterPlace& place, const HeightBand& band, double px
 
 void reportFirstEmpty(const ControlNet& net, size_t firstEmpty, size_t empty, size_t nodes,
                       const scene::SamplesSpec& samples, Diagnostics& diags) {
-    double lat = 0, lon = 0;
-    nodeLatLon(net, firstEmpty, lat, lon);
+    const GeoPoint g = nodePlace(net, firstEmpty);
     diags.error(samples.locs.at("samples.nodata"),
                 fmt::format("{} of the net's {} nodes have no data (nodata cells or outside the "
                             "raster), the first at lat {:.6f} lon {:.6f}; set nodata = \"mask\" or "
                             "\"fill\", or a smaller net.extent_m",
-                            empty, nodes, lat, lon));
+                            empty, nodes, g.latDeg, g.lonDeg));
 }
 
 // Masks the nodes without data; false when no cell of the net has data at all four corners.
@@ -134,9 +132,9 @@ bool checkElevations(const std::vector<double>& z, double scale, const ControlNe
     const ElevationRange range = elevationRange(samples);
     const auto beyond = std::find_if(z.begin(), z.end(), [&](double v) { return hasData(v) && !range.holds(scale * v); });
     if (beyond == z.end()) return true;
-    double lat = 0, lon = 0, px = -1, py = -1;
-    nodeLatLon(net, static_cast<size_t>(beyond - z.begin()), lat, lon);
-    place.toPixel(lon, lat, px, py);
+    double px = -1, py = -1;
+    const GeoPoint g = nodePlace(net, static_cast<size_t>(beyond - z.begin()));
+    place.toPixel(g.lonDeg, g.latDeg, px, py);
     const HeldCell cell = cellHolding(place, band, px, py, scale * *beyond, scale, range);
     const SourceLoc fileLoc{samples.pathAsWritten, 0, 0};
     if (samples.earthElevations)
@@ -144,13 +142,14 @@ bool checkElevations(const std::vector<double>& z, double scale, const ControlNe
                                          "beyond the Earth's ({} to {} m): check the band, its unit and its "
                                          "nodata value, or set elevations = \"any\" in [samples] for data that "
                                          "are not terrain in metres",
-                                         cell.x, cell.y, lat, lon, formatShortest(cell.heightM), range.lowest,
+                                         cell.x, cell.y, g.latDeg, g.lonDeg, formatShortest(cell.heightM), range.lowest,
                                          range.highest));
     else
-        diags.error(fileLoc, fmt::format("the cell at column {}, row {} (near lat {:.6f} lon {:.6f}) holds {} "
-                                         "m, beyond the {:.0e} m any elevation may be (the surface's vertices "
-                                         "are single-precision): check the band, its unit and its nodata value",
-                                         cell.x, cell.y, lat, lon, formatShortest(cell.heightM), range.highest));
+        diags.error(fileLoc,
+                    fmt::format("the cell at column {}, row {} (near lat {:.6f} lon {:.6f}) holds {} "
+                                "m, beyond the {:.0e} m any elevation may be (the surface's vertices "
+                                "are single-precision): check the band, its unit and its nodata value",
+                                cell.x, cell.y, g.latDeg, g.lonDeg, formatShortest(cell.heightM), range.highest));
     return false;
 }
 
@@ -198,10 +197,8 @@ void setNodeHeights(ControlNet& net, const std::vector<double>& z, double scale)
             Vec3 p{net.x0 + c * net.dx, net.y0 + r * net.dy, h};
             if (net.frame.kind == scene::FrameKind::Local) {
                 // z above the tangent plane, as for samples: the height plus the Earth's curvature.
-                double lat, lon, ignored;
-                frameToGeodetic(net.frame, {p.x, p.y, 0}, lat, lon, ignored);
-                Vec3 q;
-                if (geodeticToFrame(net.frame, lat, lon, h, q)) p.z = q.z;
+                const GeoPoint g = reverse(net.frame, {p.x, p.y, 0}).value_or(GeoPoint{});
+                if (auto q = forward(net.frame, {g.lonDeg, g.latDeg, h})) p.z = q->z;
             }
             net.grid.at(r, c) = p;
         }

@@ -34,12 +34,12 @@ int transformNetToRaster(void* arg, int dstToSrc, int count, double* x, double* 
     const RasterPlace& raster = *t.raster;
     for (int i = 0; i < count; ++i) {
         ok[i] = FALSE;
-        double lat = 0, lon = 0, h = 0;
         if (t.inRasterCrs) {
             netPixelToRasterPixel(t, dstToSrc, x[i], y[i]);
         } else if (dstToSrc) {
             const Vec3 p{net.x0 + (x[i] - 0.5) * net.dx, net.y0 + (net.rows() - 0.5 - y[i]) * net.dy, 0};
-            if (!frameToGeodetic(net.frame, p, lat, lon, h) || !raster.toPixel(lon, lat, x[i], y[i])) continue;
+            const auto g = reverse(net.frame, p);
+            if (!g || !raster.toPixel(g->lonDeg, g->latDeg, x[i], y[i])) continue;
             if (t.wrapPixels > 0 && (x[i] < 0 || x[i] > raster.width)) {
                 // Only onto the raster: a node off it stays where it is (continuous for the approximator).
                 const double wrapped = x[i] + (x[i] < 0 ? t.wrapPixels : -t.wrapPixels);
@@ -53,10 +53,10 @@ int transformNetToRaster(void* arg, int dstToSrc, int count, double* x, double* 
             double cx = geo[0] + x[i] * geo[1] + y[i] * geo[2];
             double cy = geo[3] + x[i] * geo[4] + y[i] * geo[5], cz = 0;
             if (!OCTTransform(raster.crs.toWgs84.get(), 1, &cx, &cy, &cz)) continue;
-            Vec3 p;
-            if (!geodeticToFrame(net.frame, cy, cx, 0, p)) continue;
-            x[i] = (p.x - net.x0) / net.dx + 0.5;
-            y[i] = net.rows() - 0.5 - (p.y - net.y0) / net.dy;
+            const auto p = forward(net.frame, {cx, cy, 0});
+            if (!p) continue;
+            x[i] = (p->x - net.x0) / net.dx + 0.5;
+            y[i] = net.rows() - 0.5 - (p->y - net.y0) / net.dy;
         }
         if (z) z[i] = 0;
         ok[i] = std::isfinite(x[i]) && std::isfinite(y[i]);

@@ -35,16 +35,9 @@ bool sameFrame(const geo::Frame& p, const geo::Frame& q) {
 // A point of b's frame at height z (in b's frame) in a's frame.
 curves::Point2 carry(const geo::Frame& from, const geo::Frame& to, curves::Point2 p, double z) {
     if (sameFrame(from, to)) return p;
-    double lat, lon, h;
-    Vec3 q{p.x, p.y, z};
-    if (geo::frameToGeodetic(from, q, lat, lon, h)) geo::geodeticToFrame(to, lat, lon, h, q);
-    return {q.x, q.y};
-}
-
-// Latitude and longitude of a point of a's frame.
-void geodetic(const geo::Frame& frame, curves::Point2 p, double z, double& lat, double& lon) {
-    double h;
-    geo::frameToGeodetic(frame, {p.x, p.y, z}, lat, lon, h);
+    std::optional<Vec3> q;
+    if (auto g = geo::reverse(from, {p.x, p.y, z})) q = geo::forward(to, *g);
+    return q ? curves::Point2{q->x, q->y} : p;
 }
 
 // The part of a's box that b covers: b's corners carried into a's frame,
@@ -76,10 +69,10 @@ std::vector<ProfileLine> defaultProfiles(const FramedSurface& a, const FramedSur
     std::vector<ProfileLine> out;
     auto add = [&](const char* name, double x1, double y1, double x2, double y2) {
         ProfileLine l{name};
-        double h;
-        if (geo::frameToGeodetic(a.frame(), {x1, y1, 0}, l.lat1, l.lon1, h) &&
-            geo::frameToGeodetic(a.frame(), {x2, y2, 0}, l.lat2, l.lon2, h))
-            out.push_back(l);
+        const auto g1 = geo::reverse(a.frame(), {x1, y1, 0}), g2 = geo::reverse(a.frame(), {x2, y2, 0});
+        if (!g1 || !g2) return;
+        l.lat1 = g1->latDeg, l.lon1 = g1->lonDeg, l.lat2 = g2->latDeg, l.lon2 = g2->lonDeg;
+        out.push_back(l);
     };
     add("west-east", o.xmin + ix, cy, o.xmax - ix, cy);
     add("south-north", cx, o.ymin + iy, cx, o.ymax - iy);
@@ -164,7 +157,8 @@ std::optional<GeometryComparison> compareGeometry(const FramedSurface& a, const 
         cc.b = std::move(lb);
         cc.where = locate(cc.h);
         if (std::isfinite(cc.h.H))
-            geodetic(a.frame(), cc.where.point, cc.level, cc.where.latDeg, cc.where.lonDeg);
+            if (auto g = geo::reverse(a.frame(), {cc.where.point.x, cc.where.point.y, cc.level}))
+                cc.where.latDeg = g->latDeg, cc.where.lonDeg = g->lonDeg;
         out.contours.push_back(std::move(cc));
     }
     return out;

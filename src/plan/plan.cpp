@@ -22,17 +22,17 @@ using nlohmann::ordered_json;
 
 namespace {
 
-constexpr int kPlanFormat = 1;
+constexpr int kPlanFormat = 2;
 constexpr std::uintmax_t kMaxPlanBytes = 64'000'000;
 
-ordered_json stopsJson(const std::vector<scene::ColorStop>& stops) {
+ordered_json coloursJson(const std::vector<LinearRgb>& colours) {
     ordered_json a = ordered_json::array();
-    for (const auto& s : stops) a.push_back({s.elevM, s.r, s.g, s.b});
+    for (const auto& c : colours) a.push_back({c.r, c.g, c.b});
     return a;
 }
-std::vector<scene::ColorStop> stopsOf(const ordered_json& a) {
-    std::vector<scene::ColorStop> out;
-    for (const auto& s : a) out.push_back({s.at(0).get<double>(), s.at(1).get<double>(), s.at(2).get<double>(), s.at(3).get<double>()});
+std::vector<LinearRgb> coloursOf(const ordered_json& a) {
+    std::vector<LinearRgb> out;
+    for (const auto& c : a) out.push_back({c.at(0).get<double>(), c.at(1).get<double>(), c.at(2).get<double>()});
     return out;
 }
 
@@ -42,17 +42,18 @@ ordered_json overlayJson(const RenderPlan& p) {
     ordered_json spec = {{"enabled", static_cast<int>(s.enabled)}, {"title", s.title}, {"subtitle", s.subtitle},
                          {"legend", s.legend}, {"scale_bar", s.scaleBar}, {"north_arrow", s.northArrow}};
     if (s.credits) spec["credits"] = *s.credits;
-    ordered_json facts = {{"credits", f.credits},
-                          {"palette", stopsJson(f.palette)},
-                          {"z_min_m", f.zMinM},
-                          {"z_max_m", f.zMaxM},
-                          {"legend_title", f.legendTitle},
-                          {"legend_note", f.legendNote},
-                          {"exaggeration", f.exaggeration},
-                          {"metres_per_pixel", f.metresPerPixel},
-                          {"perspective", f.perspective},
-                          {"north_deg", f.northDeg},
-                          {"terrain", {{"band_px", f.terrain.bandPx}, {"top", f.terrain.top}, {"bottom", f.terrain.bottom}}}};
+    ordered_json facts = {
+        {"credits", f.credits},
+        {"palette", coloursJson(f.palette)},
+        {"z_min_m", f.zMinM},
+        {"z_max_m", f.zMaxM},
+        {"legend_title", f.legendTitle},
+        {"legend_note", f.legendNote},
+        {"exaggeration", f.exaggeration},
+        {"metres_per_pixel", f.metresPerPixel},
+        {"perspective", f.perspective},
+        {"north_deg", f.northDeg},
+        {"terrain", {{"band_px", f.terrain.bandPx}, {"top", f.terrain.top}, {"bottom", f.terrain.bottom}}}};
     return {{"drawn", p.overlays}, {"spec", spec}, {"facts", facts}};
 }
 
@@ -69,7 +70,7 @@ void readOverlay(const ordered_json& j, RenderPlan& p) {
     const auto& f = j.at("facts");
     annotate::OverlayFacts& o = p.overlayFacts;
     o.credits = f.at("credits").get<std::string>();
-    o.palette = stopsOf(f.at("palette"));
+    o.palette = coloursOf(f.at("palette"));
     o.zMinM = f.at("z_min_m").get<double>();
     o.zMaxM = f.at("z_max_m").get<double>();
     o.legendTitle = f.at("legend_title").get<std::string>();

@@ -26,9 +26,8 @@ constexpr RelStop kSea[] = {{0.0, "#0d2a5c"}, {0.7, "#2f6fb0"}, {1.0, "#86bfe0"}
 constexpr RelStop kGrey[] = {{0.0, "#3a3a3a"}, {1.0, "#f0f0f0"}};
 
 ColorStop makeStop(double elevM, const char* hex) {
-    ColorStop s{};
-    parseHexColor(hex, s);
-    s.elevM = elevM;
+    ColorStop s{elevM, {}};
+    parseHexColor(hex, s.rgb);
     return s;
 }
 
@@ -44,7 +43,7 @@ const std::vector<std::string>& rampPresetNames() {
     return names;
 }
 
-bool parseHexColor(const std::string& text, ColorStop& out) {
+bool parseHexColor(const std::string& text, LinearRgb& out) {
     if (text.size() != 7 || text[0] != '#') return false;
     // Six hex digits and nothing else: strtol alone would take "-8", " 8" or "+8" as a byte.
     if (!std::all_of(text.begin() + 1, text.end(), [](unsigned char c) { return std::isxdigit(c) != 0; }))
@@ -77,16 +76,15 @@ std::vector<ColorStop> resolveRamp(const ColorRamp& ramp, double zMinM, double z
     return stops;
 }
 
-ColorStop sampleRamp(const std::vector<ColorStop>& stops, double zM) {
-    if (zM <= stops.front().elevM) return stops.front();
-    if (zM >= stops.back().elevM) return stops.back();
+LinearRgb sampleRamp(const std::vector<ColorStop>& stops, double zM) {
+    if (zM <= stops.front().elevM) return stops.front().rgb;
+    if (zM >= stops.back().elevM) return stops.back().rgb;
     auto hi = std::upper_bound(stops.begin(), stops.end(), zM,
                                [](double z, const ColorStop& s) { return z < s.elevM; });
     auto lo = hi - 1;
     const double span = hi->elevM - lo->elevM;
     const double t = span > 0 ? (zM - lo->elevM) / span : 0.0;
-    return {zM, lo->r + t * (hi->r - lo->r), lo->g + t * (hi->g - lo->g),
-            lo->b + t * (hi->b - lo->b)};
+    return mix(lo->rgb, hi->rgb, t);
 }
 
 }  // namespace relief::scene

@@ -15,12 +15,12 @@ const std::vector<std::string>& rampPresetNames();
 std::vector<ColorStop> resolveRamp(const ColorRamp& ramp, double zMinM, double zMaxM);
 
 /// Colour at elevation `zM`, interpolated linearly between stops, clamped at the ends.
-ColorStop sampleRamp(const std::vector<ColorStop>& stops, double zM);
+LinearRgb sampleRamp(const std::vector<ColorStop>& stops, double zM);
 
 /// An sRGB component (0..1) made linear (IEC 61966-2-1).
 double srgbToLinear(double c);
 
 /// Parses "#rrggbb"; returns false on malformed text.
-bool parseHexColor(const std::string& text, ColorStop& out);
+bool parseHexColor(const std::string& text, LinearRgb& out);
 
 }  // namespace relief::scene

@@ -48,7 +48,7 @@ bool component(std::string_view t, double& out) {
 
 // A colour starting at tokens[i]: R/G/B, #rrggbb, "R G B" or a grey level.
 // Advances i past it; false when there is none.
-bool colour(const std::vector<Token>& tk, size_t& i, ColorStop& out) {
+bool colour(const std::vector<Token>& tk, size_t& i, LinearRgb& out) {
     if (i >= tk.size()) return false;
     const std::string_view t = tk[i].text;
     double rgb[3] = {0, 0, 0};
@@ -128,7 +128,7 @@ std::optional<std::vector<ColorStop>> parseCpt(std::string_view text, const std:
             continue;
         }
         ++i;
-        if (!colour(tk, i, lo)) {
+        if (!colour(tk, i, lo.rgb)) {
             diags.error({file, lineNo, columnAfter(tk, i)},
                         "expected a colour (R/G/B, R G B, #rrggbb or a grey level, 0-255) after z_low; "
                         "named colours and HSV are not read");
@@ -143,7 +143,7 @@ std::optional<std::vector<ColorStop>> parseCpt(std::string_view text, const std:
         }
         const int z1Column = tk[i].column;
         ++i;
-        if (!colour(tk, i, hi)) {
+        if (!colour(tk, i, hi.rgb)) {
             diags.error({file, lineNo, columnAfter(tk, i)},
                         "expected a colour (R/G/B, R G B, #rrggbb or a grey level, 0-255) after z_high");
             continue;
@@ -165,8 +165,7 @@ std::optional<std::vector<ColorStop>> parseCpt(std::string_view text, const std:
         }
         lo.elevM = *z0, hi.elevM = *z1;
         // Where this slice starts where the last ended, in the same colour, one stop serves.
-        const bool joins = !stops.empty() && stops.back().elevM == *z0 && stops.back().r == lo.r &&
-                           stops.back().g == lo.g && stops.back().b == lo.b;
+        const bool joins = !stops.empty() && stops.back().elevM == *z0 && stops.back().rgb == lo.rgb;
         if (!joins) stops.push_back(lo);
         stops.push_back(hi);
     }

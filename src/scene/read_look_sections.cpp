@@ -83,7 +83,7 @@ void readStop(const toml::node& item, const SceneFile& f, ColorRamp& ramp) {
     auto color = st ? st->get("color") : nullptr;
     std::optional<double> e = elev ? elev->value<double>() : std::nullopt;
     std::optional<std::string> c = color ? color->value_exact<std::string>() : std::nullopt;
-    if (!e || !c || !parseHexColor(*c, stop)) {
+    if (!e || !c || !parseHexColor(*c, stop.rgb)) {
         f.diags.error(locOf(f.name, item.source()),
                       "each texture.stops entry must be { elev_m = <metres>, color = \"#rrggbb\" }");
         return;

@@ -108,11 +108,11 @@ void readNetSize(Section& s, const SceneFile& f, NetSpec& net) {
 void readNet(Section& s, const SceneFile& f, SceneSpec& scene) {
     NetSpec& net = scene.net;
     readNetSize(s, f, net);
-    if (auto ext = s.box("extent_m", "[xmin, ymin, xmax, ymax] in metres")) {
-        if (!((*ext)[2] > (*ext)[0] && (*ext)[3] > (*ext)[1]))
+    if (auto e = s.box("extent_m", "[xmin, ymin, xmax, ymax] in metres")) {
+        if (!((*e)[2] > (*e)[0] && (*e)[3] > (*e)[1]))
             s.error("extent_m", "net.extent_m needs xmin < xmax and ymin < ymax (metres)");
         else
-            net.extentM = ext;
+            net.extentM = FrameBox{(*e)[0], (*e)[1], (*e)[2], (*e)[3]};
     }
     if (auto box = s.box("extent_lonlat", "[lon_min, lat_min, lon_max, lat_max] in WGS84 degrees")) {
         const auto& w = *box;
@@ -122,7 +122,7 @@ void readNet(Section& s, const SceneFile& f, SceneSpec& scene) {
         else if (s.find("extent_m"))
             s.error("extent_lonlat", "give either net.extent_m or net.extent_lonlat, not both");
         else
-            net.extentLonLat = box;
+            net.extentLonLat = LonLatBox{w[0], w[1], w[2], w[3]};
     }
     if (auto g = s.named<Gridding>("gridding")) net.gridding = *g;
 }

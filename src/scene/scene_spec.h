@@ -28,6 +28,7 @@
 #include "core/date_time.h"
 #include "core/source_loc.h"
 #include "core/types.h"
+#include "core/types.h"
 
 namespace relief::scene {
 
@@ -59,9 +60,10 @@ enum class FrameKind { Utm, Local, Raster };
 enum class Gridding { Linear, InverseDistance, Nearest };
 enum class Projection { Perspective, Orthographic };
 
+/// A colour of a ramp at an elevation.
 struct ColorStop {
-    double elevM;       ///< metres above the WGS84 ellipsoid datum of the samples
-    double r, g, b;     ///< linear 0..1 components of an sRGB colour
+    double elevM = 0;  ///< metres above the WGS84 ellipsoid datum of the samples
+    LinearRgb rgb;
 };
 
 struct ColorRamp {
@@ -127,10 +129,10 @@ struct FrameSpec {
 struct NetSpec {
     int rows = 0, cols = 0;        ///< 0 when spacing is given
     double spacingM = 0;           ///< 0 when rows/cols are given
-    std::optional<std::array<double, 4>> extentM;  ///< xmin, ymin, xmax, ymax in the frame
-    /// lon_min, lat_min, lon_max, lat_max (WGS84 degrees): the net covers the
-    /// largest box of the frame inside this window
-    std::optional<std::array<double, 4>> extentLonLat;
+    std::optional<FrameBox> extentM;  ///< in the frame (written xmin, ymin, xmax, ymax)
+    /// WGS84 degrees (written lon_min, lat_min, lon_max, lat_max): the net
+    /// covers the largest box of the frame inside this window
+    std::optional<LonLatBox> extentLonLat;
     Gridding gridding = Gridding::Linear;
     KeyLocations locs;
 };
@@ -179,7 +181,7 @@ struct CameraSpec {
     Projection projection = Projection::Perspective;
     /// Placed by geography instead: [lon, lat, height above sea level in m]
     /// for the eye and (optional; else the terrain's centre) the point looked at.
-    std::optional<std::array<double, 3>> position, lookAt;
+    std::optional<GeoPoint> position, lookAt;
     KeyLocations locs;
 };
 
@@ -194,7 +196,7 @@ struct BaseSpec {
 /// [water]: a water surface over the terrain's extent.
 struct WaterSpec {
     std::optional<double> levelM;  ///< unset: no water
-    ColorStop colour{0, 0.05, 0.18, 0.32};  ///< linear RGB (#3f7699 in sRGB)
+    LinearRgb colour{0.05, 0.18, 0.32};     ///< #3f7699 in sRGB
     double transparency = 0.35;             ///< 0 opaque .. 1 clear
     KeyLocations locs;
 };
@@ -216,7 +218,7 @@ struct TextureSpec {
         Image,      ///< a georeferenced image draped on the surface
     };
     Colouring colouring = Colouring::Elevation;
-    ColorStop rockColour{0, 0.159, 0.130, 0.100};  ///< linear RGB (#6f6559 in sRGB)
+    LinearRgb rockColour{0.159, 0.130, 0.100};      ///< #6f6559 in sRGB
     double rockFromDeg = 30, rockToDeg = 45;        ///< slopes where rock starts and takes over
     std::filesystem::path drapeImage;               ///< Colouring::Image: the raster, resolved against the scene
     std::string drapeImageText;                     ///< as written
@@ -263,7 +265,7 @@ struct RenderSpec {
     int height = 600;
     bool antialias = true;
     Background background = Background::Sky;
-    ColorStop backgroundColour;  ///< Background::Colour: linear RGB (elevation unused)
+    LinearRgb backgroundColour;  ///< Background::Colour
     std::string output;  ///< "" = out/<scene stem>.png
     double timeoutS = 0; ///< POV-Ray stopped after this long; 0 = no limit
     KeyLocations locs;
@@ -274,7 +276,7 @@ struct RenderSpec {
 struct ContourSpec {
     double intervalM = 50;      ///< between lines, true metres
     int indexEvery = 5;         ///< every n-th line (from 0 m) is an index contour, drawn heavier
-    ColorStop colour{0, 0.05, 0.035, 0.02};  ///< linear RGB (#3e3426 in sRGB)
+    LinearRgb colour{0.05, 0.035, 0.02};  ///< #3e3426 in sRGB
 };
 
 struct OverlaySpec {

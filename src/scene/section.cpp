@@ -139,7 +139,7 @@ std::optional<std::array<double, 4>> Section::box(const std::string& key, std::s
     return out;
 }
 
-std::optional<std::array<double, 3>> Section::lonLatHeight(const std::string& key) {
+std::optional<GeoPoint> Section::lonLatHeight(const std::string& key) {
     static constexpr std::string_view kWhat =
         "[lon, lat, height_m]: degrees in [-180, 180] and [-90, 90], metres above sea level in [-11100, 1e7]";
     const auto out = numbers<3>(key, kWhat);
@@ -149,7 +149,7 @@ std::optional<std::array<double, 3>> Section::lonLatHeight(const std::string& ke
         error(key, fmt::format("{} must be {}", qualified(key), kWhat));
         return std::nullopt;
     }
-    return out;
+    return GeoPoint{lon, lat, h};
 }
 
 void Section::require(const std::string& key, std::string_view what) {

@@ -63,7 +63,7 @@ public:
     std::optional<std::array<double, 4>> box(const std::string& key, std::string_view what);
     /// [lon, lat, height_m]: degrees within the globe, a height within
     /// -11,100 m and 1e7 m (a camera may be far out, not inside the Earth).
-    std::optional<std::array<double, 3>> lonLatHeight(const std::string& key);
+    std::optional<GeoPoint> lonLatHeight(const std::string& key);
 
     void markKnown(const std::string& key) { known_.insert(key); }
     void require(const std::string& key, std::string_view what);

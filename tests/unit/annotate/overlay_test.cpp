@@ -47,8 +47,8 @@ TEST(Overlay, NorthArrowFollowsTheCamera) {
     EXPECT_NEAR(northOnImageDeg(view(180, 89.9), 2, 800, 600), -2, 0.05);
     // East of the target lands right of it, in the image.
     const emit::CameraView v = view(180, 35);
-    EXPECT_GT(emit::projectToImage(v, v.target + Vec3{1, 0, 0}, 800, 600)[0], 400);
-    EXPECT_LT(emit::projectToImage(v, v.target + Vec3{0, 1, 0}, 800, 600)[1], 300);  // up is up
+    EXPECT_GT(emit::projectToImage(v, v.target + SceneVec3{1, 0, 0}, 800, 600)[0], 400);
+    EXPECT_LT(emit::projectToImage(v, v.target + SceneVec3{0, 1, 0}, 800, 600)[1], 300);  // up is up
 }
 
 // The bar is a round length near a fifth of the width, drawn at its true
@@ -100,7 +100,7 @@ PngImage8 greyStill() {
 OverlayFacts sampleFacts(std::string credits) {
     OverlayFacts facts;
     facts.credits = std::move(credits);
-    facts.palette = {{0, 0, 0.5, 0}, {0, 1, 1, 1}};
+    facts.palette = {{0, 0.5, 0}, {1, 1, 1}};
     facts.zMinM = 10;
     facts.zMaxM = 300;
     facts.metresPerPixel = 2;

@@ -78,7 +78,7 @@ TEST(Mesh, NormalsOfATiltedPlaneAndSceneUnits) {
     // Height rises 20 (exaggerated) per 100 m east: normal ~ (-0.2, 1, 0) normalised.
     const double n = std::sqrt(1 + 0.04);
     for (size_t i = 0; i < m.vertices; ++i) {
-        const Vec3 v = m.normal(i);
+        const SceneVec3 v = m.normal(i);
         EXPECT_NEAR(v.x, -0.2 / n, 1e-12);
         EXPECT_NEAR(v.y, 1.0 / n, 1e-12);
         EXPECT_NEAR(v.z, 0.0, 1e-12);
@@ -162,11 +162,11 @@ TEST(Mesh, LocalFrameExaggeratesElevationNotCurvature) {
     for (int r = 0; r < 41; ++r)
         for (int c = 0; c < 41; ++c) {
             const double x = -200000 + 10000.0 * c, y = -200000 + 10000.0 * r;
-            double lat = 0, lon = 0, h = 0;
-            Vec3 above;
-            ASSERT_TRUE(geo::frameToGeodetic(grid.frame, {x, y, 0}, lat, lon, h));
-            ASSERT_TRUE(geo::geodeticToFrame(grid.frame, lat, lon, 300 + x / 1000, above));  // above the ellipsoid
-            grid.grid.points.push_back({x, y, above.z});
+            const auto g = geo::reverse(grid.frame, {x, y, 0});
+            ASSERT_TRUE(g);
+            const auto above = geo::forward(grid.frame, {g->lonDeg, g->latDeg, 300 + x / 1000});  // above the ellipsoid
+            ASSERT_TRUE(above);
+            grid.grid.points.push_back({x, y, above->z});
         }
     EXPECT_LT(grid.grid.at(0, 0).z, -6000);  // the fall at the corner, 283 km out: about 6.3 km
     scene::LookSpec look;

@@ -36,7 +36,7 @@ TEST(SurfaceContours, RingsOnAConeLieOnItsCircles) {
     EXPECT_GE(ribbons.made.lines, 7);
     ASSERT_GT(ribbons.vertices.size(), 100u);
     EXPECT_EQ(ribbons.faces.size() % 2, 0u);
-    for (const Vec3& v : ribbons.vertices) {
+    for (const SceneVec3& v : ribbons.vertices) {
         ASSERT_TRUE(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z));
         const double x = v.x * where.metresPerUnit + where.originM.x - 500000;
         const double y = v.z * where.metresPerUnit + where.originM.y - 5000000;

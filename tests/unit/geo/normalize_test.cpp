@@ -18,25 +18,29 @@ using GeographicLib::UTMUPS;
 // equator is (500000, 0) in UTM, the southern hemisphere's false northing is
 // 10,000 km, a local frame's origin is (0, 0, 0) with y towards true north;
 // and every point comes back where it started.
-TEST(Frame, GeodeticToFrameAndBack) {
+TEST(Frame, ForwardAndReverse) {
     Frame utm31;
     utm31.utmZone = 31;
-    Vec3 p;
-    ASSERT_TRUE(geodeticToFrame(utm31, 0, 3, 12.5, p));
-    EXPECT_NEAR(p.x, 500000, 1e-6);
-    EXPECT_NEAR(p.y, 0, 1e-6);
-    EXPECT_EQ(p.z, 12.5);
+    auto p = forward(utm31, {3, 0, 12.5});  // lon, lat, height: the zone's central meridian on the equator
+    ASSERT_TRUE(p);
+    EXPECT_NEAR(p->x, 500000, 1e-6);
+    EXPECT_NEAR(p->y, 0, 1e-6);
+    EXPECT_EQ(p->z, 12.5);
     Frame utm60s;
     utm60s.utmZone = 60, utm60s.northp = false;
-    ASSERT_TRUE(geodeticToFrame(utm60s, -1e-9, 177, 0, p));
-    EXPECT_NEAR(p.y, 10'000'000, 1e-3);
+    p = forward(utm60s, {177, -1e-9, 0});
+    ASSERT_TRUE(p);
+    EXPECT_NEAR(p->y, 10'000'000, 1e-3);
     Frame local;
     local.kind = scene::FrameKind::Local, local.originLatDeg = -36.876, local.originLonDeg = 174.764;
-    ASSERT_TRUE(geodeticToFrame(local, -36.876, 174.764, 0, p));
-    EXPECT_NEAR(std::hypot(p.x, p.y, p.z), 0, 1e-6);
-    ASSERT_TRUE(geodeticToFrame(local, -36.866, 174.764, 0, p));  // 0.01 degrees north: about 1109 m
-    EXPECT_NEAR(p.x, 0, 1e-6);
-    EXPECT_NEAR(p.y, 1109.4, 0.5);
+    p = forward(local, {174.764, -36.876, 0});
+    ASSERT_TRUE(p);
+    EXPECT_NEAR(std::hypot(p->x, p->y, p->z), 0, 1e-6);
+    p = forward(local, {174.764, -36.866, 0});  // 0.01 degrees north: about 1109 m
+    ASSERT_TRUE(p);
+    EXPECT_NEAR(p->x, 0, 1e-6);
+    EXPECT_NEAR(p->y, 1109.4, 0.5);
+    EXPECT_FALSE(forward(utm31, {3, 91, 0}));  // no such latitude
 
     std::mt19937 rng(7);
     std::uniform_real_distribution<double> dlat(-0.05, 0.05), dlon(-0.05, 0.05), h(-400, 4000);
@@ -45,12 +49,13 @@ TEST(Frame, GeodeticToFrameAndBack) {
         const double lon0 = frame.kind == scene::FrameKind::Local ? 174.764 : 174.78;
         for (int i = 0; i < 100; ++i) {
             const double la = lat0 + dlat(rng), lo = lon0 + dlon(rng), hh = h(rng);
-            double la2 = 0, lo2 = 0, h2 = 0;
-            ASSERT_TRUE(geodeticToFrame(frame, la, lo, hh, p));
-            ASSERT_TRUE(frameToGeodetic(frame, p, la2, lo2, h2));
-            EXPECT_NEAR(la2, la, 1e-9);
-            EXPECT_NEAR(lo2, lo, 1e-9);
-            EXPECT_NEAR(h2, hh, 1e-6);
+            p = forward(frame, {lo, la, hh});
+            ASSERT_TRUE(p);
+            const auto back = reverse(frame, *p);
+            ASSERT_TRUE(back);
+            EXPECT_NEAR(back->latDeg, la, 1e-9);
+            EXPECT_NEAR(back->lonDeg, lo, 1e-9);
+            EXPECT_NEAR(back->heightM, hh, 1e-6);
         }
     }
 }
@@ -148,7 +153,7 @@ TEST(Normalize, NearestSampleFillMatchesBruteForce) {
         scene::NetSpec spec;
         spec.rows = 31;
         spec.cols = 41;
-        spec.extentM = std::array<double, 4>{-100, -50, 1100, 1050};  // beyond the samples
+        spec.extentM = FrameBox{-100, -50, 1100, 1050};  // beyond the samples
         spec.gridding = gridding;
         Diagnostics diags;
         const auto net = gridSamples(spec, "p.csv", frame, pts, diags);
@@ -219,8 +224,7 @@ TEST(Normalize, ScatteredVolcanoSamplesMatchTheFullGrid) {
     auto reference = normalize({}, netSpec, "volcano_full.csv", full, diags);
     ASSERT_TRUE(reference);
     EXPECT_EQ(reference->frame.describe(), "UTM zone 60S");
-    netSpec.extentM = std::array<double, 4>{reference->x0, reference->y0, reference->xMax(),
-                                            reference->yMax()};
+    netSpec.extentM = FrameBox{reference->x0, reference->y0, reference->xMax(), reference->yMax()};
     auto sparse = normalize({}, netSpec, "samples.csv", some, diags);
     ASSERT_TRUE(sparse);
     ASSERT_EQ(sparse->grid.points.size(), reference->grid.points.size());

@@ -143,7 +143,7 @@ TEST(Raster, LonLatWindowChoosesTheNet) {
     const auto spec = rasterSpec(writePlane(dir, 60, 50), "EPSG:2193");
     scene::NetSpec net;
     net.spacingM = 5;
-    const std::array<double, 4> window{174.7630, -36.8790, 174.7655, -36.8770};
+    const LonLatBox window{174.7630, -36.8790, 174.7655, -36.8770};
     net.extentLonLat = window;
     Diagnostics diags;
     const auto result = rasterNet(spec, namedFrame(), net, diags);
@@ -152,10 +152,10 @@ TEST(Raster, LonLatWindowChoosesTheNet) {
     for (const Vec3& p : result->grid.points) {
         double lat, lon, gamma, k;
         GeographicLib::UTMUPS::Reverse(60, false, p.x, p.y, lat, lon, gamma, k);
-        EXPECT_GE(lon, window[0]);
-        EXPECT_LE(lon, window[2]);
-        EXPECT_GE(lat, window[1]);
-        EXPECT_LE(lat, window[3]);
+        EXPECT_GE(lon, window.west);
+        EXPECT_LE(lon, window.east);
+        EXPECT_GE(lat, window.south);
+        EXPECT_LE(lat, window.north);
         double e, n;
         nztm(lat, lon, e, n);
         ASSERT_NEAR(p.z, plane(e, n), 0.01);
@@ -350,25 +350,26 @@ TEST(Raster, ItsOwnCrsIsTheFrameAndItsCellsTheNet) {
     for (int r = 0; r < kRows; ++r)
         for (int c = 0; c < kCols; ++c) ASSERT_EQ(result->grid.at(r, c).z, cell(c, r)) << r << " " << c;
     for (const Vec3& p : {result->grid.at(0, 0), result->grid.at(kRows - 1, kCols - 1)}) {
-        double lat, lon, h, e, n;
-        ASSERT_TRUE(frameToGeodetic(result->frame, p, lat, lon, h));
-        nztm(lat, lon, e, n);
+        const auto g = reverse(result->frame, p);
+        ASSERT_TRUE(g);
+        double e, n;
+        nztm(g->latDeg, g->lonDeg, e, n);
         EXPECT_NEAR(e, p.x, 0.001);
         EXPECT_NEAR(n, p.y, 0.001);
-        EXPECT_EQ(h, p.z);
-        Vec3 back;
-        ASSERT_TRUE(geodeticToFrame(result->frame, lat, lon, h, back));
-        EXPECT_NEAR(back.x, p.x, 1e-6);
-        EXPECT_NEAR(back.y, p.y, 1e-6);
+        EXPECT_EQ(g->heightM, p.z);
+        const auto back = forward(result->frame, *g);
+        ASSERT_TRUE(back);
+        EXPECT_NEAR(back->x, p.x, 1e-6);
+        EXPECT_NEAR(back->y, p.y, 1e-6);
     }
     // Grid north in NZTM at 174.76 E, 36.88 S: about (174.76 - 173) sin(36.88) = 1.06 degrees west of true
     // north, as GeographicLib's transverse Mercator gives it.
     const Vec3 centre = result->grid.at(kRows / 2, kCols / 2);
-    double lat, lon, h;
-    ASSERT_TRUE(frameToGeodetic(result->frame, centre, lat, lon, h));
+    const auto g = reverse(result->frame, centre);
+    ASSERT_TRUE(g);
     static const GeographicLib::TransverseMercator tm(6378137, 1 / 298.257222101, 0.9996);
     double e, n, gamma, k;
-    tm.Forward(173, lat, lon, e, n, gamma, k);
+    tm.Forward(173, g->latDeg, g->lonDeg, e, n, gamma, k);
     EXPECT_NEAR(gridConvergenceDeg(result->frame, centre.x, centre.y), gamma, 1e-5);
 
     // The scene names UTM: the cells are reprojected into its zone, and resampled.
@@ -639,9 +640,9 @@ TEST(Lattice, ResampledAsARaster) {
     // A plane in lon/lat is reproduced by bilinear resampling: each node's height is the plane at its
     // lon/lat, up to the warper's positional tolerance (0.001 cells; the plane rises 2 m per cell).
     for (const Vec3& p : result->grid.points) {
-        double lat = 0, lon = 0, h = 0;
-        ASSERT_TRUE(frameToGeodetic(result->frame, {p.x, p.y, 0}, lat, lon, h));
-        EXPECT_NEAR(p.z, 100 + 2.0 * (lon - 174.7) / 0.0001 - 1.0 * (lat + 36.9) / 0.0001, 2.5e-3);
+        const auto g = reverse(result->frame, {p.x, p.y, 0});
+        ASSERT_TRUE(g);
+        EXPECT_NEAR(p.z, 100 + 2.0 * (g->lonDeg - 174.7) / 0.0001 - 1.0 * (g->latDeg + 36.9) / 0.0001, 2.5e-3);
     }
 }
 
@@ -790,8 +791,7 @@ TEST(DrapeImage, AWebMercatorImageLandsOnTheUtmNodes) {
     grid.frame.kind = scene::FrameKind::Utm;
     grid.frame.utmZone = 30;
     grid.frame.northp = true;
-    Vec3 centre;
-    ASSERT_TRUE(geo::geodeticToFrame(grid.frame, 40.2, -3.6, 0, centre));
+    const Vec3 centre = geo::forward(grid.frame, {-3.6, 40.2, 0}).value();
     grid.grid.rows = 12;
     grid.grid.cols = 15;
     grid.dx = grid.dy = 1500;
@@ -806,8 +806,9 @@ TEST(DrapeImage, AWebMercatorImageLandsOnTheUtmNodes) {
     for (int r = 0; r < grid.grid.rows; ++r)
         for (int c = 0; c < grid.grid.cols; ++c) {
             const size_t node = size_t(r) * grid.grid.cols + c;
-            double lat = 0, lon = 0, h = 0;
-            ASSERT_TRUE(geo::frameToGeodetic(grid.frame, grid.grid.points[node], lat, lon, h));
+            const auto g = geo::reverse(grid.frame, grid.grid.points[node]);
+            ASSERT_TRUE(g);
+            const double lat = g->latDeg, lon = g->lonDeg;
             const double px = (kR * lon * kPi / 180 - x0) / kCell;
             const double py = (y0 - kR * std::log(std::tan(kPi / 4 + lat * kPi / 360))) / kCell;
             // Bilinear between pixel centres: value 8 * (p - 0.5), within the image's centres.

@@ -347,9 +347,9 @@ TEST(Frames, DataAcrossTheAntimeridian) {
         EXPECT_EQ(fromRaster->maskedCount(), 0u) << fromRaster->frame.describe();
         EXPECT_LT(fromRaster->xMax() - fromRaster->x0, 5000);
         // East of the line the heights go on rising: lon 180.01 (written -179.99) is 130 m.
-        Vec3 p;
-        ASSERT_TRUE(geodeticToFrame(fromRaster->frame, -16.79, -179.99, 0, p));
-        EXPECT_NEAR(fromRaster->sample(p.x, p.y).value_or(-1), 130, 0.6) << fromRaster->frame.describe();
+        const auto p = forward(fromRaster->frame, {-179.99, -16.79, 0});
+        ASSERT_TRUE(p);
+        EXPECT_NEAR(fromRaster->sample(p->x, p->y).value_or(-1), 130, 0.6) << fromRaster->frame.describe();
     }
 }
 

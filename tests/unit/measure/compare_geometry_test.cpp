@@ -134,14 +134,14 @@ TEST(CompareGeometry, FramesRoundTrip) {
     local.originLonDeg = -123;
     for (const auto& f : {utm, local}) {
         const Vec3 p = f.kind == scene::FrameKind::Utm ? Vec3{500000, 5480000, 812} : Vec3{1234, -4321, 812};
-        double lat, lon, h;
-        ASSERT_TRUE(geo::frameToGeodetic(f, p, lat, lon, h));
-        EXPECT_NEAR(lat, 49.5, 0.1);
-        Vec3 q;
-        ASSERT_TRUE(geo::geodeticToFrame(f, lat, lon, h, q));
-        EXPECT_NEAR(q.x, p.x, 1e-6);
-        EXPECT_NEAR(q.y, p.y, 1e-6);
-        EXPECT_NEAR(q.z, p.z, 1e-6);
+        const auto g = geo::reverse(f, p);
+        ASSERT_TRUE(g);
+        EXPECT_NEAR(g->latDeg, 49.5, 0.1);
+        const auto q = geo::forward(f, *g);
+        ASSERT_TRUE(q);
+        EXPECT_NEAR(q->x, p.x, 1e-6);
+        EXPECT_NEAR(q->y, p.y, 1e-6);
+        EXPECT_NEAR(q->z, p.z, 1e-6);
     }
 }
 

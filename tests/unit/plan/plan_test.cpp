@@ -43,7 +43,7 @@ RenderPlan samplePlan(const fs::path& dir) {
     p.sidecar = dir / "out" / "x.json";
     p.overlays = true;
     p.overlaySpec.title = "Maungawhau <b>&amp;</b>";
-    p.overlayFacts.palette = {{0, 0.1, 0.2, 0.3}, {1, 0.4, 0.5, 0.6000000000000001}};
+    p.overlayFacts.palette = {{0.1, 0.2, 0.3}, {0.4, 0.5, 0.6000000000000001}};
     p.overlayFacts.metresPerPixel = 1.0 / 3.0;
     p.overlayFacts.terrain.top = {1.5, 2.25};
     p.overlayFacts.terrain.bottom = {9.125, 10};

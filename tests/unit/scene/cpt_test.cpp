@@ -27,14 +27,14 @@ TEST(Cpt, SlicesBecomeStops) {
     ASSERT_TRUE(stops) << (diags.all().empty() ? "" : formatDiagnostic(diags.all()[0]));
     ASSERT_EQ(stops->size(), 5u);  // 0, 10 (shared), 20, 20 (a step to red), 30
     EXPECT_EQ((*stops)[0].elevM, 0);
-    EXPECT_DOUBLE_EQ((*stops)[0].b, 1);
+    EXPECT_DOUBLE_EQ((*stops)[0].rgb.b, 1);
     EXPECT_EQ((*stops)[1].elevM, 10);
     EXPECT_EQ((*stops)[2].elevM, 20);
-    EXPECT_DOUBLE_EQ((*stops)[2].r, 1);
+    EXPECT_DOUBLE_EQ((*stops)[2].rgb.r, 1);
     EXPECT_EQ((*stops)[3].elevM, 20);
-    EXPECT_DOUBLE_EQ((*stops)[3].r, 1);
-    EXPECT_DOUBLE_EQ((*stops)[3].g, 0);
-    EXPECT_DOUBLE_EQ((*stops)[4].g, lin(128));
+    EXPECT_DOUBLE_EQ((*stops)[3].rgb.r, 1);
+    EXPECT_DOUBLE_EQ((*stops)[3].rgb.g, 0);
+    EXPECT_DOUBLE_EQ((*stops)[4].rgb.g, lin(128));
     // Between slices' stops, linear; at a step, the upper slice's colour.
     EXPECT_NEAR(sampleRamp(*stops, 5).g, 0.5, 1e-12);
     EXPECT_DOUBLE_EQ(sampleRamp(*stops, 20).g, 0);

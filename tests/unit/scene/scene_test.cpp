@@ -172,7 +172,7 @@ TEST(ReadScene, ReportKeysFromTheFileAndFromOverrides) {
 }
 
 TEST(ColorRamp, HexAndInterpolation) {
-    ColorStop c{};
+    LinearRgb c;
     ASSERT_TRUE(parseHexColor("#ff0000", c));
     EXPECT_DOUBLE_EQ(c.r, 1.0);
     EXPECT_DOUBLE_EQ(c.g, 0.0);
@@ -184,8 +184,8 @@ TEST(ColorRamp, HexAndInterpolation) {
     EXPECT_FALSE(parseHexColor("# 8ffff", c));
     ASSERT_TRUE(parseHexColor("#0A0b0C", c));
     EXPECT_GT(c.b, c.r);
-    const std::vector<ColorStop> stops{{0, 0, 0, 0}, {100, 1, 0.5, 0}};
-    const ColorStop mid = sampleRamp(stops, 50);
+    const std::vector<ColorStop> stops{{0, {0, 0, 0}}, {100, {1, 0.5, 0}}};
+    const LinearRgb mid = sampleRamp(stops, 50);
     EXPECT_DOUBLE_EQ(mid.r, 0.5);
     EXPECT_DOUBLE_EQ(mid.g, 0.25);
     EXPECT_DOUBLE_EQ(sampleRamp(stops, -10).r, 0.0);
