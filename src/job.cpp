@@ -121,9 +121,8 @@ std::optional<fs::path> planFolder(const fs::path& asked, Diagnostics& diags) {
         // Only a folder that reads as a whole plan of this relief's is ever removed: a folder
         // of the user's that happens to hold a plan.json is in the way, never deleted.
         if (!fs::is_directory(fs::symlink_status(dir, ec)) || !isRenderPlan(dir)) {
-            diags.error({}, fmt::format("{} is in the way of the render plan: it is not a render plan of this "
-                                        "relief's; remove it or give --plan",
-                                        dir.string()));
+            diags.error({dir.string(), 0, 0}, "in the way of the render plan: it is not a render plan of this "
+                                              "relief's; remove it or give --plan");
             return std::nullopt;
         }
         if (auto lock = plan::PlanLock::take(dir)) {
@@ -131,7 +130,8 @@ std::optional<fs::path> planFolder(const fs::path& asked, Diagnostics& diags) {
             if (!ec) return dir;
         }
     }
-    diags.error({}, fmt::format("too many renders of {} at once", asked.string()));
+    diags.error({asked.string(), 0, 0}, "too many renders of this plan at once (99 folders beside it are in use): "
+                                        "wait for one to end, or give --plan");
     return std::nullopt;
 }
 
@@ -185,7 +185,7 @@ void compileIntoPlan(PlannedJob& p, const LoadedScene& loaded, Diagnostics& diag
         if (ec != std::errc::directory_not_empty && ec != std::errc::file_exists) break;
     }
     if (ec) {
-        diags.error({}, fmt::format("cannot write {}: {}", dir->string(), ec.message()));
+        diags.error({dir->string(), 0, 0}, fmt::format("the render plan cannot be written here: {}", ec.message()));
         return;
     }
     plan.dir = fs::absolute(*dir);
@@ -214,7 +214,7 @@ bool writeStill(const plan::RenderPlan& plan, OutputSet& outputs, RenderFacts& f
     if (plan.overlays) {
         annotate::OverlayRecord record;
         if (error = annotate::drawOverlays(*still, plan.overlaySpec, plan.overlayFacts, &record); !error.empty()) {
-            diags.error({}, "the overlays: " + error);
+            diags.error({plan.still.string(), 0, 0}, "the overlays cannot be drawn: " + error);
             return false;
         }
         facts.overlays = record;
