@@ -110,22 +110,11 @@ InnerBox innerBox(const RasterPlace& place, const PixelBox& box, const Frame& fr
                    e = framed(place, frame, eastPx, box.y0 + f * boxH);
         const auto s = framed(place, frame, box.x0 + f * boxW, southPx),
                    n = framed(place, frame, box.x0 + f * boxW, northPx);
-        if (w)
-            in.west = std::max(in.west, w->x);
-        else
-            ++in.outside;
-        if (e)
-            in.east = std::min(in.east, e->x);
-        else
-            ++in.outside;
-        if (s)
-            in.south = std::max(in.south, s->y);
-        else
-            ++in.outside;
-        if (n)
-            in.north = std::min(in.north, n->y);
-        else
-            ++in.outside;
+        in.outside += !w + !e + !s + !n;
+        if (w) in.west = std::max(in.west, w->x);
+        if (e) in.east = std::min(in.east, e->x);
+        if (s) in.south = std::max(in.south, s->y);
+        if (n) in.north = std::min(in.north, n->y);
     }
     return in;
 }
