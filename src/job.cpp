@@ -130,8 +130,9 @@ std::optional<fs::path> planFolder(const fs::path& asked, Diagnostics& diags) {
             if (!ec) return dir;
         }
     }
-    diags.error({asked.string(), 0, 0}, "too many renders of this plan at once (99 folders beside it are in use): "
-                                        "wait for one to end, or give --plan");
+    diags.error({asked.string(), 0, 0},
+                "no folder for the render plan is free here or beside it (-2 to -99 "
+                "tried): let the renders using them end, or give --plan");
     return std::nullopt;
 }
 
@@ -214,7 +215,7 @@ bool writeStill(const plan::RenderPlan& plan, OutputSet& outputs, RenderFacts& f
     if (plan.overlays) {
         annotate::OverlayRecord record;
         if (error = annotate::drawOverlays(*still, plan.overlaySpec, plan.overlayFacts, &record); !error.empty()) {
-            diags.error({plan.still.string(), 0, 0}, "the overlays cannot be drawn: " + error);
+            diags.error({shownPath(plan.still).string(), 0, 0}, "the overlays cannot be drawn: " + error);
             return false;
         }
         facts.overlays = record;

@@ -279,15 +279,17 @@ nlohmann::ordered_json jsonNumber(double v) {
     return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json("inf");
 }
 
-bool parseLonLat(const std::string& text, double& lon, double& lat) {
+std::optional<GeoPoint> parseLonLat(const std::string& text) {
     const auto parts = split(text, ',');
-    if (parts.size() != 2) return false;
+    if (parts.size() != 2) return std::nullopt;
     char* end = nullptr;
-    lon = std::strtod(parts[0].c_str(), &end);
-    if (end == parts[0].c_str() || *end) return false;
-    lat = std::strtod(parts[1].c_str(), &end);
-    if (end == parts[1].c_str() || *end) return false;
-    return std::fabs(lat) <= 90 && std::fabs(lon) <= 180;
+    GeoPoint p;
+    p.lonDeg = std::strtod(parts[0].c_str(), &end);
+    if (end == parts[0].c_str() || *end) return std::nullopt;
+    p.latDeg = std::strtod(parts[1].c_str(), &end);
+    if (end == parts[1].c_str() || *end) return std::nullopt;
+    if (!(std::fabs(p.latDeg) <= 90 && std::fabs(p.lonDeg) <= 180)) return std::nullopt;
+    return p;
 }
 
 }  // namespace relief::cli

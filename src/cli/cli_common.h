@@ -163,6 +163,6 @@ std::vector<std::string> split(const std::string& s, char sep);
 nlohmann::ordered_json jsonNumber(double v);
 
 /// "LON,LAT" in WGS84 degrees; false when malformed or out of range.
-bool parseLonLat(const std::string& text, double& lon, double& lat);
+std::optional<GeoPoint> parseLonLat(const std::string& text);
 
 }  // namespace relief::cli

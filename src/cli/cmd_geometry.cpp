@@ -86,8 +86,8 @@ struct ProfileOptions {
 
 // `relief profile`: the refined and the control-net surface cut along a geodesic.
 int runProfile(const ProfileOptions& o) {
-    double lon1, lat1, lon2, lat2;
-    if (!parseLonLat(o.from, lon1, lat1) || !parseLonLat(o.to, lon2, lat2)) {
+    const auto from = parseLonLat(o.from), to = parseLonLat(o.to);
+    if (!from || !to) {
         std::cerr << "relief: error: --from and --to take LON,LAT in WGS84 degrees (e.g. "
                      "174.7640,-36.8770), |lat| <= 90, |lon| <= 180\n";
         return code(Exit::BadInput);
@@ -101,8 +101,7 @@ int runProfile(const ProfileOptions& o) {
         printDiagnostics(diags, false);
         return code(Exit::BadInput);
     }
-    const auto profile = relief::measure::cutProfile(surface->net, surface->refined, lon1, lat1, lon2,
-                                                     lat2, o.samples, {}, diags);
+    const auto profile = relief::measure::cutProfile(surface->net, surface->refined, *from, *to, o.samples, {}, diags);
     if (!profile) {
         printDiagnostics(diags, false);
         return code(Exit::BadInput);
@@ -158,13 +157,14 @@ int runCompareGeometry(const CompareGeometryOptions& o) {
     std::vector<m::ProfileLine> lines;
     for (const auto& text : o.profiles) {
         const auto ends = split(text, ':');
-        m::ProfileLine l{text};
-        if (ends.size() != 2 || !parseLonLat(ends[0], l.lon1, l.lat1) || !parseLonLat(ends[1], l.lon2, l.lat2)) {
+        const auto from = ends.size() == 2 ? parseLonLat(ends[0]) : std::nullopt;
+        const auto to = ends.size() == 2 ? parseLonLat(ends[1]) : std::nullopt;
+        if (!from || !to) {
             std::cerr << "relief: error: --profile " << relief::terminalText(text, 200)
                       << ": write LON,LAT:LON,LAT in WGS84 degrees, e.g. 174.76,-36.88:174.77,-36.87\n";
             return code(Exit::BadInput);
         }
-        lines.push_back(l);
+        lines.push_back({text, *from, *to});
     }
     std::vector<double> levels;
     if (!o.levels.empty())
@@ -213,8 +213,8 @@ int runCompareGeometry(const CompareGeometryOptions& o) {
         auto profiles = nlohmann::ordered_json::array();
         for (const auto& p : result->profiles)
             profiles.push_back({{"name", p.line.name},
-                                {"from", {p.line.lon1, p.line.lat1}},
-                                {"to", {p.line.lon2, p.line.lat2}},
+                                {"from", {p.line.from.lonDeg, p.line.from.latDeg}},
+                                {"to", {p.line.to.lonDeg, p.line.to.latDeg}},
                                 {"length_m", p.lengthM},
                                 {"H", p.h.H},
                                 {"h_ab", p.h.ab.value},

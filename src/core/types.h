@@ -43,12 +43,14 @@ struct SceneAxes;
 using Vec3 = Vector3<FrameAxes>;
 /// A point or vector in POV-Ray's scene: x = east, y = up, z = north
 /// (left-handed, so the map is not mirrored), in scene units
-/// (emit::ScenePlacement says how many metres one is).
+/// (emit::ScenePlacement says how many metres one is, and carries frame
+/// points into the scene).
 using SceneVec3 = Vector3<SceneAxes>;
 
-/// A point on or above the WGS84 ellipsoid: longitude and latitude in degrees,
-/// height in metres. In this order everywhere, as scene files write it
-/// ([lon, lat, height_m]).
+/// A place on the Earth: WGS84 longitude and latitude in degrees, and a height
+/// in metres as the data's heights are (relief moves no height between
+/// datums). Longitude first wherever the two travel together, as scene files
+/// write them ([lon, lat, height_m]).
 struct GeoPoint {
     double lonDeg = 0, latDeg = 0, heightM = 0;
 };
@@ -56,8 +58,6 @@ struct GeoPoint {
 /// A box in a frame's metres: x from west to east, y from south to north.
 struct FrameBox {
     double west = 0, south = 0, east = 0, north = 0;
-    double width() const { return east - west; }
-    double height() const { return north - south; }
 };
 /// A box of longitudes (west to east) and latitudes (south to north), degrees.
 struct LonLatBox {

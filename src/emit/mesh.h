@@ -69,8 +69,9 @@ struct ScenePlacement {
         return {(p.x - originM.x) * s, drawnHeight(p) * zs, (p.y - originM.y) * s};
     }
     /// A scene point back in frame metres, its height divided by the
-    /// exaggeration (the Earth's fall left in: a point in the air, such as the
-    /// camera's eye, not one of the surface's).
+    /// exaggeration. Not scenePoint's inverse in a local frame: the Earth's
+    /// fall below the tangent plane stays divided too (what the sidecar reports
+    /// for the camera's eye and target).
     Vec3 unexaggerated(const SceneVec3& p) const {
         return {p.x * metresPerUnit + originM.x, p.z * metresPerUnit + originM.y, p.y * metresPerUnit / exaggeration};
     }

@@ -8,10 +8,9 @@
 
 namespace relief::geo {
 
-std::vector<ProfilePoint> geodesicProfile(const Frame& frame, double lat1, double lon1, double lat2,
-                                          double lon2, int count) {
+std::vector<ProfilePoint> geodesicProfile(const Frame& frame, const GeoPoint& from, const GeoPoint& to, int count) {
     const auto& g = GeographicLib::Geodesic::WGS84();
-    const GeographicLib::GeodesicLine line = g.InverseLine(lat1, lon1, lat2, lon2);
+    const GeographicLib::GeodesicLine line = g.InverseLine(from.latDeg, from.lonDeg, to.latDeg, to.lonDeg);
     const double total = line.Distance();
     std::vector<GeoSample> samples;
     std::vector<ProfilePoint> out;

@@ -16,11 +16,10 @@ struct ProfilePoint {
     double x, y;       ///< in the net's frame, metres
 };
 
-/// `count` points (>= 2) equally spaced along the WGS84 geodesic from
-/// (lat1, lon1) to (lat2, lon2) (GeographicLib Geodesic / GeodesicLine),
+/// `count` points (>= 2) equally spaced along the WGS84 geodesic from `from`
+/// to `to` (GeographicLib Geodesic / GeodesicLine; their heights unused),
 /// projected into the frame.
-std::vector<ProfilePoint> geodesicProfile(const Frame& frame, double lat1, double lon1, double lat2,
-                                          double lon2, int count);
+std::vector<ProfilePoint> geodesicProfile(const Frame& frame, const GeoPoint& from, const GeoPoint& to, int count);
 
 /// The heights of `grid` at each point of `profile` (bilinear, GeoGrid::sample),
 /// the profile already in the grid's frame. nullopt when a point is outside

@@ -135,16 +135,13 @@ void reportTooWide(const std::vector<GeoSample>& edge, const Frame& frame, const
 // scene's window; 0 when it cannot be carried to the frame.
 double groundCell(const RasterPlace& place, const PixelBox& box, const Frame& frame, const scene::NetSpec& net) {
     double px = 0.5 * (box.x0 + box.x1), py = 0.5 * (box.y0 + box.y1);
-    if (hasWindow(net)) {
-        GeoPoint centre;
-        if (const auto& w = net.extentLonLat) {
-            centre = {0.5 * (w->west + w->east), 0.5 * (w->south + w->north), 0};
-        } else {
-            const auto& e = *net.extentM;
-            centre = reverse(frame, {0.5 * (e.west + e.east), 0.5 * (e.south + e.north), 0}).value_or(GeoPoint{});
-        }
-        place.toPixel(centre.lonDeg, centre.latDeg, px, py);
-    }
+    // The window's centre, where it can be carried to the raster's cells (else the box's).
+    std::optional<GeoPoint> centre;
+    if (const auto& w = net.extentLonLat)
+        centre = GeoPoint{0.5 * (w->west + w->east), 0.5 * (w->south + w->north), 0};
+    else if (const auto& e = net.extentM)
+        centre = reverse(frame, {0.5 * (e->west + e->east), 0.5 * (e->south + e->north), 0});
+    if (centre) place.toPixel(centre->lonDeg, centre->latDeg, px, py);
     const auto c0 = framed(place, frame, px, py), c1 = framed(place, frame, px + 1, py),
                c2 = framed(place, frame, px, py + 1);
     if (c0 && c1 && c2) return std::min(length(*c1 - *c0), length(*c2 - *c0));

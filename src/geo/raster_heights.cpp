@@ -197,8 +197,8 @@ void setNodeHeights(ControlNet& net, const std::vector<double>& z, double scale)
             Vec3 p{net.x0 + c * net.dx, net.y0 + r * net.dy, h};
             if (net.frame.kind == scene::FrameKind::Local) {
                 // z above the tangent plane, as for samples: the height plus the Earth's curvature.
-                const GeoPoint g = reverse(net.frame, {p.x, p.y, 0}).value_or(GeoPoint{});
-                if (auto q = forward(net.frame, {g.lonDeg, g.latDeg, h})) p.z = q->z;
+                if (const auto g = reverse(net.frame, {p.x, p.y, 0}))
+                    if (const auto q = forward(net.frame, {g->lonDeg, g->latDeg, h})) p.z = q->z;
             }
             net.grid.at(r, c) = p;
         }

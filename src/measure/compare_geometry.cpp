@@ -68,11 +68,8 @@ std::vector<ProfileLine> defaultProfiles(const FramedSurface& a, const FramedSur
     const double cx = 0.5 * (o.xmin + o.xmax), cy = 0.5 * (o.ymin + o.ymax);
     std::vector<ProfileLine> out;
     auto add = [&](const char* name, double x1, double y1, double x2, double y2) {
-        ProfileLine l{name};
         const auto g1 = geo::reverse(a.frame(), {x1, y1, 0}), g2 = geo::reverse(a.frame(), {x2, y2, 0});
-        if (!g1 || !g2) return;
-        l.lat1 = g1->latDeg, l.lon1 = g1->lonDeg, l.lat2 = g2->latDeg, l.lon2 = g2->lonDeg;
-        out.push_back(l);
+        if (g1 && g2) out.push_back({name, {g1->lonDeg, g1->latDeg, 0}, {g2->lonDeg, g2->latDeg, 0}});
     };
     add("west-east", o.xmin + ix, cy, o.xmax - ix, cy);
     add("south-north", cx, o.ymin + iy, cx, o.ymax - iy);
@@ -107,7 +104,7 @@ std::optional<GeometryComparison> compareGeometry(const FramedSurface& a, const 
         ProfileComparison pc;
         pc.line = line;
         for (const FramedSurface* s : {&a, &b}) {
-            const auto pts = geo::geodesicProfile(s->frame(), line.lat1, line.lon1, line.lat2, line.lon2, samples);
+            const auto pts = geo::geodesicProfile(s->frame(), line.from, line.to, samples);
             auto& curve = s == &a ? pc.a : pc.b;
             size_t outside = 0;
             const auto z = geo::heightsAlong(*s->grid, pts, outside);
@@ -127,7 +124,8 @@ std::optional<GeometryComparison> compareGeometry(const FramedSurface& a, const 
         const curves::CurveFile fa{"polyline", false, pc.a}, fb{"polyline", false, pc.b};
         pc.h = curves::hausdorff(curves::toBezier(fa), curves::toBezier(fb));
         pc.where = locate(pc.h);
-        const GeographicLib::GeodesicLine g = wgs84.InverseLine(line.lat1, line.lon1, line.lat2, line.lon2);
+        const GeographicLib::GeodesicLine g =
+            wgs84.InverseLine(line.from.latDeg, line.from.lonDeg, line.to.latDeg, line.to.lonDeg);
         g.Position(pc.where.point.x, pc.where.latDeg, pc.where.lonDeg);
         out.profiles.push_back(std::move(pc));
     }

@@ -24,7 +24,7 @@ struct FramedSurface {
 /// A geodesic between two points, WGS84 degrees.
 struct ProfileLine {
     std::string name;
-    double lon1 = 0, lat1 = 0, lon2 = 0, lat2 = 0;
+    GeoPoint from, to;  ///< heights unused
 };
 
 /// Where a Hausdorff distance is reached: the witness point (on the surface

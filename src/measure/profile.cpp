@@ -9,11 +9,10 @@
 
 namespace relief::measure {
 
-std::optional<SurfaceProfile> cutProfile(const geo::GeoGrid& net, const geo::GeoGrid& refined,
-                                         double lon1, double lat1, double lon2, double lat2,
-                                         int samples, const SourceLoc& where, Diagnostics& diags) {
+std::optional<SurfaceProfile> cutProfile(const geo::GeoGrid& net, const geo::GeoGrid& refined, const GeoPoint& from,
+                                         const GeoPoint& to, int samples, const SourceLoc& where, Diagnostics& diags) {
     SurfaceProfile out;
-    out.line = geo::geodesicProfile(net.frame, lat1, lon1, lat2, lon2, samples);
+    out.line = geo::geodesicProfile(net.frame, from, to, samples);
     size_t outside = 0;
     const auto zr = geo::heightsAlong(refined, out.line, outside);
     const auto zc = zr ? geo::heightsAlong(net, out.line, outside) : std::nullopt;

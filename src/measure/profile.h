@@ -20,12 +20,11 @@ struct SurfaceProfile {
     double zMinM = 0, zMaxM = 0;          ///< of the refined surface along the line
 };
 
-/// `samples` points (>= 2) from (lon1, lat1) to (lon2, lat2), WGS84 degrees;
+/// `samples` points (>= 2) from `from` to `to` (their heights unused);
 /// heights bilinear on each grid (both in the net's frame). A line leaving the
 /// net is an error at `where` naming the point and the net's extent.
-std::optional<SurfaceProfile> cutProfile(const geo::GeoGrid& net, const geo::GeoGrid& refined,
-                                         double lon1, double lat1, double lon2, double lat2,
-                                         int samples, const SourceLoc& where, Diagnostics& diags);
+std::optional<SurfaceProfile> cutProfile(const geo::GeoGrid& net, const geo::GeoGrid& refined, const GeoPoint& from,
+                                         const GeoPoint& to, int samples, const SourceLoc& where, Diagnostics& diags);
 
 /// The profile as an SVG with axes in metres: the control net (bilinear)
 /// and the refined surface (`refinedLabel`). `exaggeration` <= 0 chooses one

@@ -28,7 +28,6 @@
 #include "core/date_time.h"
 #include "core/source_loc.h"
 #include "core/types.h"
-#include "core/types.h"
 
 namespace relief::scene {
 

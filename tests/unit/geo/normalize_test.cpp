@@ -287,7 +287,7 @@ TEST(Profile, GeodesicSpacingAndBilinearPlane) {
     Frame frame;
     frame.utmZone = 60;
     frame.northp = false;
-    const auto line = geodesicProfile(frame, -36.8795, 174.7625, -36.8725, 174.7670, 11);
+    const auto line = geodesicProfile(frame, {174.7625, -36.8795, 0}, {174.7670, -36.8725, 0}, 11);
     ASSERT_EQ(line.size(), 11u);
     const auto& g = GeographicLib::Geodesic::WGS84();
     double s12;

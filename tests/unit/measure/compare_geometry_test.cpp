@@ -119,7 +119,7 @@ TEST(CompareGeometry, RampsLiftedByThreeMetres) {
 
     // A profile beyond b's lattice is an error naming it.
     ProfileLine outside = profiles[0];
-    outside.lon2 += 1.0;
+    outside.to.lonDeg += 1.0;
     EXPECT_FALSE(compareGeometry(a, b, {outside}, {}, 11, diags));
     EXPECT_TRUE(diags.hasErrors());
 }
