@@ -16,7 +16,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         for (size_t i = 0; i < stops->size(); ++i) {
             const auto& s = (*stops)[i];
             if (!std::isfinite(s.elevM) || (i > 0 && s.elevM < (*stops)[i - 1].elevM)) __builtin_trap();
-            for (const double c : {s.r, s.g, s.b})
+            for (const double c : {s.rgb.r, s.rgb.g, s.rgb.b})
                 if (!(c >= 0 && c <= 1)) __builtin_trap();
         }
     }
