@@ -136,21 +136,23 @@ bool writeTerrainPngs(const scene::SceneSpec& spec, const Surface& surface, cons
         t.image = geo::imageOnGrid(spec.look.texture.drapeImage, spec.look.texture.drapeImageText, refined, diags);
         if (!t.image) return false;
     }
-    std::string error;
-    if (t.field) {
-        t.heightPng = pov.parent_path() / emit::siblingPngName(pov, "height");
-        error = emit::writeHeightFieldPng(*t.field, options.writeAt(t.heightPng, "the height field's PNG"));
+    try {
+        if (t.field) {
+            t.heightPng = pov.parent_path() / emit::siblingPngName(pov, "height");
+            emit::writeHeightFieldPng(*t.field, options.writeAt(t.heightPng, "the height field's PNG"));
+        }
+        if (t.field || t.image) {
+            t.drapePng = pov.parent_path() / emit::siblingPngName(pov, "drape");
+            const auto at = options.writeAt(t.drapePng, t.field ? "the height field's drape PNG" : "the drape PNG");
+            emit::writeDrapePng(
+                t.image ? emit::imageDrape(refined, view.where, *t.image) : emit::elevationDrape(refined, view.where),
+                at);
+        }
+    } catch (const OutputError& e) {
+        diags.error(e.at(), e.problem());
+        return false;
     }
-    if (error.empty() && (t.field || t.image)) {
-        t.drapePng = pov.parent_path() / emit::siblingPngName(pov, "drape");
-        const auto at = options.writeAt(t.drapePng, t.field ? "the height field's drape PNG" : "the drape PNG");
-        error = emit::writeDrapePng(t.image ? emit::imageDrape(refined, view.where, *t.image)
-                                            : emit::elevationDrape(refined, view.where),
-                                    at);
-    }
-    if (error.empty()) return true;
-    diags.error({}, error);
-    return false;
+    return true;
 }
 
 // [overlay] contours, built before anything is written, so that lines over

@@ -201,7 +201,15 @@ void stagePlanFile(const plan::RenderPlan& plan, const plan::PlanFile& f, Output
     std::error_code ec;
     fs::create_hard_link(plan.dir / f.name, staged, ec);
     if (ec) fs::copy_file(plan.dir / f.name, staged, ec);
-    if (ec) throw std::runtime_error(fmt::format("cannot write {}: {}", shownPath(f.final).string(), ec.message()));
+    if (ec) throw OutputError(shownPath(f.final), "cannot be written: " + ec.message());
+}
+
+// An output that cannot be made is reported at its file; any other I/O failure as it is.
+void reportWriteFailure(const std::runtime_error& e, Diagnostics& diags) {
+    if (const auto* out = dynamic_cast<const OutputError*>(&e))
+        diags.error(out->at(), out->problem());
+    else
+        diags.error({}, e.what());
 }
 
 // The still's pixels: the tiles stitched, the overlays drawn in memory, written once.
@@ -221,10 +229,8 @@ bool writeStill(const plan::RenderPlan& plan, OutputSet& outputs, RenderFacts& f
         facts.overlays = record;
     }
     const fs::path png = outputs.contains(plan.still) ? outputs.staged(plan.still) : outputs.add(plan.still, "the still");
-    error = writePngAtomically(png, {still->width, still->height, still->channels, false, still->pixels.data()});
-    if (error.empty()) return true;
-    diags.error({}, error);
-    return false;
+    writePngAtomically(png, {still->width, still->height, still->channels, false, still->pixels.data()});
+    return true;
 }
 
 }  // namespace
@@ -248,7 +254,7 @@ PlannedJob planJob(const SceneJob& job, Diagnostics& diags, const ProgressFn& pr
         if (job.until == SceneJob::Until::Pov) compileOnly(p, *loaded, diags, progress);
         else compileIntoPlan(p, *loaded, diags, progress);
     } catch (const std::runtime_error& e) {  // an output that cannot be made: bad input like any other
-        diags.error({}, e.what());
+        reportWriteFailure(e, diags);
         p.outcome.status = JobStatus::BadInput;
     }
     return p;
@@ -293,7 +299,7 @@ bool finishPlan(const plan::RenderPlan& plan, OutputSet& outputs, bool stillOnly
         if (!commit) return true;
         outputs.commit();
     } catch (const std::runtime_error& e) {
-        diags.error({}, e.what());
+        reportWriteFailure(e, diags);
         return false;
     }
     if (!keepPlan) {
@@ -330,7 +336,7 @@ bool renderTiles(const plan::RenderPlan& plan, const execute::Options& execution
     if (r.ok) return true;
     outcome.status = r.cancelled ? JobStatus::Cancelled : r.badInput ? JobStatus::BadInput : JobStatus::ToolFailed;
     outcome.render.error = r.error;
-    if (r.badInput) diags.error({}, r.error);
+    if (r.badInput) diags.error(r.at, r.error);
     return false;
 }
 
@@ -344,7 +350,7 @@ JobOutcome runSceneJob(const SceneJob& job, Diagnostics& diags, const ProgressFn
             try {
                 p.ownOutputs->commit();
             } catch (const std::runtime_error& e) {
-                diags.error({}, e.what());
+                reportWriteFailure(e, diags);
                 p.outcome.status = JobStatus::BadInput;
             }
         }

@@ -15,6 +15,7 @@
 
 #include <fmt/format.h>
 
+#include "core/output_set.h"
 #include "core/text_escape.h"
 
 namespace relief::cli {
@@ -125,7 +126,11 @@ int runCommands(CLI::App& app, const std::vector<Command>& commands, int argc, c
         for (const auto& c : commands)
             if (c.app->parsed()) return c.run();
         return code(Exit::BadInput);
-    } catch (const std::runtime_error& e) {  // I/O: cannot write an output
+    } catch (const relief::OutputError& e) {
+        std::cerr << terminalText(e.file().string()) << ": error: " << terminalText(e.problem())
+                  << "\nrelief: nothing written\n";
+        return code(Exit::BadInput);
+    } catch (const std::runtime_error& e) {  // other I/O
         std::cerr << "relief: error: " << terminalText(e.what()) << "\nrelief: nothing written\n";
         return code(Exit::BadInput);
     } catch (const std::exception& e) {

@@ -171,9 +171,14 @@ std::string writeDifferenceImage(const std::filesystem::path& a, const std::file
     }
     if (maxValue > 0) largest = OIIO::ImageBufAlgo::mul(largest, 1.0f / maxValue);
     OIIO::ImageBuf heat = OIIO::ImageBufAlgo::color_map(largest, 0, "inferno");
-    return writeThroughTemporary(out, [&](const std::filesystem::path& temp) {
-        return heat.write(temp.string(), OIIO::TypeDesc::UINT8) ? std::string() : heat.geterror();
-    });
+    try {
+        writeThroughTemporary(out, [&](const std::filesystem::path& temp) {
+            return heat.write(temp.string(), OIIO::TypeDesc::UINT8) ? std::string() : heat.geterror();
+        });
+    } catch (const OutputError& e) {
+        return e.what();
+    }
+    return "";
 }
 
 }  // namespace relief::compare

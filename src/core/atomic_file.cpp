@@ -19,7 +19,7 @@ std::FILE* createNewFile(const std::filesystem::path& path, const std::filesyste
     if (!file) {
         const int err = errno;
         if (fd >= 0) ::close(fd);
-        throw std::runtime_error(fmt::format("cannot write {}: {}", shown.string(), std::strerror(err)));
+        throw OutputError::system(shown, err);
     }
     return file;
 }
@@ -30,8 +30,7 @@ void closeWritten(std::FILE* file, const std::filesystem::path& shown) {
     const bool ok = std::fflush(file) == 0 && !std::ferror(file) && ::fsync(::fileno(file)) == 0;
     const int err = errno != 0 ? errno : EIO;
     const bool closed = std::fclose(file) == 0;
-    if (!ok || !closed)
-        throw std::runtime_error(fmt::format("cannot write {}: {}", shown.string(), std::strerror(err)));
+    if (!ok || !closed) throw OutputError::system(shown, err);
 }
 
 AtomicFile::AtomicFile(std::filesystem::path finalPath) : final_(std::move(finalPath)), shown_(shownPath(final_)) {
@@ -44,8 +43,7 @@ AtomicFile::~AtomicFile() {
 
 void AtomicFile::write(std::string_view bytes) {
     if (!bytes.empty() && std::fwrite(bytes.data(), 1, bytes.size(), file_) != bytes.size())
-        throw std::runtime_error(
-            fmt::format("cannot write {}: {}", shown_.string(), std::strerror(errno)));
+        throw OutputError::system(shown_, errno);
 }
 
 void AtomicFile::commit() {
@@ -61,19 +59,13 @@ void writeFileAtomically(const std::filesystem::path& path, std::string_view byt
     f.commit();
 }
 
-std::string writeThroughTemporary(const std::filesystem::path& path,
-                                  const std::function<std::string(const std::filesystem::path&)>& write) {
-    try {
-        OutputSet set;
-        const std::filesystem::path shown = shownPath(path);
-        const std::filesystem::path staged = set.add(path, shown.string());
-        if (std::string error = write(staged); !error.empty())
-            return fmt::format("cannot write {}: {}", shown.string(), error);
-        set.commit();
-        return "";
-    } catch (const std::runtime_error& e) {
-        return e.what();
-    }
+void writeThroughTemporary(const std::filesystem::path& path,
+                           const std::function<std::string(const std::filesystem::path&)>& write) {
+    OutputSet set;
+    const std::filesystem::path shown = shownPath(path);
+    const std::filesystem::path staged = set.add(path, shown.string());
+    if (std::string error = write(staged); !error.empty()) throw OutputError(shown, "cannot be written: " + error);
+    set.commit();
 }
 
 void createParentFolder(const std::filesystem::path& file) {
@@ -81,8 +73,8 @@ void createParentFolder(const std::filesystem::path& file) {
     std::error_code ec;
     std::filesystem::create_directories(file.parent_path(), ec);
     if (ec)
-        throw std::runtime_error(fmt::format("cannot create the folder {} for {}: {}", file.parent_path().string(),
-                                             file.filename().string(), ec.message()));
+        throw OutputError(file.parent_path(), fmt::format("cannot be made as the folder of {}: {}",
+                                                          file.filename().string(), ec.message()));
 }
 
 std::string readFile(const std::filesystem::path& path) {

@@ -17,8 +17,8 @@ class AtomicFile {
 public:
     /// Creates the file in a private folder beside `finalPath` (a new name
     /// no one else can have made: never opened through a planted link).
-    /// Throws std::runtime_error with the path and the system's reason when
-    /// that fails (missing folder, no permission).
+    /// Throws OutputError at the path with the system's reason when that
+    /// fails (missing folder, no permission).
     explicit AtomicFile(std::filesystem::path finalPath);
     ~AtomicFile();  ///< drops the file unless commit() succeeded
     AtomicFile(const AtomicFile&) = delete;
@@ -38,12 +38,12 @@ private:
 };
 
 /// Creates `path` for writing, exclusively (O_CREAT | O_EXCL | O_NOFOLLOW):
-/// the file is new, never a link someone planted. Throws std::runtime_error
-/// naming `shown` and the system's reason.
+/// the file is new, never a link someone planted. Throws OutputError at
+/// `shown` with the system's reason.
 std::FILE* createNewFile(const std::filesystem::path& path, const std::filesystem::path& shown);
 
-/// Flushes, syncs to disk and closes `file`; throws std::runtime_error naming
-/// `shown` on any error (a full disk: ENOSPC).
+/// Flushes, syncs to disk and closes `file`; throws OutputError at `shown` on
+/// any error (a full disk: ENOSPC).
 void closeWritten(std::FILE* file, const std::filesystem::path& shown);
 
 /// Writes `bytes` to `path` atomically.
@@ -52,13 +52,13 @@ void writeFileAtomically(const std::filesystem::path& path, std::string_view byt
 /// For writers that take a path rather than bytes (an image library's):
 /// `write` writes the file it is given (in a private folder beside `path`,
 /// with the same name, so formats are told by the extension) and returns ""
-/// or its error; the file is moved into place only on success. Returns "" or
-/// the error, naming `path`.
-std::string writeThroughTemporary(const std::filesystem::path& path,
-                                  const std::function<std::string(const std::filesystem::path&)>& write);
+/// or its error; the file is moved into place only on success. Throws
+/// OutputError at `path` when it cannot be.
+void writeThroughTemporary(const std::filesystem::path& path,
+                           const std::function<std::string(const std::filesystem::path&)>& write);
 
-/// Creates the folder `file` goes in (and its parents). Throws
-/// std::runtime_error naming the folder and the system's reason.
+/// Creates the folder `file` goes in (and its parents). Throws OutputError at
+/// the folder with the system's reason.
 void createParentFolder(const std::filesystem::path& file);
 
 /// Reads a whole file; throws std::runtime_error naming the path on failure.

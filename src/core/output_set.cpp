@@ -29,6 +29,27 @@ namespace {
 constexpr std::string_view kPrefix = ".relief-";
 constexpr std::string_view kOwnerTag = "relief private folder";
 
+// The system's reason a file cannot be written, and what the user can do about it.
+std::string reasonAndFix(int err) {
+    std::string text = std::strerror(err);
+    switch (err) {
+        case ENOSPC:
+        case EDQUOT:
+            return text + "; make room on that disk or write elsewhere";
+        case EFBIG:
+            return text + "; the file system or the file size limit (ulimit -f) refuses a file this big";
+        case EACCES:
+        case EPERM:
+        case EROFS:
+            return text + "; write it in a folder you may write in";
+        case ENOENT:
+        case ENOTDIR:
+            return text + "; its folder is missing or is not a folder";
+        default:
+            return text;
+    }
+}
+
 // This machine's name as a file name can hold it: a run on another machine
 // sharing the folder (a cluster's filesystem) is told apart by it.
 std::string hostName() {
@@ -155,7 +176,7 @@ void writeJournal(const fs::path& folder, const Journal& j) {
     closeWritten(file, next);
     std::error_code ec;
     fs::rename(next, folder / "journal", ec);  // whole, or not there
-    if (ec) throw std::runtime_error(fmt::format("cannot write in {}: {}", folder.string(), ec.message()));
+    if (ec) throw OutputError::system(folder, ec.value());
 }
 
 void syncFolder(const fs::path& dir) {
@@ -213,8 +234,7 @@ int sweep(const fs::path& dir, bool locked) {
 PrivateFolder::PrivateFolder(const fs::path& parent, std::string_view what) {
     const fs::path base = parent.empty() ? fs::path(".") : parent;
     std::string pattern = (base / fmt::format("{}{}-{}-{}-XXXXXX", kPrefix, what, hostName(), ::getpid())).string();
-    if (!::mkdtemp(pattern.data()))
-        throw std::runtime_error(fmt::format("cannot write in {}: {}", base.string(), std::strerror(errno)));
+    if (!::mkdtemp(pattern.data())) throw OutputError::system(base, errno);
     dir_ = pattern;
     ownerFd_ = ::open((dir_ / "owner").c_str(), O_CREAT | O_EXCL | O_RDWR | O_NOFOLLOW | O_CLOEXEC, 0600);
     // Locked before it says whose it is: a sweep never finds it tagged and free.
@@ -224,7 +244,7 @@ PrivateFolder::PrivateFolder(const fs::path& parent, std::string_view what) {
         const int err = errno;
         std::error_code ec;
         fs::remove_all(dir_, ec);
-        throw std::runtime_error(fmt::format("cannot write in {}: {}", base.string(), std::strerror(err)));
+        throw OutputError::system(base, err);
     }
 }
 
@@ -275,25 +295,32 @@ fs::path fileKey(const fs::path& p) {
 
 }  // namespace
 
+OutputError::OutputError(fs::path file, std::string problem)
+    : std::runtime_error(file.string() + ": " + problem), file_(std::move(file)), problem_(std::move(problem)) {}
+
+OutputError OutputError::system(const fs::path& file, int err) {
+    return OutputError(file, "cannot be written: " + reasonAndFix(err));
+}
+
 OutputSet::~OutputSet() = default;
 
 fs::path OutputSet::add(const fs::path& finalPath, std::string_view role, bool seal) {
     const std::string name = finalPath.string();
     if (std::any_of(name.begin(), name.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; }))
-        throw std::runtime_error(fmt::format("{} ({}) holds a control character: give a plain file name", role,
-                                             printableExcerpt(name, 200)));
+        throw OutputError(printableExcerpt(name, 200),
+                          fmt::format("{} holds a control character: give a plain file name", role));
     if (finalPath.filename().empty() || finalPath.filename() == "." || finalPath.filename() == "..")
-        throw std::runtime_error(fmt::format("{} ({}) names a folder, not a file", role, name));
+        throw OutputError(name, fmt::format("{} names a folder, not a file: give a file name", role));
     const fs::path key = fileKey(finalPath);
     for (const auto& e : entries_)
         if (e.key == key)
-            throw std::runtime_error(
-                fmt::format("{} and {} are the same file, {}: give them different names", e.role, role, name));
+            throw OutputError(name,
+                              fmt::format("{} and {} are the same file: give them different names", e.role, role));
     for (const auto& [input, inputRole] : inputs_)
         if (fileKey(input) == key)
-            throw std::runtime_error(fmt::format("{} and {} are the same file, {}: an output must not overwrite "
-                                                 "an input; give it another name",
-                                                 inputRole, role, name));
+            throw OutputError(name, fmt::format("{} and {} are the same file: an output must not overwrite an input; "
+                                                "give it another name",
+                                                inputRole, role));
     createParentFolder(finalPath);
     const fs::path dir = folderOf(finalPath);
     std::error_code ec;
@@ -315,9 +342,9 @@ void OutputSet::addInput(const fs::path& input, std::string_view role) {
     const fs::path key = fileKey(input);
     for (const auto& e : entries_)
         if (e.key == key)
-            throw std::runtime_error(fmt::format("{} and {} are the same file, {}: an output must not overwrite "
-                                                 "an input; give it another name",
-                                                 role, e.role, e.finalPath.string()));
+            throw OutputError(e.finalPath, fmt::format("{} and {} are the same file: an output must not overwrite an "
+                                                       "input; give it another name",
+                                                       role, e.role));
     inputs_.emplace_back(input, std::string(role));
 }
 
@@ -355,9 +382,9 @@ void OutputSet::keepPrevious() {
         if (::link(e.finalPath.c_str(), kept.c_str()) == 0) continue;
         fs::copy_file(e.finalPath, kept, ec);
         if (ec)
-            throw std::runtime_error(fmt::format("cannot write {}: the file it replaces cannot be kept until the new "
-                                                 "one is in place ({})",
-                                                 e.finalPath.string(), ec.message()));
+            throw OutputError(e.finalPath, fmt::format("cannot be written: the file it replaces cannot be kept until "
+                                                       "the new one is in place ({})",
+                                                       ec.message()));
     }
 }
 
@@ -384,7 +411,7 @@ void OutputSet::commit() {
     if (!seal_.empty()) fs::remove(seal_, ec);
     for (const auto& e : entries_) {
         fs::rename(staged(e.finalPath), e.finalPath, ec);
-        if (ec) moveBack(e, ec.message());
+        if (ec) moveBack(e, reasonAndFix(ec.value()));
     }
     for (const auto& dir : folderDirs_) syncFolder(dir);
     committed_ = true;
@@ -410,13 +437,12 @@ void OutputSet::moveBack(const Entry& failed, const std::string& reason) {
         }
         restored = finishMove(folderDirs_[f], folders_[f].path(), back) && restored;
     }
-    if (restored)
-        throw std::runtime_error(fmt::format("cannot write {}: {}", failed.finalPath.string(), reason));
+    if (restored) throw OutputError(failed.finalPath, "cannot be moved into place: " + reason);
     for (auto& folder : folders_) folder.keep();  // the only copies of the replaced files may be in old/
-    throw std::runtime_error(fmt::format("cannot write {}: {}; the files it replaced could not all be put back: they "
-                                         "are in {}/old (the next run there puts them back)",
-                                         failed.finalPath.string(), reason,
-                                         folders_[failed.folder].path().string()));
+    throw OutputError(failed.finalPath, fmt::format("cannot be moved into place: {}; the files it replaced could not "
+                                                    "all be put back: they are in {}/old (the next run there puts "
+                                                    "them back)",
+                                                    reason, folders_[failed.folder].path().string()));
 }
 
 }  // namespace relief

@@ -10,11 +10,32 @@
 // folder removes, or, if the kill came in the middle of moving a set into
 // place, finishes moving.
 #include <filesystem>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "core/source_loc.h"
+
 namespace relief {
+
+/// An output that cannot be made, reported at its file: the file as the user
+/// knows it (shownPath) and the problem, with the fix where there is one.
+/// what() is "<file>: <problem>", for channels that carry text only.
+class OutputError : public std::runtime_error {
+public:
+    OutputError(std::filesystem::path file, std::string problem);
+    /// "cannot be written: <the system's reason>; <what to do about it>".
+    static OutputError system(const std::filesystem::path& file, int err);
+
+    const std::filesystem::path& file() const { return file_; }
+    const std::string& problem() const { return problem_; }
+    SourceLoc at() const { return {file_.string(), 0, 0}; }
+
+private:
+    std::filesystem::path file_;
+    std::string problem_;
+};
 
 /// A folder only this run writes in: `<parent>/.relief-<what>-<host>-<pid>-XXXXXX`
 /// (mode 0700, a name no other process can take), holding an `owner` file
@@ -23,7 +44,7 @@ namespace relief {
 /// folder was abandoned. Removed (with what is in it) by the destructor.
 class PrivateFolder {
 public:
-    /// Throws std::runtime_error naming `parent` and the system's reason.
+    /// Throws OutputError at `parent` with the system's reason.
     PrivateFolder(const std::filesystem::path& parent, std::string_view what);
     ~PrivateFolder();
     PrivateFolder(PrivateFolder&& other) noexcept;
@@ -64,7 +85,7 @@ public:
 
     /// Declares an output and returns where to write it (a path in the
     /// private folder beside `finalPath`, with the same file name). Creates
-    /// the folder `finalPath` goes in. Throws std::runtime_error when it is
+    /// the folder `finalPath` goes in. Throws OutputError when it is
     /// the same file as an output declared before (naming both `role`s: "-o",
     /// "--dump-net", "the sidecar"), its name holds a control character, or
     /// the folder cannot be made. The `seal` (the sidecar) is moved into
@@ -82,7 +103,7 @@ public:
 
     /// Moves every output into place, in the order declared, the seal last
     /// (a set with its sidecar is whole), the files it replaces kept until all
-    /// are in place. Throws std::runtime_error naming the file when one cannot
+    /// are in place. Throws OutputError at the file when one cannot
     /// be moved, after putting back the files it had replaced (or, when even
     /// that fails, saying where they are kept).
     void commit();

@@ -128,23 +128,18 @@ std::string checkPng(const std::filesystem::path& path) {
     return "";
 }
 
-std::string writePngAtomically(const std::filesystem::path& path, const PngPixels& p) {
+void writePngAtomically(const std::filesystem::path& path, const PngPixels& p) {
     if (p.width <= 0 || p.height <= 0 || p.channels < 1 || p.channels > 4 || !p.data)
-        return fmt::format("cannot write {}: no pixels", shownPath(path).string());
+        throw OutputError(shownPath(path), "cannot be written: no pixels");
     const size_t rowBytes = size_t(p.width) * size_t(p.channels) * (p.sixteenBit ? 2 : 1);
     std::vector<png_bytep> rows(size_t(p.height));
     for (size_t y = 0; y < rows.size(); ++y)
         rows[y] = const_cast<png_bytep>(static_cast<const png_byte*>(p.data) + y * rowBytes);
-    try {
-        AtomicFile out(path);
-        std::string error;
-        if (!encode(out.stream(), p, rows.data(), error))
-            return fmt::format("cannot write {}: {}", shownPath(path).string(), error.empty() ? "libpng failed" : error);
-        out.commit();
-    } catch (const std::exception& e) {
-        return e.what();
-    }
-    return {};
+    AtomicFile out(path);
+    std::string error;
+    if (!encode(out.stream(), p, rows.data(), error))
+        throw OutputError(shownPath(path), "cannot be written: " + (error.empty() ? "libpng failed" : error));
+    out.commit();
 }
 
 std::string readPng8(const std::filesystem::path& path, PngImage8& image) {

@@ -16,8 +16,8 @@ struct PngPixels {
 };
 
 /// Writes `pixels` to `path` through a temporary file renamed into place.
-/// Returns "" or the error, naming `path`.
-std::string writePngAtomically(const std::filesystem::path& path, const PngPixels& pixels);
+/// Throws OutputError (core/output_set.h) at `path` when it cannot.
+void writePngAtomically(const std::filesystem::path& path, const PngPixels& pixels);
 
 struct PngImage8 {
     int width = 0, height = 0, channels = 0;

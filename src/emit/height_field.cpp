@@ -45,8 +45,8 @@ HeightField quantizeHeights(const geo::GeoGrid& refined, const ScenePlacement& w
     return field;
 }
 
-std::string writeHeightFieldPng(const HeightField& field, const std::filesystem::path& png) {
-    return writePngAtomically(png, {field.cols, field.rows, 1, true, field.levels.data(), kPngCompression});
+void writeHeightFieldPng(const HeightField& field, const std::filesystem::path& png) {
+    writePngAtomically(png, {field.cols, field.rows, 1, true, field.levels.data(), kPngCompression});
 }
 
 namespace {
@@ -159,8 +159,8 @@ std::string drapeTextureSdl(const geo::GeoGrid& refined, const ScenePlacement& w
     return sdl;
 }
 
-std::string writeDrapePng(const Drape& drape, const std::filesystem::path& png) {
-    return writePngAtomically(png, {drape.cols, drape.rows, drape.channels, true, drape.pixels.data(), kPngCompression});
+void writeDrapePng(const Drape& drape, const std::filesystem::path& png) {
+    writePngAtomically(png, {drape.cols, drape.rows, drape.channels, true, drape.pixels.data(), kPngCompression});
 }
 
 std::string siblingPngName(const std::filesystem::path& pov, const std::string& what) {

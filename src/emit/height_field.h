@@ -66,8 +66,8 @@ std::string drapeTextureSdl(const geo::GeoGrid& refined, const ScenePlacement& w
 /// Write the levels as a 16-bit greyscale PNG and the drape as a 16-bit RGB
 /// PNG, atomically and byte for byte the same for the same values. Return ""
 /// or the error.
-std::string writeHeightFieldPng(const HeightField& field, const std::filesystem::path& png);
-std::string writeDrapePng(const Drape& drape, const std::filesystem::path& png);
+void writeHeightFieldPng(const HeightField& field, const std::filesystem::path& png);
+void writeDrapePng(const Drape& drape, const std::filesystem::path& png);
 
 /// The SDL of the height field: the heights' PNG and the drape's by their
 /// file names (found through POV-Ray's library path), smooth normals, the

@@ -33,7 +33,8 @@ Result run(const std::vector<Task>& tasks, const Options& options, const std::fu
             auto loaded = plan::readPlan(t.plan, diags);
             if (!loaded) {
                 result.badInput = true;
-                result.error = formatDiagnostic(diags.all().front());
+                result.at = diags.all().front().loc;
+                result.error = diags.all().front().message;
                 return result;
             }
             p = std::make_unique<plan::RenderPlan>(std::move(*loaded));

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "core/source_loc.h"
 #include "render/povray.h"
 
 namespace relief::execute {
@@ -49,6 +50,7 @@ struct Result {
     bool cancelled = false;
     bool badInput = false;  ///< not a task's failure: Slurm missing or not answering, a plan unreadable
     std::string error;      ///< the first failure: "tile 3 of 7: ...", "task 2 (Slurm job 15_2) FAILED: ..."
+    SourceLoc at;           ///< where that failure belongs, when it is a file's (an unreadable plan)
     std::vector<std::string> taskErrors;  ///< per task: "" or why it failed (or did not run)
 };
 

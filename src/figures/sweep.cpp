@@ -88,10 +88,13 @@ std::string writeContactSheet(const std::vector<Tile>& tiles, int columns, const
             OIIO::ImageBufAlgo::paste(sheet, x, y + tileH, 0, 0, strip);
         }
     }
-    const std::string error = writeThroughTemporary(out, [&](const fs::path& temp) {
-        return sheet.write(temp.string(), OIIO::TypeDesc::UINT8) ? std::string() : sheet.geterror();
-    });
-    if (!error.empty()) return error;
+    try {
+        writeThroughTemporary(out, [&](const fs::path& temp) {
+            return sheet.write(temp.string(), OIIO::TypeDesc::UINT8) ? std::string() : sheet.geterror();
+        });
+    } catch (const OutputError& e) {
+        return e.what();
+    }
     return font.empty() ? "warning: no DejaVu Sans font (apt-get install fonts-dejavu-core): labels left out" : "";
 }
 
@@ -187,7 +190,7 @@ public:
                                                 : JobStatus::ToolFailed;
             failed.render.error = rendered.error;
             Diagnostics diags;
-            if (rendered.badInput) diags.error({}, rendered.error);
+            if (rendered.badInput) diags.error(rendered.at, rendered.error);
             return reportStop(0, "renders", failed, diags, failed.status, result);
         }
         std::error_code ec;

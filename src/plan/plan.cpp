@@ -157,8 +157,8 @@ bool writePlan(RenderPlan& plan, Diagnostics& diags) {
     j["hash"] = plan.hash;
     try {
         writeFileAtomically(plan.dir / "plan.json", j.dump(1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
-    } catch (const std::runtime_error& e) {
-        diags.error({}, e.what());
+    } catch (const OutputError& e) {
+        diags.error(e.at(), e.problem());
         return false;
     }
     return true;

@@ -362,13 +362,14 @@ std::vector<CaseResult> runCases(const Manifest& m, const RunOptions& o, const C
             // Bless: the new image becomes the case's reference (git shows the change): ref.png
             // written whole first, the other references removed only then.
             const fs::path ref = r.testCase->referenceDir / "ref.png";
-            const std::string error = writeThroughTemporary(ref, [&](const fs::path& staged) {
-                std::error_code ec;
-                fs::copy_file(r.newImage, staged, ec);
-                return ec ? ec.message() : std::string();
-            });
-            if (!error.empty()) {
-                r.message += "; not blessed: " + error;
+            try {
+                writeThroughTemporary(ref, [&](const fs::path& staged) {
+                    std::error_code ec;
+                    fs::copy_file(r.newImage, staged, ec);
+                    return ec ? ec.message() : std::string();
+                });
+            } catch (const OutputError& e) {
+                r.message += "; not blessed: " + std::string(e.what());
                 continue;
             }
             std::error_code ec;

@@ -343,20 +343,28 @@ std::string failureText(const Watched& w, const RenderRequest& req, const Povray
 // once however many tiles there are), or, whole, as POV-Ray wrote it (to be
 // re-encoded once, when the still is finished).
 std::string deliver(const std::filesystem::path& raw, const RenderRequest& req) {
-    if (!req.rows && req.rawOutput)
-        return writeThroughTemporary(req.png, [&](const std::filesystem::path& staged) {
-            std::error_code ec;
-            std::filesystem::copy_file(raw, staged, ec);
-            return ec ? ec.message() : std::string();
-        });
-    if (!req.rows) return writeCanonicalPng(raw, req.png);
-    PngImage8 image;
-    if (std::string error = readPng8(raw, image); !error.empty()) return error;
-    const size_t rowBytes = static_cast<size_t>(image.width) * image.channels;
-    const int rows = req.rows->last - req.rows->first + 1;
-    if (req.rows->first < 1 || req.rows->last > image.height || rows < 1) return "POV-Ray's image has not the rows asked for";
-    return writePngAtomically(req.png, {image.width, rows, image.channels, false,
-                                        image.pixels.data() + (req.rows->first - 1) * rowBytes});
+    if (!req.rows && !req.rawOutput) return writeCanonicalPng(raw, req.png);
+    try {
+        if (!req.rows) {
+            writeThroughTemporary(req.png, [&](const std::filesystem::path& staged) {
+                std::error_code ec;
+                std::filesystem::copy_file(raw, staged, ec);
+                return ec ? ec.message() : std::string();
+            });
+            return "";
+        }
+        PngImage8 image;
+        if (std::string error = readPng8(raw, image); !error.empty()) return error;
+        const size_t rowBytes = static_cast<size_t>(image.width) * image.channels;
+        const int rows = req.rows->last - req.rows->first + 1;
+        if (req.rows->first < 1 || req.rows->last > image.height || rows < 1)
+            return "POV-Ray's image has not the rows asked for";
+        writePngAtomically(req.png, {image.width, rows, image.channels, false,
+                                     image.pixels.data() + (req.rows->first - 1) * rowBytes});
+    } catch (const OutputError& e) {
+        return e.what();
+    }
+    return "";
 }
 
 }  // namespace

@@ -90,20 +90,21 @@ TEST(OutputSet, RefusesTwoOutputsOfOneNameAndAnInputAsAnOutput) {
     try {
         set.add(dir / "sub" / ".." / "x.pov", "--dump-net");
         FAIL() << "a second output of the same name";
-    } catch (const std::runtime_error& e) {
-        EXPECT_EQ(std::string(e.what()), "-o and --dump-net are the same file, " + (dir / "sub/../x.pov").string() +
-                                             ": give them different names");
+    } catch (const OutputError& e) {  // reported at the file, as the user named it
+        EXPECT_EQ(e.file(), dir / "sub/../x.pov");
+        EXPECT_EQ(e.problem(), "-o and --dump-net are the same file: give them different names");
     }
     try {
         set.addInput(dir / "x.pov", "samples.path");
         FAIL() << "an input as an output";
-    } catch (const std::runtime_error& e) {
-        EXPECT_NE(std::string(e.what()).find("samples.path and -o are the same file"), std::string::npos) << e.what();
+    } catch (const OutputError& e) {
+        EXPECT_EQ(e.file(), dir / "x.pov");
+        EXPECT_EQ(e.problem().rfind("samples.path and -o are the same file: ", 0), 0u) << e.problem();
     }
     // An input declared first refuses an output declared later (a drape PNG named like the samples).
     set.addInput(dir / "dem.drape.png", "texture.image");
-    EXPECT_THROW(set.add(dir / "dem.drape.png", "the drape PNG"), std::runtime_error);
-    EXPECT_THROW(set.add(dir / "a\nb.png", "-o"), std::runtime_error);  // a line break in a name
+    EXPECT_THROW(set.add(dir / "dem.drape.png", "the drape PNG"), OutputError);
+    EXPECT_THROW(set.add(dir / "a\nb.png", "-o"), OutputError);  // a line break in a name
 }
 
 TEST(OutputSet, MovesTheSetTogetherAndPutsItBackWhenAMoveFails) {
@@ -131,8 +132,9 @@ TEST(OutputSet, MovesTheSetTogetherAndPutsItBackWhenAMoveFails) {
     try {
         set.commit();
         FAIL() << "a move onto a folder";
-    } catch (const std::runtime_error& e) {
-        EXPECT_EQ(std::string(e.what()).rfind("cannot write " + (dir / "s.pov").string() + ": ", 0), 0u) << e.what();
+    } catch (const OutputError& e) {
+        EXPECT_EQ(e.file(), dir / "s.pov");
+        EXPECT_EQ(e.problem().rfind("cannot be moved into place: ", 0), 0u) << e.problem();
     }
     EXPECT_EQ(read(dir / "s.png"), "new png");
     EXPECT_EQ(read(dir / "s.json"), "new sidecar");
