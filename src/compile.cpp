@@ -35,16 +35,16 @@ std::optional<std::pair<emit::SunDirection, CompileResult::Sun>> sunOf(const sce
     const emit::SunDirection given{look.lighting.sunAzimuthDeg, look.lighting.sunAltitudeDeg};
     if (!look.lighting.sunTime)
         return std::pair{given, CompileResult::Sun{given.azimuthDeg, given.altitudeDeg, false, {}, 0, 0}};
-    const double cx = (net.x0 + net.xMax()) / 2, cy = (net.y0 + net.yMax()) / 2;
-    const auto centre = geo::reverse(net.frame, Vec3{cx, cy, 0});
-    if (!centre) {
+    const auto placed = sunOverTerrain(net, look.lighting.sunTime->utcSeconds);
+    if (!placed) {
         diags.error(look.lighting.locs.at("lighting.datetime"),
                     "lighting.datetime: the terrain's centre has no longitude and "
                     "latitude in its frame; give sun_azimuth_deg and "
                     "sun_altitude_deg instead");
         return std::nullopt;
     }
-    const geo::SunPosition sun = geo::sunPosition(centre->lonDeg, centre->latDeg, look.lighting.sunTime->utcSeconds);
+    const auto& [sun, centre] = *placed;
+    const double cx = (net.x0 + net.xMax()) / 2, cy = (net.y0 + net.yMax()) / 2;
     if (!(sun.altitudeDeg > 0)) {
         diags.error(look.lighting.locs.at("lighting.datetime"),
                     fmt::format("lighting.datetime = \"{}\"{}: the sun is {:.1f} degrees below the horizon at the "
@@ -54,13 +54,13 @@ std::optional<std::pair<emit::SunDirection, CompileResult::Sun>> sunOf(const sce
                                 look.lighting.sunTime->offsetMinutes != 0
                                     ? " (" + formatUtc(look.lighting.sunTime->utcSeconds) + ")"
                                     : std::string(),
-                                -sun.altitudeDeg, centre->lonDeg, centre->latDeg));
+                                -sun.altitudeDeg, centre.lonDeg, centre.latDeg));
         return std::nullopt;
     }
     const double convergenceDeg = geo::gridConvergenceDeg(net.frame, cx, cy);
     return std::pair{emit::SunDirection{std::fmod(sun.azimuthDeg - convergenceDeg + 360, 360), sun.altitudeDeg},
-                     CompileResult::Sun{sun.azimuthDeg, sun.altitudeDeg, true, look.lighting.sunTimeText,
-                                        centre->lonDeg, centre->latDeg}};
+                     CompileResult::Sun{sun.azimuthDeg, sun.altitudeDeg, true, look.lighting.sunTimeText, centre.lonDeg,
+                                        centre.latDeg}};
 }
 
 // Where the terrain sits in the scene, where the camera is and where the
@@ -300,48 +300,162 @@ void recordTerrain(CompileResult& r, const Terrain& t) {
     r.meshTriangles = t.triangles;
 }
 
+// The SDL files a film's frames include in place of the geometry: written
+// once by the writers a still's .pov calls, each frame's .pov naming them.
+struct SdlFiles {
+    std::filesystem::path terrain, base, contours;  ///< final names ("" when none)
+};
+
+SdlFiles writeSdlFiles(const emit::GeometryWriters& writers, const CompileOptions& options) {
+    SdlFiles files;
+    const std::filesystem::path& pov = options.povPath;
+    const auto write = [&](const emit::GeometryWriter& writer, const char* name, std::string_view role) {
+        if (!writer) return std::filesystem::path();
+        const std::filesystem::path final = pov.parent_path() / name;
+        AtomicFile file(options.writeAt(final, role));
+        writer(file.stream());
+        file.commit();
+        return final;
+    };
+    files.terrain = write(writers.terrain, "terrain.inc", "the terrain's SDL");
+    files.base = write(writers.base, "base.inc", "the block's SDL");
+    files.contours = write(writers.contours, "contours.inc", "the contours' SDL");
+    return files;
+}
+
+emit::GeometryWriters includesOf(const SdlFiles& files) {
+    const auto include = [](const std::filesystem::path& file) -> emit::GeometryWriter {
+        if (file.empty()) return {};
+        return
+            [name = file.filename().string()](std::FILE* out) { std::fprintf(out, "#include \"%s\"\n", name.c_str()); };
+    };
+    return {include(files.terrain), include(files.base), include(files.contours)};
+}
+
 }  // namespace
 
-std::optional<CompileResult> compileScene(const LoadedScene& loaded, const CompileOptions& options, Diagnostics& diags) {
-    const scene::SceneSpec& spec = loaded.scene;
-    auto tmpl = emit::loadSceneTemplate(options.templatesDir, diags);
-    if (!tmpl) return std::nullopt;
-    auto surface = buildSurface(loaded, diags, options.threads, options.progress);
-    if (!surface) return std::nullopt;
-    auto view = resolveView(spec, *surface, diags);
-    if (!view) return std::nullopt;
-    const auto t0 = Clock::now();
+// Everything compiled but the view: the surface, the view it was fitted to
+// (the adaptive mesh's tolerance, the contours' width), the geometry and the
+// files it needs. Built in place: the meshes and writers refer into it.
+struct SharedTerrain::State {
+    LoadedScene loaded;
+    emit::Template tmpl;
+    Surface surface;
+    View view;
     Terrain terrain;
-    if (!buildMeshes(loaded, *surface, *view, terrain, diags)) return std::nullopt;
+    emit::ContourRibbons ribbons;
+    bool inFiles = false;  ///< the geometry is in SDL files the frames include
+    SdlFiles sdl;
+    double seconds = 0;  ///< emitting the terrain
+};
 
+SharedTerrain::SharedTerrain(std::unique_ptr<State> state) : state_(std::move(state)) {}
+SharedTerrain::SharedTerrain(SharedTerrain&&) noexcept = default;
+SharedTerrain::~SharedTerrain() = default;
+const geo::ControlNet& SharedTerrain::net() const {
+    return state_->surface.net;
+}
+
+namespace {
+
+std::unique_ptr<SharedTerrain::State> compileTerrain(const LoadedScene& loaded, const CompileOptions& options,
+                                                     bool inFiles, Diagnostics& diags) {
+    const scene::SceneSpec& spec = loaded.scene;
+    auto st = std::make_unique<SharedTerrain::State>();
+    st->loaded = loaded;
+    st->inFiles = inFiles;
+    auto tmpl = emit::loadSceneTemplate(options.templatesDir, diags);
+    if (!tmpl) return nullptr;
+    st->tmpl = std::move(*tmpl);
+    auto surface = buildSurface(loaded, diags, options.threads, options.progress);
+    if (!surface) return nullptr;
+    st->surface = std::move(*surface);
+    auto view = resolveView(spec, st->surface, diags);
+    if (!view) return nullptr;
+    st->view = std::move(*view);
+    const auto t0 = Clock::now();
+    if (!buildMeshes(st->loaded, st->surface, st->view, st->terrain, diags)) return nullptr;
+    CompileResult facts;  // the view's metres per pixel sizes the contour lines
+    describeView(spec, st->surface.net, st->view, facts);
+    const long long parsedTriangles =
+        st->terrain.field ? 0 : st->terrain.triangles;  // a height field's are POV-Ray's own
+    auto ribbons =
+        buildContours(spec, st->surface, st->view, facts.overlayFacts.metresPerPixel, parsedTriangles, diags);
+    if (!ribbons || !dumpNetFits(options, st->surface.net, diags) ||
+        !writeTerrainPngs(spec, st->surface, st->view, options, st->terrain, diags))
+        return nullptr;
+    st->ribbons = std::move(*ribbons);
+    if (inFiles)
+        st->sdl = writeSdlFiles(writersOf(st->surface, st->view, st->terrain, st->ribbons, spec, options), options);
+    st->seconds = secondsSince(t0);
+    return st;
+}
+
+}  // namespace
+
+std::optional<CompileResult> compileView(const LoadedScene& frame, const SharedTerrain& shared,
+                                         const CompileOptions& options, Diagnostics& diags) {
+    const SharedTerrain::State& st = *shared.state_;
+    const scene::SceneSpec& spec = frame.scene;
+    std::optional<View> own;  // a frame's own camera and sun; a still's are the terrain's
+    if (st.inFiles && !(own = resolveView(spec, st.surface, diags))) return std::nullopt;
+    const View& view = own ? *own : st.view;
+    const auto t0 = Clock::now();
     CompileResult r;
     r.scene = spec;
-    r.times = {loaded.seconds, surface->normalizeSeconds, surface->subdivideSeconds, 0};
-    describeView(spec, surface->net, *view, r);
-    const long long parsedTriangles = terrain.field ? 0 : terrain.triangles;  // a height field's are POV-Ray's own
-    const auto ribbons = buildContours(spec, *surface, *view, r.overlayFacts.metresPerPixel, parsedTriangles, diags);
-    if (!ribbons || !dumpNetFits(options, surface->net, diags) || !writeTerrainPngs(spec, *surface, *view, options, terrain, diags))
-        return std::nullopt;
-    recordSurface(r, loaded, *surface, view->where, view->sunRecord);
-    recordTerrain(r, terrain);
-    r.contours = ribbons->made;
-    r.parameters = sceneHeader(spec, surface->net, loaded.resolved, surface->depth, r);
-    creditImage(spec, terrain, r);
+    r.times = {frame.seconds, st.surface.normalizeSeconds, st.surface.subdivideSeconds, 0};
+    describeView(spec, st.surface.net, view, r);
+    recordSurface(r, st.loaded, st.surface, view.where, view.sunRecord);
+    recordTerrain(r, st.terrain);
+    r.contours = st.ribbons.made;
+    r.parameters = sceneHeader(spec, st.surface.net, st.loaded.resolved, st.surface.depth, r);
+    creditImage(spec, st.terrain, r);
 
     const std::filesystem::path pov = options.writeAt(options.povPath, "the .pov");
-    if (!emit::writeScene(pov, *tmpl, view->where, view->camera, view->sun,
-                          writersOf(*surface, *view, terrain, *ribbons, spec, options), spec.look, spec.render,
+    const emit::GeometryWriters writers =
+        st.inFiles ? includesOf(st.sdl) : writersOf(st.surface, view, st.terrain, st.ribbons, spec, options);
+    if (!emit::writeScene(pov, st.tmpl, view.where, view.camera, view.sun, writers, spec.look, spec.render,
                           r.parameters, diags))
         return std::nullopt;
-    if (!options.dumpNetPath.empty())
-        writeFileAtomically(options.writeAt(options.dumpNetPath, "--dump-net"),
-                            options.dumpNetPath.extension() == ".asc" ? geo::netToAsciiGrid(surface->net)
-                                                                      : geo::netToCsv(surface->net));
-    r.times.emit = secondsSince(t0);
+    r.times.emit = st.seconds + secondsSince(t0);
     std::error_code ec;
     r.povBytes = std::filesystem::file_size(pov, ec);
-    r.net = std::move(surface->net);
+    r.net = st.surface.net;
     return r;
+}
+
+std::optional<SharedTerrain> compileSharedTerrain(const LoadedScene& loaded, const CompileOptions& options,
+                                                  Diagnostics& diags) {
+    try {
+        auto st = compileTerrain(loaded, options, true, diags);
+        if (!st) return std::nullopt;
+        return SharedTerrain(std::move(st));
+    } catch (const OutputError& e) {
+        diags.error(e.at(), e.problem());
+        return std::nullopt;
+    }
+}
+
+std::optional<CompileResult> compileScene(const LoadedScene& loaded, const CompileOptions& options,
+                                          Diagnostics& diags) {
+    auto st = compileTerrain(loaded, options, false, diags);
+    if (!st) return std::nullopt;
+    const SharedTerrain shared(std::move(st));
+    auto r = compileView(loaded, shared, options, diags);
+    if (!r) return std::nullopt;
+    if (!options.dumpNetPath.empty())
+        writeFileAtomically(options.writeAt(options.dumpNetPath, "--dump-net"),
+                            options.dumpNetPath.extension() == ".asc" ? geo::netToAsciiGrid(shared.net())
+                                                                      : geo::netToCsv(shared.net()));
+    return r;
+}
+
+std::optional<std::pair<geo::SunPosition, GeoPoint>> sunOverTerrain(const geo::ControlNet& net,
+                                                                    std::int64_t utcSeconds) {
+    const double cx = (net.x0 + net.xMax()) / 2, cy = (net.y0 + net.yMax()) / 2;
+    const auto centre = geo::reverse(net.frame, Vec3{cx, cy, 0});
+    if (!centre) return std::nullopt;
+    return std::pair{geo::sunPosition(centre->lonDeg, centre->latDeg, utcSeconds), *centre};
 }
 
 }  // namespace relief

@@ -158,23 +158,7 @@ void compileIntoPlan(PlannedJob& p, const LoadedScene& loaded, Diagnostics& diag
     };
     p.outcome.compiled = compileScene(loaded, copts, diags);
     if (!p.outcome.compiled) return;
-    const scene::SceneSpec& s = loaded.scene;
-    plan.povrayVersion = plan::povrayVersion();
-    plan.width = s.render.width;
-    plan.height = s.render.height;
-    plan.tiles = std::clamp(job.tiles, 1, s.render.height);
-    plan.antialias = s.render.antialias;
-    plan.alpha = s.render.background == scene::Background::Transparent;
-    plan.sandbox = job.sandbox;
-    plan.timeoutS = s.render.timeoutS;
-    plan.templatesDir = job.templatesDir.empty() ? fs::path() : fs::absolute(job.templatesDir);
-    plan.still = fs::absolute(paths.png);
-    plan.sidecar = fs::absolute(paths.sidecar);
-    plan.overlays = annotate::overlaysWanted(s.overlay, s.render.width);
-    plan.overlaySpec = s.overlay;
-    plan.overlaySpec.locs = {};
-    plan.overlayFacts = p.outcome.compiled->overlayFacts;
-    plan.sidecar0 = sidecarJson(*p.outcome.compiled, paths);
+    describeRender(plan, *p.outcome.compiled, paths, job.tiles, job.sandbox, job.templatesDir);
     if (!writePlan(plan, diags)) return;
     // Named when whole (the lock goes with it); another render onto the same
     // name may take the name first, and this one takes the next.
@@ -212,28 +196,58 @@ void reportWriteFailure(const std::runtime_error& e, Diagnostics& diags) {
         diags.error({}, e.what());
 }
 
-// The still's pixels: the tiles stitched, the overlays drawn in memory, written once.
+// The still's pixels, written once.
 bool writeStill(const plan::RenderPlan& plan, OutputSet& outputs, RenderFacts& facts, Diagnostics& diags) {
-    std::string error;
-    auto still = render::stitchTiles(plan, error);
-    if (!still) {
-        diags.error({(plan.dir / "plan.json").string(), 0, 0}, error);
-        return false;
-    }
-    if (plan.overlays) {
-        annotate::OverlayRecord record;
-        if (error = annotate::drawOverlays(*still, plan.overlaySpec, plan.overlayFacts, &record); !error.empty()) {
-            diags.error({shownPath(plan.still).string(), 0, 0}, "the overlays cannot be drawn: " + error);
-            return false;
-        }
-        facts.overlays = record;
-    }
-    const fs::path png = outputs.contains(plan.still) ? outputs.staged(plan.still) : outputs.add(plan.still, "the still");
+    std::optional<annotate::OverlayRecord> record;
+    auto still = stillOfPlan(plan, record, diags);
+    if (!still) return false;
+    facts.overlays = record;
+    const fs::path png =
+        outputs.contains(plan.still) ? outputs.staged(plan.still) : outputs.add(plan.still, "the still");
     writePngAtomically(png, {still->width, still->height, still->channels, false, still->pixels.data()});
     return true;
 }
 
 }  // namespace
+
+void describeRender(plan::RenderPlan& plan, const CompileResult& compiled, const OutputPaths& paths, int tiles,
+                    bool sandbox, const fs::path& templatesDir) {
+    const scene::SceneSpec& s = compiled.scene;
+    plan.povrayVersion = plan::povrayVersion();
+    plan.width = s.render.width;
+    plan.height = s.render.height;
+    plan.tiles = std::clamp(tiles, 1, s.render.height);
+    plan.antialias = s.render.antialias;
+    plan.alpha = s.render.background == scene::Background::Transparent;
+    plan.sandbox = sandbox;
+    plan.timeoutS = s.render.timeoutS;
+    plan.templatesDir = templatesDir.empty() ? fs::path() : fs::absolute(templatesDir);
+    plan.still = fs::absolute(paths.png);
+    plan.sidecar = fs::absolute(paths.sidecar);
+    plan.overlays = annotate::overlaysWanted(s.overlay, s.render.width);
+    plan.overlaySpec = s.overlay;
+    plan.overlaySpec.locs = {};
+    plan.overlayFacts = compiled.overlayFacts;
+    plan.sidecar0 = sidecarJson(compiled, paths);
+}
+
+std::optional<PngImage8> stillOfPlan(const plan::RenderPlan& plan, std::optional<annotate::OverlayRecord>& overlays,
+                                     Diagnostics& diags) {
+    std::string error;
+    auto still = render::stitchTiles(plan, error);
+    if (!still) {
+        diags.error({(plan.dir / "plan.json").string(), 0, 0}, error);
+        return std::nullopt;
+    }
+    if (!plan.overlays) return still;
+    annotate::OverlayRecord record;
+    if (error = annotate::drawOverlays(*still, plan.overlaySpec, plan.overlayFacts, &record); !error.empty()) {
+        diags.error({shownPath(plan.still).string(), 0, 0}, "the overlays cannot be drawn: " + error);
+        return std::nullopt;
+    }
+    overlays = record;
+    return still;
+}
 
 PlannedJob planJob(const SceneJob& job, Diagnostics& diags, const ProgressFn& progress) {
     PlannedJob p;

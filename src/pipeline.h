@@ -27,12 +27,14 @@
 #include "annotate/overlay.h"
 #include "core/diagnostics.h"
 #include "core/output_set.h"
+#include "core/png_file.h"
 #include "execute/execute.h"
 #include "plan/plan.h"
 #include "emit/geometry_kind.h"
 #include "emit/surface_contours.h"
 #include "emit/write_scene.h"
 #include "geo/normalize.h"
+#include "geo/sun_position.h"
 #include "measure/auto_depth.h"
 #include "render/povray.h"
 
@@ -174,6 +176,39 @@ struct CompileResult {
 std::optional<CompileResult> compileScene(const LoadedScene& loaded,
                                           const CompileOptions& options, Diagnostics& diags);
 
+/// The terrain compiled once for many views (a film's frames): the surface,
+/// its geometry and contours written as SDL files (terrain.inc, base.inc,
+/// contours.inc beside the .pov)
+/// that each view's .pov includes, and the PNGs they read, all through
+/// `options.writeAt`. The geometry's choices that depend on the camera (the
+/// depth for the still, the adaptive mesh's tolerance, the contours' width)
+/// are made for the scene's own [camera].
+class SharedTerrain {
+public:
+    struct State;
+    explicit SharedTerrain(std::unique_ptr<State> state);
+    SharedTerrain(SharedTerrain&&) noexcept;
+    ~SharedTerrain();
+    const geo::ControlNet& net() const;
+
+private:
+    std::unique_ptr<State> state_;
+    friend std::optional<CompileResult> compileView(const LoadedScene&, const SharedTerrain&, const CompileOptions&,
+                                                    Diagnostics&);
+};
+std::optional<SharedTerrain> compileSharedTerrain(const LoadedScene& loaded, const CompileOptions& options,
+                                                  Diagnostics& diags);
+/// One view of a shared terrain: `frame` is the terrain's scene with other
+/// keys of [camera], [lighting], [overlay] and [atmosphere]; its .pov is
+/// written at options.writeAt(options.povPath, "the .pov").
+std::optional<CompileResult> compileView(const LoadedScene& frame, const SharedTerrain& terrain,
+                                         const CompileOptions& options, Diagnostics& diags);
+
+/// The sun over the terrain's centre at an instant, and that centre; nullopt
+/// when the centre has no longitude and latitude in the net's frame.
+std::optional<std::pair<geo::SunPosition, GeoPoint>> sunOverTerrain(const geo::ControlNet& net,
+                                                                    std::int64_t utcSeconds);
+
 /// Output paths derived from a scene: the .pov and the .json sidecar sit
 /// beside the still (or stand in for it when only compiling).
 struct OutputPaths {
@@ -241,6 +276,17 @@ struct PlannedJob {
 /// (made whole, then named; a stale plan there is replaced) and writes its
 /// plan.json. outcome.status says how it went.
 PlannedJob planJob(const SceneJob& job, Diagnostics& diags, const ProgressFn& progress);
+
+/// The render plan's fields for a compiled scene: the still's size and
+/// POV-Ray's options, where the still and sidecar go, the overlays and their
+/// facts, the sidecar so far (compiling into plan.dir adds its files).
+void describeRender(plan::RenderPlan& plan, const CompileResult& compiled, const OutputPaths& paths, int tiles,
+                    bool sandbox, const std::filesystem::path& templatesDir);
+
+/// The still of a plan whose tiles are rendered: the tiles stitched, the
+/// overlays drawn (`overlays` says what they show); nullopt with the reason.
+std::optional<PngImage8> stillOfPlan(const plan::RenderPlan& plan, std::optional<annotate::OverlayRecord>& overlays,
+                                     Diagnostics& diags);
 
 /// The plan's tiles still to render, as tasks for execute::run.
 std::vector<execute::Task> tasksOf(const plan::RenderPlan& plan);

@@ -9,6 +9,7 @@
 
 #include "core/text_escape.h"
 #include "core/atomic_file.h"
+#include "animate_job.h"
 #include "pipeline.h"
 #include "scene_for_data.h"
 #include "scene_info.h"
@@ -345,6 +346,60 @@ void addRenderOptions(CLI::App* sub, SceneOptions& o, bool renders) {
     sub->add_flag("--keep-plan", o.keepPlan, "keep the plan (its .pov, PNGs and tiles) after the still is made");
 }
 
+struct AnimateOptions {
+    CommonOptions common;
+    ExecutionOptions execution;
+    std::string frames;
+};
+
+// `relief animate`: the film of a scene's [animation].
+int runAnimate(const AnimateOptions& o) {
+    relief::Diagnostics diags;
+    Progress progress(o.common.quiet);
+    installInterruptHandler();
+    relief::AnimateJob job;
+    job.scenePath = o.common.scene;
+    if (!parseOverrides(o.common.sets, job.overrides)) return code(Exit::BadInput);
+    job.output = o.common.output;
+    job.framesDir = o.frames;
+    job.templatesDir = findTemplates(o.common.templates);
+    job.threads = o.common.threads;
+    job.sandbox = !o.common.noSandbox;
+    job.tiles = o.execution.tiles;
+    job.execution = executionOf(o.execution);
+    const relief::AnimateOutcome outcome = relief::runAnimateJob(job, diags, showing(progress));
+    progress.done();
+    switch (outcome.status) {
+        case relief::JobStatus::Ok:
+            break;
+        case relief::JobStatus::Cancelled:
+            printDiagnostics(diags, false);
+            std::cerr << "relief: interrupted; nothing written\n";
+            return code(Exit::Interrupted);
+        case relief::JobStatus::ToolFailed:
+            printDiagnostics(diags, false);
+            std::cerr << "relief: error: " << terminalText(outcome.toolError, 8000, true) << " (nothing written)\n";
+            return code(Exit::ToolFailed);
+        default:
+            printDiagnostics(diags, false);
+            return code(Exit::BadInput);
+    }
+    printDiagnostics(diags, true);
+    if (!o.common.quiet) {
+        int kept = 0;
+        for (const auto& f : outcome.frames) kept += f.fileNumber > 0;
+        std::cerr << fmt::format(
+            "wrote {} ({} frames{}, {} terrain{} compiled; compile {:.1f} s, render {:.1f} s, "
+            "encode {:.1f} s) and {}\n",
+            terminalText(outcome.film.string(), 500), kept,
+            kept < int(outcome.frames.size()) ? fmt::format(", {} at night left out", outcome.frames.size() - kept)
+                                              : "",
+            outcome.terrains, outcome.terrains == 1 ? "" : "s", outcome.compileSeconds, outcome.renderSeconds,
+            outcome.encodeSeconds, terminalText(outcome.sidecar.string(), 500));
+    }
+    return code(Exit::Ok);
+}
+
 }  // namespace
 
 void addSceneCommands(CLI::App& app, std::vector<Command>& out) {
@@ -378,6 +433,25 @@ void addSceneCommands(CLI::App& app, std::vector<Command>& out) {
                           true);
     addRenderOptions(plan, *o, false);
     out.push_back({plan, [o] { return runPlan(*o); }});
+
+    auto a = std::make_shared<AnimateOptions>();
+    CLI::App* animate =
+        app.add_subcommand("animate",
+                           "render the film of the scene's [animation] (an orbit, the sun through a day, keys varied): "
+                           "every frame through the render plan's executors, encoded by ffmpeg");
+    animate->add_option("scene", a->common.scene, "scene file (TOML) with an [animation] section")->required();
+    animate->add_option("-o,--output", a->common.output,
+                        "the film: .mp4 (H.264), .webm (VP9) or .gif (default: out/<scene name>.mp4)");
+    animate->add_option("--frames", a->frames, "also keep every frame's PNG in this folder (frame-00001.png, ...)");
+    animate->add_option("--templates", a->common.templates, "folder with scene.pov.in");
+    animate->add_option("--threads", a->common.threads, "refiner threads (0: all cores)")->check(CLI::Range(0, 256));
+    animate->add_flag("-q,--quiet", a->common.quiet, "print errors only");
+    animate->add_option("--set", a->common.sets, "override a scene key: section.key=value; repeatable");
+    animate->add_flag("--no-sandbox", a->common.noSandbox, "run POV-Ray without its bubblewrap sandbox");
+    addExecutionOptions(animate, a->execution, true,
+                        "tiles at once, of every frame (0: as many as cores here; on Slurm, as many as the cluster "
+                        "runs)");
+    out.push_back({animate, [a] { return runAnimate(*a); }});
 
     auto t = std::make_shared<TileOptions>();
     CLI::App* tile = app.add_subcommand("render-tile", "render one tile of a render plan (what each Slurm task runs)");

@@ -1,6 +1,7 @@
 #include "core/date_time.h"
 
 #include <chrono>
+#include <cstdlib>
 
 #include <fmt/format.h>
 
@@ -98,13 +99,29 @@ std::optional<OffsetDateTime> parseOffsetDateTime(std::string_view text, std::st
     return out;
 }
 
-std::string formatUtc(std::int64_t utcSeconds) {
+namespace {
+
+// `YYYY-MM-DDTHH:MM:SS` of an instant shifted to a local time.
+std::string calendarTime(std::int64_t seconds) {
     using namespace std::chrono;
-    const std::int64_t dayIndex = utcSeconds >= 0 ? utcSeconds / 86400 : -((-utcSeconds + 86399) / 86400);
-    const std::int64_t rest = utcSeconds - dayIndex * 86400;
+    const std::int64_t dayIndex = seconds >= 0 ? seconds / 86400 : -((-seconds + 86399) / 86400);
+    const std::int64_t rest = seconds - dayIndex * 86400;
     const year_month_day date{sys_days{days{dayIndex}}};
-    return fmt::format("{:04}-{:02}-{:02}T{:02}:{:02}:{:02}Z", int(date.year()), unsigned(date.month()),
+    return fmt::format("{:04}-{:02}-{:02}T{:02}:{:02}:{:02}", int(date.year()), unsigned(date.month()),
                        unsigned(date.day()), rest / 3600, rest / 60 % 60, rest % 60);
+}
+
+}  // namespace
+
+std::string formatUtc(std::int64_t utcSeconds) {
+    return calendarTime(utcSeconds) + "Z";
+}
+
+std::string formatOffsetDateTime(const OffsetDateTime& t) {
+    const int m = t.offsetMinutes;
+    if (m == 0) return formatUtc(t.utcSeconds);
+    return calendarTime(t.utcSeconds + m * 60LL) +
+           fmt::format("{}{:02}:{:02}", m < 0 ? '-' : '+', std::abs(m) / 60, std::abs(m) % 60);
 }
 
 }  // namespace relief

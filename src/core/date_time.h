@@ -25,4 +25,8 @@ std::optional<OffsetDateTime> parseOffsetDateTime(std::string_view text, std::st
 /// The instant as UTC, `YYYY-MM-DDTHH:MM:SSZ`.
 std::string formatUtc(std::int64_t utcSeconds);
 
+/// The instant in its own offset's local time, `YYYY-MM-DDTHH:MM:SS+HH:MM`
+/// (`Z` for UTC): what parseOffsetDateTime reads back.
+std::string formatOffsetDateTime(const OffsetDateTime& t);
+
 }  // namespace relief

@@ -66,6 +66,10 @@ struct EnumNames<GeometryKind> {
                                                      {GeometryKind::Adaptive, "adaptive"},
                                                      {GeometryKind::HeightField, "height_field"}};
 };
+template <>
+struct EnumNames<CameraPath> {
+    static constexpr NameRow<CameraPath> rows[] = {{CameraPath::Still, "still"}, {CameraPath::Orbit, "orbit"}};
+};
 /// texture.mode's choices: the ramp's colourings (an image is texture.image's).
 inline constexpr NameRow<TextureSpec::Colouring> kTextureModeNames[] = {
     {TextureSpec::Colouring::Elevation, "elevation"},

@@ -132,8 +132,6 @@ void readTexture(Section& s, const SceneFile& f, SceneSpec& scene) {
     readStops(s, f, texture.ramp);
 }
 
-namespace {
-
 // lighting.datetime: a string, or TOML's own offset date-time (written without quotes).
 std::optional<std::string> dateTimeText(const toml::node& n) {
     std::optional<std::string> text = n.value_exact<std::string>();
@@ -149,8 +147,6 @@ std::optional<std::string> dateTimeText(const toml::node& n) {
     }
     return text;
 }
-
-}  // namespace
 
 void readLighting(Section& s, const SceneFile&, SceneSpec& scene) {
     LightingSpec& lighting = scene.look.lighting;

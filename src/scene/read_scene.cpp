@@ -42,6 +42,7 @@ std::span<const SectionReader> sectionReaders() {
         {"water", [](SceneSpec& s) -> KeyLocations& { return s.look.water.locs; }, readWater},
         {"atmosphere", [](SceneSpec& s) -> KeyLocations& { return s.look.atmosphere.locs; }, readAtmosphere},
         {"overlay", [](SceneSpec& s) -> KeyLocations& { return s.overlay.locs; }, readOverlay},
+        {"animation", [](SceneSpec& s) -> KeyLocations& { return s.animation.locs; }, readAnimation},
     };
     return kReaders;
 }

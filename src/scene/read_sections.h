@@ -49,5 +49,10 @@ void readBase(Section& s, const SceneFile& f, SceneSpec& scene);
 void readWater(Section& s, const SceneFile& f, SceneSpec& scene);
 void readAtmosphere(Section& s, const SceneFile& f, SceneSpec& scene);
 void readOverlay(Section& s, const SceneFile& f, SceneSpec& scene);
+/// A date-time key's text: a string, or TOML's own offset date-time written without quotes.
+std::optional<std::string> dateTimeText(const toml::node& n);
+
+// The film (read_animation.cpp).
+void readAnimation(Section& s, const SceneFile& f, SceneSpec& scene);
 
 }  // namespace relief::scene

@@ -15,6 +15,7 @@
 //   [geometry]                 -> GeometrySpec     emit (the terrain's kind)
 //   [render]                   -> RenderSpec       emit (aspect), render
 //   [overlay]                  -> OverlaySpec      annotate
+//   [animation]                -> AnimationSpec    relief animate (each frame a set of overrides)
 // The names of the enums' values are in scene/enum_names.h.
 #include <array>
 #include <filesystem>
@@ -46,6 +47,7 @@ struct KeyLocations {
     std::map<std::string, SourceLoc> sections;      ///< "net" -> the [net] header
     std::map<std::string, SourceLoc> keys;          ///< "net.spacing_m" -> the key
     std::set<std::string> known;                    ///< every key the reader reads in these sections
+    std::set<std::string> wholeNumbers;             ///< the known keys read as integers (render.width, ...)
     /// The location of `qualifiedKey` ("section.key"), else of its section, else the file.
     /// A key the reader does not know is a typo in relief (a test over the sources finds them).
     SourceLoc at(const std::string& qualifiedKey) const;
@@ -304,6 +306,37 @@ struct GeometrySpec {
     KeyLocations locs;
 };
 
+/// What moves in a film's frames. Orbit: the camera's azimuth turns around
+/// the terrain's centre (elevation and distance as [camera] says, or varied).
+enum class CameraPath { Still, Orbit };
+
+/// [animation]: the frames of `relief animate`, each the scene with a few
+/// keys set (camera.azimuth_deg, lighting.datetime, overlay.subtitle, the
+/// varied keys), so that `relief render --set ...` of a frame's keys makes
+/// that frame's still.
+struct AnimationSpec {
+    static constexpr int kMaxFrames = 10000;
+    bool present = false;  ///< the scene has an [animation] section
+    int frames = 0;        ///< required
+    double fps = 30;
+    CameraPath path = CameraPath::Still;
+    std::optional<double> azimuthFromDeg, azimuthToDeg;  ///< orbit; unset: camera.azimuth_deg, a full turn on
+    /// sun = { from, to }: the sun at each frame's time, from the ephemeris.
+    struct SunWindow {
+        OffsetDateTime from, to;
+    };
+    std::optional<SunWindow> sun;
+    bool skipNight = false;  ///< frames with the sun below the horizon left out, not an error
+    /// vary = { "section.key" = [from, to] }: a numeric key eased between two values.
+    struct Varied {
+        std::string key;
+        double from = 0, to = 0;
+        bool wholeNumber = false;  ///< the key takes integers (render.width): each frame's value rounded
+    };
+    std::vector<Varied> vary;
+    KeyLocations locs;
+};
+
 /// The whole scene file: one spec per stage, and where it came from.
 struct SceneSpec {
     std::filesystem::path sceneFile;  ///< as given
@@ -320,6 +353,7 @@ struct SceneSpec {
     RenderSpec render;
     OverlaySpec overlay;
     LimitsSpec limits;
+    AnimationSpec animation;
 };
 
 }  // namespace relief::scene

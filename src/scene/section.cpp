@@ -66,6 +66,7 @@ std::optional<double> Section::number(const std::string& key, double lo, double 
 
 std::optional<int> Section::integer(const std::string& key, int lo, int hi, std::string_view unit) {
     known_.insert(key);
+    integers_.insert(key);
     const toml::node* n = find(key);
     if (!n) return std::nullopt;
     auto i = n->value_exact<int64_t>();
@@ -157,8 +158,10 @@ void Section::require(const std::string& key, std::string_view what) {
 }
 
 void Section::finish() {
-    if (locs_)
+    if (locs_) {
         for (const auto& key : known_) locs_->known.insert(qualified(key));
+        for (const auto& key : integers_) locs_->wholeNumbers.insert(qualified(key));
+    }
     if (!table_) return;
     const std::vector<std::string> knownList(known_.begin(), known_.end());
     for (auto&& [k, v] : *table_) {

@@ -80,6 +80,7 @@ private:
     Diagnostics& diags_;
     SourceLoc sectionLoc_;
     std::set<std::string> known_;
+    std::set<std::string> integers_;  ///< the keys read by integer()
     KeyLocations* locs_ = nullptr;  ///< where finish() records the known keys
 };
 

@@ -15,7 +15,7 @@ layers=(
   "annotate"
   "plan"
   "render"
-  "execute"
+  "execute film"
   "top"
   "figures regress"
   "cli"

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Through the private Slurm cluster (cluster.sh; SLURM_CONF names it): a still as 7 tiles, a
-# sweep and a test suite give the bytes they give on this machine alone; a task that fails names
+# sweep, a test suite and a film give the bytes they give on this machine alone; a task that fails names
 # its Slurm job, state and log; a task that cannot see its plan says so; without SLURM_CONF relief
 # says what is missing; Ctrl-C cancels the job array.
 # Usage: slurm_render.sh RELIEF SOURCE_DIR WORK_DIR
@@ -53,6 +53,15 @@ for c in small gentle eden; do
 done
 [ "$(grep -o '"status": "[A-Z]*"' local-report/summary.json)" = "$(grep -o '"status": "[A-Z]*"' slurm-report/summary.json)" ] ||
   fail "the verdicts differ on Slurm"
+
+# 3b. A film: a task a frame on Slurm, the same MP4 as here.
+if command -v ffmpeg >/dev/null; then
+  film=(--set animation.frames=3 --set 'animation.path="orbit"' --set render.width=160 --set render.height=120)
+  "$relief" animate -q "$small" "${film[@]}" -o local-film/film.mp4 || fail "the local film"
+  "$relief" animate -q "$small" "${film[@]}" --executor slurm -o slurm-film/film.mp4 2> film.txt ||
+    { fail "the film on Slurm"; cat film.txt; }
+  cmp -s local-film/film.mp4 slurm-film/film.mp4 || fail "the film differs on Slurm"
+fi
 
 # 4. A task that fails: named by job, state and log; nothing written; the plan kept.
 mkdir -p bad && sed 's/^#version 3.7;/#version 3.7;\nsphere { <0,0,0>, 1 pigment { colour Nonexistent } }/' \

@@ -36,6 +36,7 @@ TEST(EnumNames, EveryValueHasOneName) {
     expectOneNameEach(NodataPolicy::Error);
     expectOneNameEach(TextureSpec::Colouring::Image);
     expectOneNameEach(GeometryKind::HeightField);
+    expectOneNameEach(CameraPath::Orbit);
     EXPECT_STREQ(nameOf(Gridding::InverseDistance), "invdist");
     EXPECT_STREQ(nameOf(GeometryKind::HeightField), "height_field");
 }
@@ -46,7 +47,7 @@ TEST(SectionReaders, EverySectionHasOneReader) {
         EXPECT_TRUE(names.insert(reader.name).second) << reader.name << " has two readers";
         EXPECT_NE(reader.read, nullptr);
     }
-    EXPECT_EQ(names.size(), 15u);
+    EXPECT_EQ(names.size(), 16u);
 }
 
 struct SceneText {

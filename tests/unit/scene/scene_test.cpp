@@ -49,7 +49,7 @@ TEST(ReadScene, MinimalSceneGetsDefaults) {
 TEST(ReadScene, EveryKeyTheStagesLookUpIsASceneKey) {
     const auto dir = relief::testing::freshTestDir("relief-scene-keys-test");
     std::ofstream(dir / "s.csv") << "lon,lat,elev\n";
-    std::ofstream(dir / "s.toml") << "[samples]\npath = \"s.csv\"\n";
+    std::ofstream(dir / "s.toml") << "[samples]\npath = \"s.csv\"\n[animation]\nframes = 2\npath = \"orbit\"\n";
     Diagnostics diags;
     const auto s = readScene(dir / "s.toml", diags);
     ASSERT_TRUE(s);
@@ -57,7 +57,8 @@ TEST(ReadScene, EveryKeyTheStagesLookUpIsASceneKey) {
     for (const KeyLocations* locs :
          {&s->samples.locs, &s->frame.locs, &s->net.locs, &s->subdivision.locs, &s->look.vertical.locs,
           &s->look.texture.locs, &s->look.lighting.locs, &s->look.camera.locs, &s->look.base.locs, &s->look.water.locs,
-          &s->look.atmosphere.locs, &s->geometry.locs, &s->render.locs, &s->overlay.locs, &s->limits.locs})
+          &s->look.atmosphere.locs, &s->geometry.locs, &s->render.locs, &s->overlay.locs, &s->limits.locs,
+          &s->animation.locs})
         known.insert(locs->known.begin(), locs->known.end());
     ASSERT_GT(known.size(), 50u);
     const std::regex lookup(R"re(locs\.(?:at|has)\("([a-z_]+\.[a-z_.]+)"\))re");

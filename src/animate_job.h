@@ -1,0 +1,50 @@
+#pragma once
+// relief animate: a film. Each frame is the scene with its own keys set
+// (film/frames.h); frames that differ only in the view share one compiled
+// terrain (compileSharedTerrain), each frame a render plan of its own whose
+// tiles go through the plan's executors (here or on Slurm); the frames are
+// finished as stills are, then encoded by ffmpeg (film/video.h). The film,
+// its sidecar and the frames asked for are one output set: all or nothing.
+#include <filesystem>
+#include <vector>
+
+#include "film/frames.h"
+#include "film/video.h"
+#include "pipeline.h"
+
+namespace relief {
+
+struct AnimateJob {
+    std::filesystem::path scenePath;
+    scene::SceneOverrides overrides;
+    std::filesystem::path output;     ///< the film (.mp4, .webm, .gif); "" = out/<scene name>.mp4
+    std::filesystem::path framesDir;  ///< also each frame's PNG there (frame-00001.png, ...); "" = none
+    std::filesystem::path templatesDir;
+    int threads = 0;      ///< refiner threads; 0 = all cores
+    bool sandbox = true;  ///< POV-Ray in bubblewrap
+    int tiles = 1;        ///< strips of each frame
+    execute::Options execution;
+};
+
+struct FilmFrame {
+    film::FrameSettings settings;
+    bool night = false;  ///< the sun below the horizon: left out (animation.skip_night)
+    double sunAltitudeDeg = 0;
+    int fileNumber = 0;  ///< its number among the frames kept (the film's and --frames' names); 0 when left out
+};
+
+struct AnimateOutcome {
+    JobStatus status = JobStatus::BadInput;
+    std::filesystem::path film, sidecar;
+    std::vector<FilmFrame> frames;
+    int terrains = 0;  ///< terrains compiled: 1 unless a varied key changes the terrain
+    double compileSeconds = 0, probeSeconds = 0, renderSeconds = 0, encodeSeconds = 0;
+    std::string toolError;  ///< POV-Ray's or ffmpeg's own words (status ToolFailed)
+};
+
+/// Loads the scene, compiles and renders every frame, encodes the film and
+/// writes it with its sidecar (and --frames) as one set. Errors go to
+/// `diags` at the key they belong to; progress to `progress` (may be empty).
+AnimateOutcome runAnimateJob(const AnimateJob& job, Diagnostics& diags, const ProgressFn& progress);
+
+}  // namespace relief
