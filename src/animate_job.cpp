@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "animate_flyover.h"
 #include "core/atomic_file.h"
 #include "core/text_escape.h"
 #include "relief/version.h"
@@ -32,30 +33,63 @@ std::string setsText(const scene::SceneOverrides& overrides) {
     return text;
 }
 
-// Each frame's scene: the file with the frame's keys set. A key that makes
-// the scene wrong is reported at the [animation] key that set it.
+// A frame's scene: the file with the frame's keys set. A key that makes the
+// scene wrong is reported at the [animation] key that set it.
+std::optional<LoadedScene> loadFrame(const AnimateJob& job, const scene::AnimationSpec& a, const FilmFrame& f,
+                                     Diagnostics& diags) {
+    scene::SceneOverrides overrides = job.overrides;
+    overrides.insert(overrides.end(), f.settings.overrides.begin(), f.settings.overrides.end());
+    Diagnostics own;  // the file's warnings were told once, with the scene
+    auto loaded = loadScene(job.scenePath, own, overrides);
+    if (loaded && own.errorCount() == 0) return loaded;
+    const char* key = a.path == scene::CameraPath::Flyover ? "animation.path"
+                      : !a.vary.empty()                    ? "animation.vary"
+                                                           : "animation";
+    const auto first = std::find_if(own.all().begin(), own.all().end(),
+                                    [](const Diagnostic& d) { return d.severity == Severity::Error; });
+    diags.error(a.locs.at(key), fmt::format("frame {} sets {}: {}", f.settings.number,
+                                            terminalText(setsText(f.settings.overrides), 500),
+                                            first != own.all().end() ? first->message : "the scene is not valid"));
+    return std::nullopt;
+}
+
 std::optional<std::vector<LoadedScene>> loadFrames(const AnimateJob& job, const LoadedScene& base,
                                                    const std::vector<FilmFrame>& frames, Diagnostics& diags) {
     std::vector<LoadedScene> scenes;
     for (const auto& f : frames) {
-        scene::SceneOverrides overrides = job.overrides;
-        overrides.insert(overrides.end(), f.settings.overrides.begin(), f.settings.overrides.end());
-        Diagnostics own;  // the file's warnings were told once, with the scene
-        auto loaded = loadScene(job.scenePath, own, overrides);
-        if (loaded && own.errorCount() == 0) {
-            scenes.push_back(std::move(*loaded));
-            continue;
-        }
-        const scene::AnimationSpec& a = base.scene.animation;
-        const char* key = !a.vary.empty() ? "animation.vary" : "animation";
-        const auto first = std::find_if(own.all().begin(), own.all().end(),
-                                        [](const Diagnostic& d) { return d.severity == Severity::Error; });
-        diags.error(a.locs.at(key), fmt::format("frame {} sets {}: {}", f.settings.number,
-                                                terminalText(setsText(f.settings.overrides), 500),
-                                                first != own.all().end() ? first->message : "the scene is not valid"));
-        return std::nullopt;
+        auto loaded = loadFrame(job, base.scene.animation, f, diags);
+        if (!loaded) return std::nullopt;
+        scenes.push_back(std::move(*loaded));
     }
     return scenes;
+}
+
+// The keys the compiled terrain gives the group's frames: the depth, when it
+// was chosen for the scene's own view (a frame's own camera would choose
+// another, and relief render of the frame's keys must make this terrain);
+// and for a flyover each frame's camera over the surface. The frames' scenes
+// are loaded again with them.
+bool addTerrainKeys(const AnimateJob& job, const SharedTerrain& terrain, const std::vector<size_t>& group,
+                    std::vector<LoadedScene>& scenes, std::vector<FilmFrame>& frames, Diagnostics& diags) {
+    const scene::SceneSpec& spec = scenes[group.front()].scene;
+    const scene::AnimationSpec& a = spec.animation;
+    const bool chosenDepth = !spec.subdivision.depthGiven && !spec.subdivision.depthAuto;
+    if (!chosenDepth && a.path != scene::CameraPath::Flyover) return true;
+    std::vector<scene::SceneOverrides> cameras(frames.size());
+    if (a.path == scene::CameraPath::Flyover) {
+        auto keys = flyoverKeys(a, terrain.refined(), diags);
+        if (!keys) return false;
+        cameras = std::move(*keys);
+    }
+    for (size_t i : group) {
+        auto& overrides = frames[i].settings.overrides;
+        if (chosenDepth) overrides.emplace_back("subdivision.depth", std::to_string(terrain.depth()));
+        overrides.insert(overrides.end(), cameras[i].begin(), cameras[i].end());
+        auto loaded = loadFrame(job, a, frames[i], diags);
+        if (!loaded) return false;
+        scenes[i] = std::move(*loaded);
+    }
+    return true;
 }
 
 // The keys a frame sets that shape the terrain (not only the view): frames
@@ -142,7 +176,7 @@ bool planFrame(const AnimateJob& job, const LoadedScene& scene, const SharedTerr
 }
 
 // Every frame of one terrain: the terrain compiled (its files in shared-N/), the nights told, a plan a frame.
-bool planGroup(const AnimateJob& job, const std::vector<LoadedScene>& scenes, const std::vector<size_t>& group,
+bool planGroup(const AnimateJob& job, std::vector<LoadedScene>& scenes, const std::vector<size_t>& group,
                int groupIndex, std::vector<FilmFrame>& frames, FilmWork& work, Diagnostics& diags,
                const ProgressFn& progress) {
     const fs::path sharedDir = work.dir / fmt::format("terrain-{}", groupIndex + 1);
@@ -162,7 +196,9 @@ bool planGroup(const AnimateJob& job, const std::vector<LoadedScene>& scenes, co
     LoadedScene terrainScene = scenes[group.front()];
     terrainScene.scene.look.lighting.sunTime.reset();
     const auto terrain = compileSharedTerrain(terrainScene, options, diags);
-    if (!terrain || !checkNights(scenes.front().scene.animation, terrain->net(), group, frames, diags)) return false;
+    if (!terrain || !checkNights(scenes.front().scene.animation, terrain->net(), group, frames, diags) ||
+        !addTerrainKeys(job, *terrain, group, scenes, frames, diags))
+        return false;
     for (size_t i : group) {
         if (frames[i].night) continue;
         if (!planFrame(job, scenes[i], *terrain, shared, sharedDir, frames[i], work, diags)) return false;
@@ -287,7 +323,7 @@ bool finishFrames(const AnimateJob& job, const FilmWork& work, const std::vector
 // Compiling: the frames' scenes, a terrain for each group of them, a plan a frame.
 bool planFilm(const AnimateJob& job, const LoadedScene& base, AnimateOutcome& outcome, FilmWork& work,
               Diagnostics& diags, const ProgressFn& progress) {
-    const auto scenes = loadFrames(job, base, outcome.frames, diags);
+    auto scenes = loadFrames(job, base, outcome.frames, diags);
     if (!scenes) return false;
     const auto groups = terrainGroups(outcome.frames);
     outcome.terrains = static_cast<int>(groups.size());
@@ -326,6 +362,14 @@ AnimateOutcome runAnimateJob(const AnimateJob& job, Diagnostics& diags, const Pr
             diags.error({job.scenePath.string(), 0, 0},
                         "the scene has no [animation] section: add one, e.g. [animation] frames = 120 and path = "
                         "\"orbit\" (docs/animation.md)");
+            return outcome;
+        }
+        // A frame's camera.position is the flyover's; the scene's own would be overridden unseen.
+        if (a.path == scene::CameraPath::Flyover && base->scene.look.camera.position) {
+            diags.error(a.locs.at("animation.path"),
+                        "animation.path = \"flyover\" moves the eye along the path, but camera.position places "
+                        "it: remove camera.position (and camera.look_at; animation.look_at fixes where the camera "
+                        "looks)");
             return outcome;
         }
         outcome.film = job.output.empty() ? fs::path("out") / (job.scenePath.stem().string() + ".mp4") : job.output;

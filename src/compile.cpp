@@ -355,6 +355,12 @@ SharedTerrain::~SharedTerrain() = default;
 const geo::ControlNet& SharedTerrain::net() const {
     return state_->surface.net;
 }
+const geo::GeoGrid& SharedTerrain::refined() const {
+    return state_->surface.refined;
+}
+int SharedTerrain::depth() const {
+    return state_->surface.depth;
+}
 
 namespace {
 

@@ -190,6 +190,9 @@ public:
     SharedTerrain(SharedTerrain&&) noexcept;
     ~SharedTerrain();
     const geo::ControlNet& net() const;
+    /// The net refined to the depth rendered: the surface the frames show.
+    const geo::GeoGrid& refined() const;
+    int depth() const;  ///< the subdivision depth refined() has
 
 private:
     std::unique_ptr<State> state_;

@@ -435,10 +435,10 @@ void addSceneCommands(CLI::App& app, std::vector<Command>& out) {
     out.push_back({plan, [o] { return runPlan(*o); }});
 
     auto a = std::make_shared<AnimateOptions>();
-    CLI::App* animate =
-        app.add_subcommand("animate",
-                           "render the film of the scene's [animation] (an orbit, the sun through a day, keys varied): "
-                           "every frame through the render plan's executors, encoded by ffmpeg");
+    CLI::App* animate = app.add_subcommand(
+        "animate",
+        "render the film of the scene's [animation] (an orbit, a flyover, the sun through a day, keys varied): "
+        "every frame through the render plan's executors, encoded by ffmpeg");
     animate->add_option("scene", a->common.scene, "scene file (TOML) with an [animation] section")->required();
     animate->add_option("-o,--output", a->common.output,
                         "the film: .mp4 (H.264), .webm (VP9) or .gif (default: out/<scene name>.mp4)");

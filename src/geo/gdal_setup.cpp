@@ -28,10 +28,40 @@ namespace {
 // spill and dependent files, ER Mapper's DataFile, whose names its header
 // gives) is deregistered, so that not even a source inside a VRT can reach it.
 constexpr std::string_view kGdalDrivers[] = {
-    "GTiff", "VRT",  "MEM",  "Memory",   // GeoTIFF, checked VRTs; relief's own rasters and contour layers
-    "AAIGrid", "GRASSASCIIGrid", "SRTMHGT", "DTED", "USGSDEM", "BT",  // DEM formats
-    "EHdr", "ENVI", "SAGA", "RST", "GSAG", "GSBG", "GS7BG", "Leveller", "Terragen", "HF2",
-    "PNG", "JPEG", "GIF", "WEBP", "JP2OpenJPEG",  // images to drape
+    "GTiff",
+    "VRT",
+    "MEM",
+    "Memory",  // GeoTIFF, checked VRTs; relief's own rasters and contour layers
+    "AAIGrid",
+    "GRASSASCIIGrid",
+    "SRTMHGT",
+    "DTED",
+    "USGSDEM",
+    "BT",  // DEM formats
+    "EHdr",
+    "ENVI",
+    "SAGA",
+    "RST",
+    "GSAG",
+    "GSBG",
+    "GS7BG",
+    "Leveller",
+    "Terragen",
+    "HF2",
+    "PNG",
+    "JPEG",
+    "GIF",
+    "WEBP",
+    "JP2OpenJPEG",  // images to drape
+    // Vector files (tracks, layers); no driver that fetches linked documents (LIBKML, GML, WFS).
+    "GPX",
+    "GeoJSON",
+    "GeoJSONSeq",
+    "KML",
+    "ESRI Shapefile",
+    "GPKG",
+    "FlatGeobuf",
+    "CSV",
 };
 
 // Network paths and services lead nowhere: GDAL 3.6 has no switch to turn

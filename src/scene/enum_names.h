@@ -68,7 +68,8 @@ struct EnumNames<GeometryKind> {
 };
 template <>
 struct EnumNames<CameraPath> {
-    static constexpr NameRow<CameraPath> rows[] = {{CameraPath::Still, "still"}, {CameraPath::Orbit, "orbit"}};
+    static constexpr NameRow<CameraPath> rows[] = {
+        {CameraPath::Still, "still"}, {CameraPath::Orbit, "orbit"}, {CameraPath::Flyover, "flyover"}};
 };
 /// texture.mode's choices: the ramp's colourings (an image is texture.image's).
 inline constexpr NameRow<TextureSpec::Colouring> kTextureModeNames[] = {

@@ -3,6 +3,8 @@
 
 #include <fmt/format.h>
 
+#include "core/input_file.h"
+#include "core/number_format.h"
 #include "core/text_escape.h"
 #include "scene/read_sections.h"
 
@@ -104,9 +106,109 @@ void checkOrbit(Section& s, const SceneSpec& scene, AnimationSpec& a) {
                     "azimuth_from_deg and azimuth_to_deg instead");
 }
 
+constexpr size_t kMaxWaypoints = 10000;
+
+// waypoints = [[lon, lat, height_m], ...] or [[lon, lat], ...]: two or more, all alike, no two in a row the same.
+void readWaypoints(Section& s, AnimationSpec::Flyover& fly) {
+    s.markKnown("waypoints");
+    const toml::node* n = s.find("waypoints");
+    if (!n) return;
+    static constexpr std::string_view kWhat =
+        "a list of [lon, lat, height_m] (metres above sea level) or of [lon, lat] (with "
+        "height_above_terrain_m), e.g. [[174.764, -36.871, 300], [174.766, -36.879, 320]]";
+    const toml::array* list = n->as_array();
+    if (!list || list->size() > kMaxWaypoints) {
+        s.error("waypoints", fmt::format("animation.waypoints must be {}, at most {}", kWhat, kMaxWaypoints));
+        return;
+    }
+    size_t arity = 0;
+    for (size_t i = 0; i < list->size(); ++i) {
+        const toml::array* p = (*list)[i].as_array();
+        const size_t size = p ? p->size() : 0;
+        std::array<double, 3> v{0, 0, 0};
+        bool ok = (size == 2 || size == 3) && (arity == 0 || size == arity);
+        for (size_t k = 0; ok && k < size; ++k) {
+            const auto d = (*p)[k].value<double>();
+            ok = d && std::isfinite(*d);
+            if (ok) v[k] = *d;
+        }
+        ok = ok && std::fabs(v[0]) <= 180 && std::fabs(v[1]) <= 90 && v[2] >= -11100 && v[2] <= 1e7;
+        if (!ok) {
+            s.error("waypoints", fmt::format("animation.waypoints: waypoint {} must be like the first, {} (degrees "
+                                             "in [-180, 180] and [-90, 90], metres in [-11100, 1e7])",
+                                             i + 1, kWhat));
+            return;
+        }
+        arity = size;
+        fly.waypoints.push_back({v[0], v[1], v[2]});
+    }
+    fly.waypointHeights = arity == 3;
+    if (fly.waypoints.size() < 2) {
+        s.error("waypoints", fmt::format("animation.waypoints gives {} point{}: a path needs two or more",
+                                         fly.waypoints.size(), fly.waypoints.size() == 1 ? "" : "s"));
+        fly.waypoints.clear();
+        return;
+    }
+    for (size_t i = 1; i < fly.waypoints.size(); ++i) {
+        const GeoPoint &a = fly.waypoints[i - 1], &b = fly.waypoints[i];
+        if (a.lonDeg == b.lonDeg && a.latDeg == b.latDeg) {
+            s.error("waypoints", fmt::format("animation.waypoints: waypoints {} and {} are one place (lon {}, lat {}): "
+                                             "leave one out",
+                                             i, i + 1, formatShortest(a.lonDeg), formatShortest(a.latDeg)));
+            fly.waypoints.clear();
+            return;
+        }
+    }
+}
+
+// track = "walk.gpx": a vector file beside the scene; its line is read by geo when the film is made.
+void readTrack(Section& s, const SceneFile& f, AnimationSpec::Flyover& fly) {
+    const auto track = s.string("track");
+    if (auto layer = s.string("track_layer")) fly.trackLayer = *layer;
+    if (!track) return;
+    fly.trackAsWritten = *track;
+    fly.track = f.path.parent_path() / *track;
+    if (const std::string problem = inputFileProblem(fly.track); problem == "no such file")
+        s.error("track", fmt::format("animation.track: file \"{}\" not found (looked for {}; the path is relative "
+                                     "to the scene file)",
+                                     printableExcerpt(*track, 200), printableExcerpt(fly.track.string(), 200)));
+    else if (!problem.empty())
+        s.error("track", fmt::format("animation.track = \"{}\": {}", printableExcerpt(*track, 200), problem));
+}
+
+constexpr const char* kFlyoverKeys[] = {"waypoints", "track",       "track_layer", "height_above_terrain_m",
+                                        "look_at",   "look_ahead_m"};
+
+void readFlyover(Section& s, const SceneFile& f, AnimationSpec& a) {
+    AnimationSpec::Flyover& fly = a.flyover;
+    readWaypoints(s, fly);
+    readTrack(s, f, fly);
+    if (auto v = s.number("height_above_terrain_m", 0, 1e6, "metres", true)) fly.heightAboveTerrainM = *v;
+    if (auto v = s.number("look_ahead_m", 0, 1e7, "metres", true)) fly.lookAheadM = *v;
+    fly.lookAt = s.lonLatHeight("look_at");
+    if (a.path != CameraPath::Flyover) {
+        for (const char* key : kFlyoverKeys)
+            if (s.find(key))
+                s.warning(key, fmt::format("animation.{} is not used: only path = \"flyover\" follows a path", key));
+        return;
+    }
+    const bool waypoints = s.find("waypoints"), track = s.find("track");
+    if (waypoints == track)
+        s.error("path", waypoints ? "animation: give waypoints or track, not both"
+                                  : "animation.path = \"flyover\" needs the path: waypoints = [[lon, lat, height_m], "
+                                    "...] or track = \"file.gpx\" (any vector file GDAL reads)");
+    if (fly.waypointHeights && fly.heightAboveTerrainM)
+        s.warning("height_above_terrain_m",
+                  "animation.waypoints give heights, and height_above_terrain_m is used instead of them");
+    if (fly.lookAt && fly.lookAheadM)
+        s.warning("look_ahead_m", "animation.look_ahead_m is not used: look_at fixes where the camera looks");
+    if (!s.find("track_layer") || track) return;
+    s.warning("track_layer", "animation.track_layer is not used: there is no track");
+}
+
 }  // namespace
 
-void readAnimation(Section& s, const SceneFile&, SceneSpec& scene) {
+void readAnimation(Section& s, const SceneFile& f, SceneSpec& scene) {
     AnimationSpec& a = scene.animation;
     a.present = s.present();
     if (!a.present) return;
@@ -119,8 +221,11 @@ void readAnimation(Section& s, const SceneFile&, SceneSpec& scene) {
     if (a.skipNight && !a.sun) s.warning("skip_night", "animation.skip_night is not used: there is no animation.sun");
     a.vary = variedKeysOf(s, scene);
     checkOrbit(s, scene, a);
+    readFlyover(s, f, a);
     if (a.path == CameraPath::Still && !s.find("sun") && !s.find("vary"))
-        s.error("path", "[animation] moves nothing: give path = \"orbit\", sun = { from, to } or vary = { ... }");
+        s.error("path",
+                "[animation] moves nothing: give path = \"orbit\" or \"flyover\", sun = { from, to } or "
+                "vary = { ... }");
 }
 
 }  // namespace relief::scene

@@ -308,7 +308,8 @@ struct GeometrySpec {
 
 /// What moves in a film's frames. Orbit: the camera's azimuth turns around
 /// the terrain's centre (elevation and distance as [camera] says, or varied).
-enum class CameraPath { Still, Orbit };
+/// Flyover: the eye along a smooth path through waypoints or a track's line.
+enum class CameraPath { Still, Orbit, Flyover };
 
 /// [animation]: the frames of `relief animate`, each the scene with a few
 /// keys set (camera.azimuth_deg, lighting.datetime, overlay.subtitle, the
@@ -334,6 +335,21 @@ struct AnimationSpec {
         bool wholeNumber = false;  ///< the key takes integers (render.width): each frame's value rounded
     };
     std::vector<Varied> vary;
+    /// path = "flyover": the eye through waypoints, or along the first line of
+    /// a vector file, at constant ground speed (film/flyover.h).
+    struct Flyover {
+        std::vector<GeoPoint> waypoints;  ///< [lon, lat, height_m] or [lon, lat] (the height then unused)
+        bool waypointHeights = false;     ///< the waypoints give heights above sea level (three numbers)
+        std::filesystem::path track;      ///< a vector file GDAL reads, resolved against the scene's folder
+        std::string trackAsWritten;       ///< animation.track as the scene gives it
+        std::string trackLayer;           ///< its layer; "" = the first with a line
+        /// The eye this far above the ground under it; unset with heights: the
+        /// waypoints' own, else a twentieth of the terrain's diagonal.
+        std::optional<double> heightAboveTerrainM;
+        std::optional<double> lookAheadM;  ///< looks at the ground this far ahead; unset: max(path / 10, 4 x height)
+        std::optional<GeoPoint> lookAt;    ///< looks here instead, [lon, lat, elev_m]
+    };
+    Flyover flyover;
     KeyLocations locs;
 };
 

@@ -97,4 +97,59 @@ mkdir -p nopath && PATH="$work/nopath" "$relief" animate -q orbit.toml -o noffmp
 [ "$code" = 3 ] || fail "without ffmpeg: exit $code, expected 3"
 grep -q "apt-get install ffmpeg" noffmpeg.txt || { fail "without ffmpeg:"; cat noffmpeg.txt; }
 [ -e noffmpeg ] && fail "without ffmpeg, files were written"
+# 6. A flyover: through waypoints at 60 m above the ground, and along a GPX track's line, which
+# lands where it belongs when the same line is read from a GeoPackage in NZTM (EPSG:2193).
+sed -e '/^\[animation\]/,$d' -e 's/^width = 480/width = 240/' -e 's/^height = 320/height = 160/' orbit.toml > fly.toml
+cat >> fly.toml <<TOML
+[animation]
+frames = 3
+path = "flyover"
+height_above_terrain_m = 60
+TOML
+cp fly.toml track.toml
+echo 'waypoints = [[174.7622, -36.8733], [174.7644, -36.8767], [174.7667, -36.8785]]' >> fly.toml
+"$relief" animate -q fly.toml -o f/fly.mp4 --frames f/frames 2> f.txt || { fail "the flyover"; cat f.txt; }
+sets=$(python3 - f/fly.json <<'PY'
+import json, sys
+f = json.load(open(sys.argv[1]))['frames'][1]['set']
+print('\n'.join(f"--set\n{k}={v}" for k, v in f.items()))
+PY
+)
+mapfile -t keys <<< "$sets"
+"$relief" render -q fly.toml "${keys[@]}" -o still/fly2.png 2> /dev/null || fail "the flyover's frame 2 as a still"
+cmp -s still/fly2.png f/frames/frame-00002.png || fail "flyover frame 2 is not relief render with its camera keys"
+python3 - f/fly.json <<'PY' || fail "the flyover's eye: not along the waypoints at the ends, or not looking ahead"
+import json, sys
+frames = json.load(open(sys.argv[1]))['frames']
+pos = [json.loads(f['set']['camera.position']) for f in frames]
+look = [json.loads(f['set']['camera.look_at']) for f in frames]
+assert abs(pos[0][0] - 174.7622) < 1e-9 and abs(pos[0][1] + 36.8733) < 1e-9, pos[0]
+assert abs(pos[2][0] - 174.7667) < 1e-9 and abs(pos[2][1] + 36.8785) < 1e-9, pos[2]
+for p, l in zip(pos, look):   # ahead: south-east of the eye, and below it
+    assert l[0] > p[0] and l[1] < p[1] and l[2] < p[2], (p, l)
+PY
+echo 'track = "walk.gpx"' >> track.toml
+cp "$src/tests/data/vectors/maungawhau-walk.gpx" walk.gpx
+ogr2ogr -f GPKG -t_srs EPSG:2193 walk.gpkg walk.gpx tracks 2> /dev/null || fail "ogr2ogr"
+sed 's/walk.gpx/walk.gpkg/' track.toml > track-nztm.toml
+"$relief" animate -q track.toml -o t/walk.mp4 2> t.txt || { fail "the flyover along a GPX track"; cat t.txt; }
+"$relief" animate -q track-nztm.toml -o t/walk-nztm.mp4 2> t.txt || { fail "the track from a GeoPackage"; cat t.txt; }
+python3 - t/walk.json t/walk-nztm.json <<'PY' || fail "the track in NZTM does not land where the GPX does"
+import json, sys
+a, b = ([json.loads(f['set']['camera.position']) for f in json.load(open(p))['frames']] for p in sys.argv[1:])
+assert abs(a[0][0] - 174.7622) < 1e-9 and abs(a[0][1] + 36.8733) < 1e-9, a[0]
+for p, q in zip(a, b):
+    assert abs(p[0] - q[0]) < 1e-7 and abs(p[1] - q[1]) < 1e-7 and abs(p[2] - q[2]) < 0.01, (p, q)
+PY
+cat > points.geojson <<'JSON'
+{"type": "FeatureCollection", "features": [{"type": "Feature", "properties": {"name": "summit"},
+ "geometry": {"type": "Point", "coordinates": [174.7644, -36.8767]}}]}
+JSON
+sed 's/walk.gpx/points.geojson/' track.toml > noline.toml
+bad track-no-line "points.geojson holds no line (a LineString or MultiLineString with two vertices or more) in any layer" noline.toml -o bad-track-no-line/x.mp4
+bad track-layer 'has no layer "track"; its layers: "waypoints", "routes", "tracks", "route_points", "track_points"' track.toml --set 'animation.track_layer="track"' -o bad-track-layer/x.mp4
+bad waypoint-off "animation.waypoints: waypoint 2 (lon 174.8, lat -36.8767) is off the terrain (lon 174.7613 .. 174.7682, lat -36.8799 .. -36.8720)" fly.toml --set 'animation.waypoints=[[174.7622, -36.8733], [174.8, -36.8767]]' -o bad-waypoint-off/x.mp4
+grep -v height_above_terrain_m fly.toml > above-sea.toml
+bad under-ground "animation.waypoints: at frame 2 the eye (lon 174.76" above-sea.toml --set 'animation.waypoints=[[174.7622, -36.8733, 300], [174.7644, -36.8767, 100], [174.7667, -36.8785, 300]]' -o bad-under-ground/x.mp4
+
 exit $status

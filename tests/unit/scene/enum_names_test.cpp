@@ -36,7 +36,7 @@ TEST(EnumNames, EveryValueHasOneName) {
     expectOneNameEach(NodataPolicy::Error);
     expectOneNameEach(TextureSpec::Colouring::Image);
     expectOneNameEach(GeometryKind::HeightField);
-    expectOneNameEach(CameraPath::Orbit);
+    expectOneNameEach(CameraPath::Flyover);
     EXPECT_STREQ(nameOf(Gridding::InverseDistance), "invdist");
     EXPECT_STREQ(nameOf(GeometryKind::HeightField), "height_field");
 }
