@@ -66,8 +66,8 @@ std::optional<film::FlyoverPath> flyoverPath(const scene::AnimationSpec& a, cons
         const auto p = geo::forward(surface.frame, g);
         if (!p || !ground.covers(p->x, p->y)) {
             diags.error(a.locs.at(points.key),
-                        fmt::format("{}: {} {} (lon {}, lat {}) is off the terrain ({}): a flyover's path stays "
-                                    "over the terrain",
+                        fmt::format("{}: {} {} (lon {}, lat {}) is off the terrain ({}): a flyover's waypoints and "
+                                    "track lie over the terrain",
                                     points.key, points.name, i + 1, formatShortest(g.lonDeg), formatShortest(g.latDeg),
                                     extentInDegrees(surface)));
             return std::nullopt;
@@ -91,20 +91,21 @@ std::string lonLatHeightText(const GeoPoint& g) {
 }  // namespace
 
 std::optional<std::vector<scene::SceneOverrides>> flyoverKeys(const scene::AnimationSpec& a,
-                                                              const geo::GeoGrid& surface, Diagnostics& diags) {
+                                                              const geo::GeoGrid& surface,
+                                                              const std::vector<size_t>& frames, Diagnostics& diags) {
     const film::Ground ground(surface);
     const auto points = pathPoints(a, diags);
     if (!points) return std::nullopt;
     const auto path = flyoverPath(a, *points, surface, ground, diags);
     if (!path) return std::nullopt;
-    std::vector<scene::SceneOverrides> keys;
     const auto cameras = film::flyoverCameras(*path, a.frames, ground);
-    for (size_t k = 0; k < cameras.size(); ++k) {
+    std::vector<scene::SceneOverrides> keys;
+    for (const size_t k : frames) {
         const Vec3& eye = cameras[k].eyeM;
-        const auto eyeGeo = geo::reverse(surface.frame, eye);
-        const auto targetGeo = geo::reverse(surface.frame, cameras[k].targetM);
         const double groundZ = ground.highestAt(eye.x, eye.y);
-        if (!eyeGeo || !targetGeo || !(eye.z > groundZ)) {
+        const auto eyeGeo = geo::reverse(surface.frame, eye);
+        // Only an eye at the waypoints' own heights can be under the ground: above it, it is placed over its highest.
+        if (!eyeGeo || !(eye.z > groundZ)) {
             const auto groundGeo = geo::reverse(surface.frame, {eye.x, eye.y, groundZ});
             diags.error(a.locs.at(points->key),
                         fmt::format("{}: at frame {} the eye (lon {:.6f}, lat {:.6f}, {:.1f} m) is not above the "
@@ -112,6 +113,14 @@ std::optional<std::vector<scene::SceneOverrides>> flyoverKeys(const scene::Anima
                                     "height_above_terrain_m",
                                     points->key, k + 1, eyeGeo ? eyeGeo->lonDeg : 0.0, eyeGeo ? eyeGeo->latDeg : 0.0,
                                     eyeGeo ? eyeGeo->heightM : eye.z, groundGeo ? groundGeo->heightM : groundZ));
+            return std::nullopt;
+        }
+        const auto targetGeo = geo::reverse(surface.frame, cameras[k].targetM);
+        if (!targetGeo) {
+            diags.error(a.locs.at(a.flyover.lookAheadM ? "animation.look_ahead_m" : points->key),
+                        fmt::format("animation: at frame {} the point looked at, {:.0f} m ahead along the path, has no "
+                                    "longitude and latitude in the terrain's frame: give a shorter look_ahead_m",
+                                    k + 1, length(cameras[k].targetM - eye)));
             return std::nullopt;
         }
         keys.push_back(

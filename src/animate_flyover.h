@@ -12,11 +12,13 @@
 
 namespace relief {
 
-/// The keys of every frame of the film (camera.position and camera.look_at,
-/// in --set's syntax) over `surface`; nullopt after an error: the track
-/// cannot be read or has no line, a waypoint or track vertex is off the
-/// terrain, or a frame's eye is at or under the ground.
+/// The keys of the film's frames `frames` (0-based, camera.position and
+/// camera.look_at in --set's syntax, in that order) over `surface`; nullopt
+/// after an error: the track cannot be read or has no line, a waypoint or
+/// track vertex is off the terrain, or one of these frames' eye is at or
+/// under the ground.
 std::optional<std::vector<scene::SceneOverrides>> flyoverKeys(const scene::AnimationSpec& a,
-                                                              const geo::GeoGrid& surface, Diagnostics& diags);
+                                                              const geo::GeoGrid& surface,
+                                                              const std::vector<size_t>& frames, Diagnostics& diags);
 
 }  // namespace relief

@@ -34,17 +34,14 @@ std::string setsText(const scene::SceneOverrides& overrides) {
 }
 
 // A frame's scene: the file with the frame's keys set. A key that makes the
-// scene wrong is reported at the [animation] key that set it.
+// scene wrong is reported at `key`, the [animation] key that set it.
 std::optional<LoadedScene> loadFrame(const AnimateJob& job, const scene::AnimationSpec& a, const FilmFrame& f,
-                                     Diagnostics& diags) {
+                                     const char* key, Diagnostics& diags) {
     scene::SceneOverrides overrides = job.overrides;
     overrides.insert(overrides.end(), f.settings.overrides.begin(), f.settings.overrides.end());
     Diagnostics own;  // the file's warnings were told once, with the scene
     auto loaded = loadScene(job.scenePath, own, overrides);
     if (loaded && own.errorCount() == 0) return loaded;
-    const char* key = a.path == scene::CameraPath::Flyover ? "animation.path"
-                      : !a.vary.empty()                    ? "animation.vary"
-                                                           : "animation";
     const auto first = std::find_if(own.all().begin(), own.all().end(),
                                     [](const Diagnostic& d) { return d.severity == Severity::Error; });
     diags.error(a.locs.at(key), fmt::format("frame {} sets {}: {}", f.settings.number,
@@ -57,7 +54,8 @@ std::optional<std::vector<LoadedScene>> loadFrames(const AnimateJob& job, const 
                                                    const std::vector<FilmFrame>& frames, Diagnostics& diags) {
     std::vector<LoadedScene> scenes;
     for (const auto& f : frames) {
-        auto loaded = loadFrame(job, base.scene.animation, f, diags);
+        const scene::AnimationSpec& a = base.scene.animation;
+        auto loaded = loadFrame(job, a, f, !a.vary.empty() ? "animation.vary" : "animation", diags);
         if (!loaded) return std::nullopt;
         scenes.push_back(std::move(*loaded));
     }
@@ -75,17 +73,19 @@ bool addTerrainKeys(const AnimateJob& job, const SharedTerrain& terrain, const s
     const scene::AnimationSpec& a = spec.animation;
     const bool chosenDepth = !spec.subdivision.depthGiven && !spec.subdivision.depthAuto;
     if (!chosenDepth && a.path != scene::CameraPath::Flyover) return true;
-    std::vector<scene::SceneOverrides> cameras(frames.size());
+    std::vector<scene::SceneOverrides> cameras(group.size());
     if (a.path == scene::CameraPath::Flyover) {
-        auto keys = flyoverKeys(a, terrain.refined(), diags);
+        auto keys = flyoverKeys(a, terrain.refined(), group, diags);
         if (!keys) return false;
         cameras = std::move(*keys);
     }
-    for (size_t i : group) {
+    for (size_t g = 0; g < group.size(); ++g) {
+        const size_t i = group[g];
         auto& overrides = frames[i].settings.overrides;
         if (chosenDepth) overrides.emplace_back("subdivision.depth", std::to_string(terrain.depth()));
-        overrides.insert(overrides.end(), cameras[i].begin(), cameras[i].end());
-        auto loaded = loadFrame(job, a, frames[i], diags);
+        overrides.insert(overrides.end(), cameras[g].begin(), cameras[g].end());
+        const char* key = a.path == scene::CameraPath::Flyover ? "animation.path" : "animation";
+        auto loaded = loadFrame(job, a, frames[i], key, diags);
         if (!loaded) return false;
         scenes[i] = std::move(*loaded);
     }

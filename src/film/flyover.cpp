@@ -53,9 +53,12 @@ DensePath densePath(const std::vector<Vec3>& points, double spacing) {
     for (size_t i = 1; i < points.size(); ++i) total += groundDistance(points[i - 1], points[i]);
     // About one sample a ground cell, fewer on a long path.
     const double step = std::max(spacing, total / double(kMaxPathSamples));
+    // At least a few a segment, so that short ones stay curved, unless that alone passes the cap.
+    const int fewest = (points.size() - 1) * 8 <= kMaxPathSamples ? 8 : 1;
     std::vector<int> perSegment;
     for (size_t i = 1; i < points.size(); ++i)
-        perSegment.push_back(std::max(8, static_cast<int>(std::ceil(groundDistance(points[i - 1], points[i]) / step))));
+        perSegment.push_back(
+            std::max(fewest, static_cast<int>(std::ceil(groundDistance(points[i - 1], points[i]) / step))));
     DensePath d;
     d.points = centripetalCatmullRom(points, perSegment);
     d.along.assign(d.points.size(), 0.0);
@@ -68,7 +71,7 @@ DensePath densePath(const std::vector<Vec3>& points, double spacing) {
 std::vector<double> highestGroundNear(const DensePath& path, const std::vector<double>& stations, double reach,
                                       const Ground& ground) {
     std::vector<double> heights(path.points.size());
-    for (size_t i = 0; i < heights.size(); ++i) heights[i] = ground.heightAt(path.points[i].x, path.points[i].y);
+    for (size_t i = 0; i < heights.size(); ++i) heights[i] = ground.highestAt(path.points[i].x, path.points[i].y);
     // A sliding window's maximum: a deque of samples in decreasing height.
     std::vector<double> out;
     std::deque<size_t> window;
@@ -80,7 +83,7 @@ std::vector<double> highestGroundNear(const DensePath& path, const std::vector<d
         }
         while (!window.empty() && path.along[window.front()] < s - reach) window.pop_front();
         const Vec3 here = path.at(s);
-        out.push_back(std::max(window.empty() ? -1e300 : heights[window.front()], ground.heightAt(here.x, here.y)));
+        out.push_back(std::max(window.empty() ? -1e300 : heights[window.front()], ground.highestAt(here.x, here.y)));
     }
     return out;
 }

@@ -55,7 +55,7 @@ struct FlyoverCamera {
 
 /// The cameras of `frames` frames (both ends of the path included) at equal
 /// steps of ground distance. Above the ground, the eye's height is
-/// aboveGroundM over the highest ground within that distance along the path
+/// aboveGroundM over the highest ground (highestAt) within that distance along the path
 /// (before and after), so that it rises before a ridge and never dips into a
 /// gully's far side. Looking ahead, the target is the ground at look-ahead
 /// distance along the path (past its end, straight on).

@@ -33,6 +33,11 @@ std::pair<Transform, Transform> wgs84Transforms(OGRSpatialReferenceH srs) {
 }
 
 Dataset openRaster(const std::filesystem::path& path, std::string& problem, const FolderNames* siblings) {
+    return openChecked(path, GDAL_OF_RASTER, problem, siblings);
+}
+
+Dataset openChecked(const std::filesystem::path& path, unsigned kind, std::string& problem,
+                    const FolderNames* siblings) {
     std::optional<FolderNames> listedHere;
     if (!siblings) siblings = &listedHere.emplace(FolderNames::of(path));
     problem = gdalInputProblem(path, siblings);
@@ -43,7 +48,7 @@ Dataset openRaster(const std::filesystem::path& path, std::string& problem, cons
     // Only the files beside it that were checked: GDAL lists no folder itself.
     const SiblingFiles beside(*siblings, path.filename().string());
     CPLPushErrorHandler(CPLQuietErrorHandler);
-    Dataset ds(GDALOpenEx(name.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, beside.forGdal()));
+    Dataset ds(GDALOpenEx(name.c_str(), kind | GDAL_OF_READONLY, nullptr, nullptr, beside.forGdal()));
     CPLPopErrorHandler();
     return ds;
 }

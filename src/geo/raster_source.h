@@ -41,6 +41,9 @@ std::pair<Transform, Transform> wgs84Transforms(OGRSpatialReferenceH srs);
 /// (null with `problem` empty: GDAL cannot read it). `siblings`: the names in
 /// its folder, when the caller has them (a folder of tiles).
 Dataset openRaster(const std::filesystem::path& path, std::string& problem, const FolderNames* siblings = nullptr);
+/// The same for any kind of dataset: `kind` is GDAL_OF_RASTER or GDAL_OF_VECTOR.
+Dataset openChecked(const std::filesystem::path& path, unsigned kind, std::string& problem,
+                    const FolderNames* siblings = nullptr);
 
 /// The credit a raster's metadata carries (GeoTIFF's copyright tag, or a
 /// COPYRIGHT, LICENSE, LICENCE or ATTRIBUTION item), cut to what a still can

@@ -4,7 +4,6 @@
 
 #include <cmath>
 
-#include <cpl_error.h>
 #include <fmt/format.h>
 #include <gdal.h>
 #include <ogr_api.h>
@@ -23,20 +22,6 @@ struct FeatureDeleter {
     void operator()(void* f) const { OGR_F_Destroy(static_cast<OGRFeatureH>(f)); }
 };
 using Feature = std::unique_ptr<void, FeatureDeleter>;
-
-Dataset openVector(const std::filesystem::path& path, std::string& problem) {
-    setUpGdal();
-    const FolderNames folder = FolderNames::of(path);
-    problem = gdalInputProblem(path, &folder);
-    if (!problem.empty()) return Dataset();
-    std::error_code ec;
-    const std::string name = std::filesystem::absolute(path, ec).string();
-    const SiblingFiles beside(folder, path.filename().string());
-    CPLPushErrorHandler(CPLQuietErrorHandler);
-    Dataset ds(GDALOpenEx(name.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, beside.forGdal()));
-    CPLPopErrorHandler();
-    return ds;
-}
 
 // The first line of a layer's features: a LineString, or a MultiLineString's first part with two vertices or more.
 OGRGeometryH firstLineIn(OGRLayerH layer, Feature& holder) {
@@ -89,7 +74,8 @@ std::optional<std::vector<GeoPoint>> firstLineOf(const std::filesystem::path& pa
                                                  const SourceLoc& at, Diagnostics& diags) {
     const std::string shown = printableExcerpt(path.string(), 200);
     std::string problem;
-    const Dataset ds = openVector(path, problem);
+    setUpGdal();
+    const Dataset ds = openChecked(path, GDAL_OF_VECTOR, problem);
     if (!ds) {
         diags.error(at, fmt::format("{}: {}", shown,
                                     problem.empty() ? "GDAL reads no vector data in it (give a GPX, GeoJSON, KML, "
