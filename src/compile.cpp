@@ -11,6 +11,7 @@
 #include "core/number_format.h"
 #include "core/text_escape.h"
 #include "emit/adaptive_mesh.h"
+#include "emit/sky_light.h"
 #include "emit/block_base.h"
 #include "emit/height_field.h"
 #include "emit/mesh.h"
@@ -122,6 +123,7 @@ bool buildMeshes(const LoadedScene& loaded, const Surface& surface, const View& 
                 budgetOf(spec.limits), budgetKey(spec), surface.depth, diags, true))
             return false;
     }
+    emit::lightBySky(*t.mesh);
     t.vertices = static_cast<long long>(t.mesh->vertices);
     t.triangles = t.mesh->triangles;
     return true;
@@ -380,6 +382,8 @@ std::unique_ptr<SharedTerrain::State> compileTerrain(const LoadedScene& loaded, 
     if (!view) return nullptr;
     st->view = std::move(*view);
     const auto t0 = Clock::now();
+    if (scene::qualityLevel(spec.render.quality).skyLight)
+        emit::addSkyLight(st->view.where, st->surface.refined, {.threads = options.threads});
     if (!buildMeshes(st->loaded, st->surface, st->view, st->terrain, diags)) return nullptr;
     CompileResult facts;  // the view's metres per pixel sizes the contour lines
     describeView(spec, st->surface.net, st->view, facts);

@@ -217,7 +217,10 @@ void describeRender(plan::RenderPlan& plan, const CompileResult& compiled, const
     plan.width = s.render.width;
     plan.height = s.render.height;
     plan.tiles = std::clamp(tiles, 1, s.render.height);
-    plan.antialias = s.render.antialias;
+    const scene::QualityLevel& quality = scene::qualityLevel(s.render.quality);
+    plan.antialias = s.render.antialias && quality.antialias;
+    plan.antialiasThreshold = quality.antialiasThreshold;
+    plan.antialiasDepth = quality.antialiasDepth;
     plan.alpha = s.render.background == scene::Background::Transparent;
     plan.sandbox = sandbox;
     plan.timeoutS = s.render.timeoutS;

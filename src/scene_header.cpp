@@ -121,6 +121,17 @@ void addTextureAndSun(Header& h, const scene::LookSpec& look, const CompileResul
 }
 
 // The camera and the still.
+// What render.quality adds to the still's light, when it is not the report's.
+void addQuality(Header& h, const scene::RenderSpec& render, const scene::LightingSpec& lighting) {
+    const scene::QualityLevel& level = scene::qualityLevel(render.quality);
+    if (render.quality == scene::Quality::Draft) h.add("render.quality", "draft: no antialiasing");
+    if (render.quality == scene::Quality::High)
+        h.add("render.quality", fmt::format("high: the sun a disc {} deg wide, sky light by sky-view factor, "
+                                            "antialias threshold {} depth {}",
+                                            formatShortest(lighting.sunDiameterDeg),
+                                            formatShortest(level.antialiasThreshold), level.antialiasDepth));
+}
+
 void addCameraAndRender(Header& h, const scene::CameraSpec& camera, const scene::RenderSpec& render,
                         double metresPerUnit) {
     const char* projection = scene::nameOf(camera.projection);
@@ -157,6 +168,7 @@ emit::ParameterList sceneHeader(const scene::SceneSpec& s, const geo::ControlNet
     addGeometry(h, s, compiled);
     addTextureAndSun(h, s.look, compiled);
     addCameraAndRender(h, s.look.camera, s.render, compiled.metresPerUnit);
+    addQuality(h, s.render, s.look.lighting);
     return std::move(h.lines);
 }
 

@@ -115,8 +115,9 @@ Drape elevationDrape(const geo::GeoGrid& refined, const ScenePlacement& where) {
             const bool slope = where.colouring == C::Slope || where.colouring == C::Blend;
             const auto& colour =
                 where.paletteColors[slope ? paletteEntry(where, e, slopeDeg(refined, where, r, c)) : paletteIndex(where, e)];
+            const double light = where.skyLightAt(static_cast<size_t>(r) * g.cols + c);
             std::uint16_t* px = row + n * static_cast<size_t>(c);
-            px[0] = level(colour.r), px[1] = level(colour.g), px[2] = level(colour.b);
+            px[0] = level(light * colour.r), px[1] = level(light * colour.g), px[2] = level(light * colour.b);
             if (n == 4) px[3] = refined.isMasked(r, c) ? 0 : 65535;
         }
     }
@@ -140,7 +141,10 @@ Drape imageDrape(const geo::GeoGrid& refined, const ScenePlacement& where, const
             const size_t node = static_cast<size_t>(r) * g.cols + c;
             if (!image.covered[node]) continue;
             std::uint16_t* px = row + n * static_cast<size_t>(c);
-            for (int k = 0; k < 3; ++k) px[k] = linear[image.rgb[3 * node + k]];
+            const double light = where.skyLightAt(node);
+            for (int k = 0; k < 3; ++k)
+                px[k] = light == 1.0 ? linear[image.rgb[3 * node + k]]
+                                     : static_cast<std::uint16_t>(std::lround(light * linear[image.rgb[3 * node + k]]));
         }
     }
     return drape;

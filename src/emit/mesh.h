@@ -47,6 +47,13 @@ struct ScenePlacement {
     std::optional<double> baseElevationM;
     /// The Earth's fall below a local frame's tangent plane; null in UTM.
     std::shared_ptr<const geo::CurvatureDrop> curvature;
+    /// render.quality = "high": per refined node (row-major), the share of the
+    /// sky's light it gets, its sky-view factor (emit/sky_light.h); every
+    /// geometry's colours are multiplied by it. Null: no sky light.
+    std::shared_ptr<const std::vector<float>> skyLight;
+
+    /// Node `node`'s sky light: the factor its colour is multiplied by.
+    double skyLightAt(size_t node) const { return skyLight ? (*skyLight)[node] : 1.0; }
 
     double fallAt(const Vec3& p) const { return curvature ? curvature->at(p.x, p.y) : 0.0; }
     /// A frame point's elevation: its height above the ellipsoid (in UTM, its z).
@@ -163,7 +170,16 @@ struct Mesh : ScenePlacement {
     SceneVec3 normal(size_t node) const;
     /// Node `node`'s entry of paletteColors: its true elevation on the ramp
     /// (and its slope, when the colouring uses it).
-    unsigned palette(size_t node) const {
+    unsigned palette(size_t node) const { return litTexture.empty() ? basePalette(node) : litTexture[node]; }
+    /// The colours palette() indexes: paletteColors, or the sky-lit ones.
+    const std::vector<LinearRgb>& textureColours() const { return litTexture.empty() ? paletteColors : litColours; }
+    /// With sky light (emit/sky_light.h): each node's entry of litColours, and
+    /// those colours (the palette entries times the sky light, quantized).
+    std::vector<std::uint32_t> litTexture;
+    std::vector<LinearRgb> litColours;
+
+    /// Node `node`'s entry of paletteColors, without sky light.
+    unsigned basePalette(size_t node) const {
         const double e = elevation(grid->grid.points[node]);
         using C = scene::TextureSpec::Colouring;
         if (colouring != C::Slope && colouring != C::Blend) return paletteIndex(*this, e);

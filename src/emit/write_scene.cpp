@@ -111,9 +111,9 @@ size_t writeMesh2(const Mesh& mesh, std::FILE* out, const WriteProgressFn& progr
     if (perVertex) {
         w->put("\n  }\n  texture_list {\n    ");
         char* p = w->reserve(24);
-        w->commit(writeUnsigned(p, mesh.paletteColors.size()));
+        w->commit(writeUnsigned(p, mesh.textureColours().size()));
     }
-    for (const LinearRgb& c : perVertex ? mesh.paletteColors : std::vector<LinearRgb>{}) {
+    for (const LinearRgb& c : perVertex ? mesh.textureColours() : std::vector<LinearRgb>{}) {
         char* p = w->reserve(160);
         const char open[] = ",\n    texture { pigment { rgb ";
         std::memcpy(p, open, sizeof open - 1);
@@ -176,6 +176,27 @@ size_t writeMesh2(const Mesh& mesh, std::FILE* out, const WriteProgressFn& progr
     return w->total();
 }
 
+namespace {
+
+// The sun's disc: kSunSamples x kSunSamples points, POV-Ray sampling the
+// corners first and refining kSunAdaptive times where they disagree.
+constexpr int kSunSamples = 9;
+constexpr int kSunAdaptive = 1;
+
+// render.quality = "high": the sun a disc of its angular diameter, seen from
+// the terrain `distance` away, so that a shadow's edge blurs over the width
+// the sun spans from the ground it falls on. Sampled on a fixed grid (no
+// jitter): a pixel's light depends on nothing but its own rays.
+std::string sunAreaSdl(double distance, double diameterDeg, scene::Quality quality) {
+    if (!scene::qualityLevel(quality).softSun) return "";
+    const double width = 2 * distance * std::tan(0.5 * diameterDeg * 3.14159265358979323846 / 180);
+    return fmt::format(
+        "\n    area_light <{0}, 0, 0>, <0, 0, {0}>, {1}, {1}\n    adaptive {2}\n    circular\n    orient", num(width),
+        kSunSamples, kSunAdaptive);
+}
+
+}  // namespace
+
 Bindings sceneBindings(const ScenePlacement& where, const CameraView& view, const SunDirection& sun,
                        GeometryWriters writers, const scene::LookSpec& look, const scene::RenderSpec& render,
                        const ParameterList& header) {
@@ -204,6 +225,7 @@ Bindings sceneBindings(const ScenePlacement& where, const CameraView& view, cons
     const SceneVec3 sunDir = sceneDirection(sun.azimuthDeg, sun.altitudeDeg);
     b["sun_position"].text = vec(target + (100.0 * radius) * sunDir);
     b["scene_center"].text = vec(target);
+    b["sun_area"].text = sunAreaSdl(100.0 * radius, look.lighting.sunDiameterDeg, render.quality);
     switch (render.background) {
         case scene::Background::Sky:
             // Pale at the horizon, deeper blue overhead.

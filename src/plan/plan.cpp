@@ -22,7 +22,7 @@ using nlohmann::ordered_json;
 
 namespace {
 
-constexpr int kPlanFormat = 2;
+constexpr int kPlanFormat = 3;
 constexpr std::uintmax_t kMaxPlanBytes = 64'000'000;
 
 ordered_json coloursJson(const std::vector<LinearRgb>& colours) {
@@ -105,6 +105,8 @@ ordered_json planJson(const RenderPlan& p) {
               {"height", p.height},
               {"tiles", p.tiles},
               {"antialias", p.antialias},
+              {"antialias_threshold", p.antialiasThreshold},
+              {"antialias_depth", p.antialiasDepth},
               {"alpha", p.alpha},
               {"sandbox", p.sandbox},
               {"timeout_s", p.timeoutS},
@@ -194,6 +196,8 @@ std::optional<RenderPlan> readPlan(const fs::path& dir, Diagnostics& diags) {
         p.height = r.at("height").get<int>();
         p.tiles = r.at("tiles").get<int>();
         p.antialias = r.at("antialias").get<bool>();
+        p.antialiasThreshold = r.at("antialias_threshold").get<double>();
+        p.antialiasDepth = r.at("antialias_depth").get<int>();
         p.alpha = r.at("alpha").get<bool>();
         p.sandbox = r.at("sandbox").get<bool>();
         p.timeoutS = r.at("timeout_s").get<double>();

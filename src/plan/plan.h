@@ -54,6 +54,9 @@ struct RenderPlan {
     // The still.
     int width = 0, height = 0, tiles = 1;
     bool antialias = true, alpha = false, sandbox = true;
+    /// POV-Ray's +A threshold and +R depth, when antialias is on ([render] quality).
+    double antialiasThreshold = 0.3;
+    int antialiasDepth = 3;
     double timeoutS = 0;
     std::filesystem::path templatesDir;  ///< absolute: the template's own #include files
     std::filesystem::path still, sidecar;  ///< the final PNG and sidecar (absolute)

@@ -219,7 +219,9 @@ std::vector<std::string> povrayArguments(const RenderRequest& req, const PovrayH
                                   "-P"};
     // Adaptive anti-aliasing without jitter: pixels do not depend on the thread count,
     // nor on the rows rendered with them (a tile's pixels are the whole still's).
-    if (req.antialias) args.insert(args.end(), {"+A0.3", "+AM2", "+R3", "-J"});
+    if (req.antialias)
+        args.insert(args.end(), {fmt::format("+A{}", req.antialiasThreshold), "+AM2",
+                                 fmt::format("+R{}", req.antialiasDepth), "-J"});
     else args.push_back("-A");
     if (req.alpha) args.push_back("+UA");
     if (req.threads > 0) args.push_back(fmt::format("+WT{}", req.threads));

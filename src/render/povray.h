@@ -22,6 +22,8 @@ struct RenderRequest {
     int width = 800;
     int height = 600;
     bool antialias = true;
+    double antialiasThreshold = 0.3;  ///< +A: a pixel is supersampled where it differs from a neighbour by more
+    int antialiasDepth = 3;           ///< +R: up to (depth + 1)^2 rays a pixel
     bool alpha = false;  ///< an RGBA PNG: what the rays miss is transparent (+UA)
     /// The folder of the template, which a template's own #include files
     /// come from; may be empty.

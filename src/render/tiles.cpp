@@ -19,6 +19,8 @@ RenderResult renderTile(const plan::RenderPlan& plan, int index, const TileOptio
     req.width = plan.width;
     req.height = plan.height;
     req.antialias = plan.antialias;
+    req.antialiasThreshold = plan.antialiasThreshold;
+    req.antialiasDepth = plan.antialiasDepth;
     req.alpha = plan.alpha;
     req.templatesDir = plan.templatesDir;
     for (const auto& f : plan.reads) req.inputFiles.push_back(plan.dir / f.name);

@@ -71,6 +71,11 @@ struct EnumNames<CameraPath> {
     static constexpr NameRow<CameraPath> rows[] = {
         {CameraPath::Still, "still"}, {CameraPath::Orbit, "orbit"}, {CameraPath::Flyover, "flyover"}};
 };
+template <>
+struct EnumNames<Quality> {
+    static constexpr NameRow<Quality> rows[] = {
+        {Quality::Draft, "draft"}, {Quality::Report, "report"}, {Quality::High, "high"}};
+};
 /// texture.mode's choices: the ramp's colourings (an image is texture.image's).
 inline constexpr NameRow<TextureSpec::Colouring> kTextureModeNames[] = {
     {TextureSpec::Colouring::Elevation, "elevation"},

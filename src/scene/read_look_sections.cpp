@@ -153,6 +153,7 @@ void readLighting(Section& s, const SceneFile&, SceneSpec& scene) {
     if (auto v = s.number("sun_azimuth_deg", 0, 360, "degrees (compass bearing)", false, true))
         lighting.sunAzimuthDeg = *v;
     if (auto v = s.number("sun_altitude_deg", 0, 90, "degrees", true)) lighting.sunAltitudeDeg = *v;
+    if (auto v = s.number("sun_diameter_deg", 0, 10, "degrees", true)) lighting.sunDiameterDeg = *v;
     s.markKnown("datetime");
     const toml::node* n = s.find("datetime");
     if (!n) return;

@@ -263,6 +263,7 @@ void readRender(Section& s, const SceneFile&, SceneSpec& scene) {
     if (auto v = s.integer("width", 16, 16384, "pixels")) render.width = *v;
     if (auto v = s.integer("height", 16, 16384, "pixels")) render.height = *v;
     if (auto v = s.boolean("antialias")) render.antialias = *v;
+    if (auto q = s.named<Quality>("quality")) render.quality = *q;
     if (auto v = s.number("timeout_s", 0, 1e7, "seconds (0: no limit)")) render.timeoutS = *v;
     if (auto v = s.string("background")) {
         if (*v == "sky") render.background = Background::Sky;

@@ -231,6 +231,9 @@ struct TextureSpec {
 struct LightingSpec {
     double sunAzimuthDeg = 315;  ///< compass bearing the light comes from
     double sunAltitudeDeg = 45;
+    /// The sun's angular diameter, for render.quality = "high" (soft shadows);
+    /// the real sun's by default.
+    double sunDiameterDeg = 0.53;
     /// datetime: the sun is placed where it was then, over the terrain's
     /// centre (compileScene), in place of the two angles.
     std::optional<OffsetDateTime> sunTime;
@@ -261,10 +264,38 @@ struct LookSpec {
 enum class Background { Sky, Colour, Transparent };
 
 /// [render]: the still.
+/// [render] quality: how much work a still's light gets. Draft: no
+/// antialiasing. Report: one sun's hard shadows over an even ambient light,
+/// antialiased. High: the sun as a disc of lighting.sun_diameter_deg (soft
+/// shadows), the sky's light on each node by its sky-view factor (dark in
+/// gullies, full on ridges), and finer antialiasing.
+enum class Quality { Draft, Report, High };
+
+/// What each quality level does: a row a level.
+struct QualityLevel {
+    Quality quality;
+    bool antialias;             ///< with render.antialias: both must be on
+    double antialiasThreshold;  ///< POV-Ray's +A
+    int antialiasDepth;         ///< POV-Ray's +R
+    bool softSun;               ///< the sun an area light of lighting.sun_diameter_deg
+    bool skyLight;              ///< each node's colour times its sky-view factor
+};
+inline constexpr QualityLevel kQualityLevels[] = {
+    {Quality::Draft, false, 0.3, 3, false, false},
+    {Quality::Report, true, 0.3, 3, false, false},
+    {Quality::High, true, 0.1, 4, true, true},
+};
+inline const QualityLevel& qualityLevel(Quality q) {
+    for (const QualityLevel& level : kQualityLevels)
+        if (level.quality == q) return level;
+    return kQualityLevels[1];
+}
+
 struct RenderSpec {
     int width = 800;
     int height = 600;
     bool antialias = true;
+    Quality quality = Quality::Report;
     Background background = Background::Sky;
     LinearRgb backgroundColour;  ///< Background::Colour
     std::string output;  ///< "" = out/<scene stem>.png

@@ -37,6 +37,7 @@ TEST(EnumNames, EveryValueHasOneName) {
     expectOneNameEach(TextureSpec::Colouring::Image);
     expectOneNameEach(GeometryKind::HeightField);
     expectOneNameEach(CameraPath::Flyover);
+    expectOneNameEach(Quality::High);
     EXPECT_STREQ(nameOf(Gridding::InverseDistance), "invdist");
     EXPECT_STREQ(nameOf(GeometryKind::HeightField), "height_field");
 }
