@@ -4,16 +4,20 @@
 // stills, the film encoded, all written as one set.
 #include "animate_job.h"
 
+#include <algorithm>
 #include <chrono>
 #include <map>
+#include <thread>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "animate_flyover.h"
 #include "core/atomic_file.h"
+#include "core/number_format.h"
 #include "core/text_escape.h"
 #include "relief/version.h"
+#include "subdiv/budget.h"
 
 namespace relief {
 
@@ -153,7 +157,7 @@ bool planFrame(const AnimateJob& job, const LoadedScene& scene, const SharedTerr
                const std::vector<plan::PlanFile>& shared, const fs::path& sharedDir, const FilmFrame& frame,
                FilmWork& work, Diagnostics& diags) {
     plan::RenderPlan plan;
-    plan.dir = work.dir / fmt::format("frame-{:05}.plan", frame.settings.number);
+    plan.dir = work.dir / film::framePlanName(frame.settings.number);
     fs::create_directories(plan.dir);
     linkShared(shared, sharedDir, plan);
     CompileOptions options;
@@ -229,13 +233,14 @@ void numberKeptFrames(std::vector<FilmFrame>& frames) {
     for (auto& f : frames) f.fileNumber = f.night ? 0 : ++n;
 }
 
-// The tiles of `plans`, rendered; the outcome says why not.
-bool renderPlans(const std::vector<plan::RenderPlan>& plans, size_t from, size_t to, const AnimateJob& job,
+// The tiles of `plans` from..to-1 rendered; the outcome says why not.
+bool renderPlans(const std::vector<plan::RenderPlan>& plans, size_t from, size_t to, const execute::Options& execution,
                  AnimateOutcome& outcome, Diagnostics& diags, const ProgressFn& progress) {
     std::vector<execute::Task> tasks;
     for (size_t i = from; i < to; ++i)
         for (const auto& t : tasksOf(plans[i])) tasks.push_back(t);
-    execute::Options options = job.execution;
+    if (tasks.empty()) return true;
+    execute::Options options = execution;
     if (options.jobDir.empty()) options.jobDir = plans[from].dir.parent_path() / "slurm";
     const size_t perFrame = std::max<size_t>(1, tasks.size() / std::max<size_t>(1, to - from));
     const execute::Result r = execute::run(tasks, options, [&](const execute::Progress& p) {
@@ -256,11 +261,89 @@ bool renderPlans(const std::vector<plan::RenderPlan>& plans, size_t from, size_t
     return false;
 }
 
+// What the rest of the film will cost, from one frame rendered alone.
+struct FilmEstimate {
+    size_t framesLeft = 0;
+    double secondsLeft = 0;   ///< wall seconds here (core-seconds shared by a cluster's tasks on Slurm)
+    double povrayPeakMB = 0;  ///< the probe's largest POV-Ray
+    int atOnce = 1;           ///< POV-Rays at once here (Slurm: on their own nodes, 1 each)
+    double diskMB = 0;        ///< the frames' PNGs in the working folder (the tiles and the frames)
+};
+
+FilmEstimate estimateFilm(const std::vector<plan::RenderPlan>& plans, size_t probe, double probeSeconds,
+                          const execute::Options& execution) {
+    FilmEstimate e;
+    std::uintmax_t probeBytes = 0;
+    for (int k = 0; k < plans[probe].tiles; ++k) {
+        std::string problem;
+        if (const auto r = plan::readTileRecord(plans[probe], k, problem))
+            e.povrayPeakMB = std::max(e.povrayPeakMB, r->peakMemoryMB);
+        std::error_code ec;
+        const auto bytes = fs::file_size(plan::tileImage(plans[probe], k), ec);
+        if (!ec) probeBytes += bytes;
+    }
+    size_t tasksLeft = 0;
+    for (size_t i = probe + 1; i < plans.size(); ++i) {
+        const size_t missing = plan::missingTiles(plans[i]).size();
+        tasksLeft += missing;
+        e.framesLeft += missing > 0;
+    }
+    e.secondsLeft = probeSeconds * double(e.framesLeft);
+    if (execution.executor == execute::Executor::Local) {
+        const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+        e.atOnce = static_cast<int>(std::clamp<size_t>(execution.jobs > 0 ? execution.jobs : cores, 1,
+                                                       std::max<size_t>(1, tasksLeft)));
+    }
+    e.diskMB = 2.0 * double(probeBytes) * double(plans.size()) / 1e6;
+    return e;
+}
+
+// "0.8 MB", "57 MB", "2300 MB".
+std::string megabytes(double mb) {
+    return mb < 10 ? fmt::format("{:.1f} MB", mb) : fmt::format("{:.0f} MB", mb);
+}
+
+std::string estimateText(const FilmEstimate& e, double probeSeconds, const execute::Options& execution) {
+    const bool here = execution.executor == execute::Executor::Local;
+    return fmt::format("a frame rendered in {:.1f} s (POV-Ray at most {}): {} frame{} more, about {:.0f} s of "
+                       "rendering{}, {}; about {} of frames on disk",
+                       probeSeconds, megabytes(e.povrayPeakMB), e.framesLeft, e.framesLeft == 1 ? "" : "s",
+                       e.secondsLeft, here ? "" : " (divided among the cluster's tasks)",
+                       here ? fmt::format("{} POV-Ray{} at once ({})", e.atOnce, e.atOnce == 1 ? "" : "s",
+                                          megabytes(e.povrayPeakMB * e.atOnce))
+                            : megabytes(e.povrayPeakMB) + " a task",
+                       megabytes(e.diskMB));
+}
+
+// [limits] against the estimate: the film's rendering time, and the memory its POV-Rays hold at once here.
+bool withinFilmLimits(const FilmEstimate& e, double probeSeconds, const scene::LimitsSpec& limits,
+                      const execute::Options& execution, Diagnostics& diags) {
+    const double total = probeSeconds + e.secondsLeft;
+    if (limits.maxFilmS > 0 && total > limits.maxFilmS) {
+        diags.error(limits.locs.at("limits.max_film_s"),
+                    fmt::format("the film would take about {:.0f} s to render (a frame {:.1f} s, {} more) > "
+                                "limits.max_film_s = {}: raise the limit, render fewer or smaller frames "
+                                "(animation.frames, render.width), or share them out (--jobs, --executor slurm)",
+                                total, probeSeconds, e.framesLeft, formatShortest(limits.maxFilmS)));
+        return false;
+    }
+    const double budgetMB = limits.maxMemoryMB > 0 ? limits.maxMemoryMB : subdiv::defaultMemoryBudgetMB();
+    if (execution.executor == execute::Executor::Local && e.atOnce > 1 && e.povrayPeakMB * e.atOnce > budgetMB) {
+        diags.error(limits.locs.at("limits.max_memory_mb"),
+                    fmt::format("{} POV-Rays at once would hold about {:.0f} MB (a frame's POV-Ray {:.0f} MB) > "
+                                "limits.max_memory_mb = {:.0f}: give --jobs {} or fewer",
+                                e.atOnce, e.povrayPeakMB * e.atOnce, e.povrayPeakMB, budgetMB,
+                                std::max(1, int(budgetMB / std::max(1.0, e.povrayPeakMB)))));
+        return false;
+    }
+    return true;
+}
+
 // The film's sidecar: what it was made from, every frame's keys (relief render --set of them makes that frame).
-std::string filmSidecar(const AnimateJob& job, const LoadedScene& base, const AnimateOutcome& o,
-                        const film::VideoRequest& video) {
+std::string filmSidecar(const film::FilmRecord& record, const AnimateOutcome& o, const film::VideoRequest& video,
+                        const FilmEstimate& estimate) {
     nlohmann::ordered_json frames = nlohmann::ordered_json::array();
-    for (const auto& f : o.frames) {
+    for (const auto& f : record.frames) {
         nlohmann::ordered_json set = nlohmann::ordered_json::object();
         for (const auto& [k, v] : f.settings.overrides) set[k] = v;
         nlohmann::ordered_json j = {{"number", f.settings.number}, {"set", set}};
@@ -273,21 +356,25 @@ std::string filmSidecar(const AnimateJob& job, const LoadedScene& base, const An
     }
     // The command as run, with the working folder's frames and the staged film named as kept.
     film::VideoRequest shown = video;
-    shown.frames = job.framesDir.empty() ? fs::path("frames") : job.framesDir;
-    shown.output = o.film.filename();
+    shown.frames = record.framesDir.empty() ? fs::path("frames") : record.framesDir.filename();
+    shown.output = record.film.filename();
     const std::vector<std::string> command = film::ffmpegCommand(shown);
     nlohmann::ordered_json j = {
         {"relief_version", kVersion},
-        {"scene", job.scenePath.string()},
-        {"scene_sha1", base.scene.sceneSha1},
-        {"film", o.film.filename().string()},
-        {"fps", base.scene.animation.fps},
+        {"scene", record.scene.string()},
+        {"scene_sha1", record.sceneSha1},
+        {"film", record.film.filename().string()},
+        {"fps", record.fps},
         {"frames_in_film", video.frameCount},
-        {"terrains_compiled", o.terrains},
+        {"terrains_compiled", record.terrains},
         {"frames", frames},
         {"ffmpeg", {{"version", film::ffmpegVersion()}, {"command", command}}},
+        {"estimate",
+         {{"render_s", std::round(estimate.secondsLeft * 10) / 10},
+          {"povray_peak_memory_mb", estimate.povrayPeakMB},
+          {"povrays_at_once", estimate.atOnce}}},
         {"seconds",
-         {{"compile", o.compileSeconds},
+         {{"compile", record.compileSeconds},
           {"first_frame", o.probeSeconds},
           {"render", o.renderSeconds},
           {"encode", o.encodeSeconds}}},
@@ -295,38 +382,33 @@ std::string filmSidecar(const AnimateJob& job, const LoadedScene& base, const An
     return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
-}  // namespace
-
-namespace {
-
 // The frames' stills, written into work/frames/ (what ffmpeg reads) and, for --frames, into the set.
-bool finishFrames(const AnimateJob& job, const FilmWork& work, const std::vector<FilmFrame>& frames, OutputSet& outputs,
-                  Diagnostics& diags) {
+bool finishFrames(const film::FilmRecord& record, const FilmWork& work, OutputSet& outputs, Diagnostics& diags) {
     fs::create_directories(work.dir / "frames");
     for (size_t p = 0; p < work.plans.size(); ++p) {
         std::optional<annotate::OverlayRecord> overlays;
         const auto still = stillOfPlan(work.plans[p], overlays, diags);
         if (!still) return false;
-        const std::string name = film::frameFileName(frames[work.planFrame[p]].fileNumber);
+        const std::string name = film::frameFileName(static_cast<int>(p) + 1);
         const fs::path png = work.dir / "frames" / name;
         writePngAtomically(png, {still->width, still->height, still->channels, false, still->pixels.data()});
-        if (job.framesDir.empty()) continue;
-        const fs::path kept = outputs.add(job.framesDir / name, "--frames");
+        if (record.framesDir.empty()) continue;
+        const fs::path kept = outputs.staged(record.framesDir / name);
         std::error_code ec;
         fs::create_hard_link(png, kept, ec);
         if (ec) fs::copy_file(png, kept, ec);
-        if (ec) throw OutputError(shownPath(job.framesDir / name), "cannot be written: " + ec.message());
+        if (ec) throw OutputError(shownPath(record.framesDir / name), "cannot be written: " + ec.message());
     }
     return true;
 }
 
 // Compiling: the frames' scenes, a terrain for each group of them, a plan a frame.
-bool planFilm(const AnimateJob& job, const LoadedScene& base, AnimateOutcome& outcome, FilmWork& work,
+bool planFilm(const AnimateJob& job, const LoadedScene& base, film::FilmRecord& record, FilmWork& work,
               Diagnostics& diags, const ProgressFn& progress) {
-    auto scenes = loadFrames(job, base, outcome.frames, diags);
+    auto scenes = loadFrames(job, base, record.frames, diags);
     if (!scenes) return false;
-    const auto groups = terrainGroups(outcome.frames);
-    outcome.terrains = static_cast<int>(groups.size());
+    const auto groups = terrainGroups(record.frames);
+    record.terrains = static_cast<int>(groups.size());
     // Nights are known per terrain; a frame's number among those kept once all are.
     for (size_t g = 0; g < groups.size(); ++g) {
         if (progress)
@@ -335,14 +417,151 @@ bool planFilm(const AnimateJob& job, const LoadedScene& base, AnimateOutcome& ou
                                   groups.size() > 1 ? fmt::format(" {} of {}", g + 1, groups.size()) : "",
                                   groups[g].size(), groups[g].size() == 1 ? "" : "s"),
                       -1});
-        if (!planGroup(job, *scenes, groups[g], static_cast<int>(g), outcome.frames, work, diags, progress))
+        if (!planGroup(job, *scenes, groups[g], static_cast<int>(g), record.frames, work, diags, progress))
             return false;
     }
-    numberKeptFrames(outcome.frames);
+    numberKeptFrames(record.frames);
     if (work.plans.empty()) {
         diags.error(base.scene.animation.locs.at("animation.sun"),
                     "animation.sun: the sun is below the horizon over the terrain's centre at every frame: choose a "
                     "window in daylight");
+        return false;
+    }
+    // The plans in film order (planned a terrain at a time).
+    std::vector<size_t> order(work.plans.size());
+    for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return work.planFrame[a] < work.planFrame[b]; });
+    FilmWork sorted{work.dir, {}, {}};
+    for (size_t i : order) {
+        sorted.plans.push_back(std::move(work.plans[i]));
+        sorted.planFrame.push_back(work.planFrame[i]);
+    }
+    work = std::move(sorted);
+    return true;
+}
+
+// The film's outputs, declared before any work: the film, --frames' PNGs, the sidecar last.
+void declareFilmOutputs(const film::FilmRecord& record, OutputSet& outputs) {
+    outputs.add(record.film, record.filmGiven ? "-o" : "the film");
+    if (!record.framesDir.empty())
+        for (const auto& f : record.frames)
+            if (f.fileNumber) outputs.add(record.framesDir / film::frameFileName(f.fileNumber), "--frames");
+    outputs.add(record.sidecar, "the sidecar", true);
+    outputs.addInput(record.scene, "the scene file");
+}
+
+bool isFilmFolder(const fs::path& dir) {
+    std::error_code ec;
+    return fs::is_regular_file(dir / "film.json", ec) && fs::is_directory(dir / film::framePlanName(1), ec);
+}
+
+const WorkingFolderKind kFilmFolder{"the film's working folder", "a film's working folder", "give -o another name",
+                                    isFilmFolder};
+
+// The working folder's frames rendered (one alone first: how long it took
+// tells how long the rest will, and [limits] may refuse that), finished,
+// encoded; the film, its sidecar and --frames moved into place, the folder
+// removed. A film not made keeps the folder (outcome.workDir) to resume.
+void makeFilm(const film::FilmRecord& record, FilmWork& work, const execute::Options& execution,
+              const scene::LimitsSpec* limits, OutputSet& outputs, AnimateOutcome& outcome, Diagnostics& diags,
+              const ProgressFn& progress) {
+    outcome.workDir = work.dir;
+    const auto r0 = Clock::now();
+    size_t probe = 0;
+    while (probe < work.plans.size() && plan::missingTiles(work.plans[probe]).empty()) ++probe;
+    FilmEstimate estimate;
+    if (probe < work.plans.size()) {
+        if (probe > 0 && progress)
+            progress({ProgressEvent::Stage::Rendering,
+                      fmt::format("{} of {} frames were rendered before", probe, work.plans.size()), -1});
+        if (!renderPlans(work.plans, probe, probe + 1, execution, outcome, diags, progress)) return;
+        outcome.probeSeconds = secondsSince(r0);
+        estimate = estimateFilm(work.plans, probe, outcome.probeSeconds, execution);
+        if (progress && estimate.framesLeft > 0)
+            progress({ProgressEvent::Stage::Rendering, estimateText(estimate, outcome.probeSeconds, execution), -1});
+        if (limits && !withinFilmLimits(estimate, outcome.probeSeconds, *limits, execution, diags)) {
+            outcome.status = JobStatus::BadInput;
+            outcome.workDir.clear();  // refused: nothing is kept
+            std::error_code ec;
+            fs::remove_all(work.dir, ec);
+            return;
+        }
+        if (!renderPlans(work.plans, probe + 1, work.plans.size(), execution, outcome, diags, progress)) return;
+    }
+    outcome.renderSeconds = secondsSince(r0);
+
+    if (progress) progress({ProgressEvent::Stage::Finishing, "finishing " + shownPath(record.film).string(), -1});
+    if (!finishFrames(record, work, outputs, diags)) return;
+    const auto e0 = Clock::now();
+    film::VideoRequest video;
+    film::videoFormatOf(record.film, video.format);
+    video.frames = work.dir / "frames";
+    video.frameCount = static_cast<int>(work.plans.size());
+    video.fps = record.fps;
+    video.output = outputs.staged(record.film);
+    if (const std::string error = film::encodeVideo(video); !error.empty()) {
+        outcome.status = JobStatus::ToolFailed;
+        outcome.toolError = error;
+        return;
+    }
+    outcome.encodeSeconds = secondsSince(e0);
+    writeFileAtomically(outputs.staged(record.sidecar), filmSidecar(record, outcome, video, estimate));
+    outputs.commit();
+    outcome.status = JobStatus::Ok;
+    std::error_code ec;
+    fs::remove_all(work.dir, ec);
+    outcome.workDir.clear();
+}
+
+// Any failure of the film's files, told at the file it concerns.
+void reportFilmFailure(const std::runtime_error& e, AnimateOutcome& outcome, Diagnostics& diags) {
+    if (const auto* out = dynamic_cast<const OutputError*>(&e))
+        diags.error(out->at(), out->problem());
+    else
+        diags.error({}, e.what());
+    outcome.status = JobStatus::BadInput;
+}
+
+// The record of a film about to be planned: its names, from the job and the scene.
+film::FilmRecord filmRecordOf(const AnimateJob& job, const LoadedScene& base, const fs::path& film) {
+    film::FilmRecord r;
+    r.scene = job.scenePath;
+    r.sceneSha1 = base.scene.sceneSha1;
+    r.fps = base.scene.animation.fps;
+    r.film = fs::absolute(film);
+    r.sidecar = fs::absolute(fs::path(film).replace_extension(".json"));
+    r.framesDir = job.framesDir.empty() ? fs::path() : fs::absolute(job.framesDir);
+    r.filmGiven = !job.output.empty();
+    for (auto& settings : film::frameSettings(base.scene)) r.frames.push_back({std::move(settings)});
+    return r;
+}
+
+// The scene's film, before it is compiled: an error when it cannot be made.
+bool filmCanBeMade(const AnimateJob& job, const LoadedScene& base, const fs::path& film, AnimateOutcome& outcome,
+                   Diagnostics& diags) {
+    const scene::AnimationSpec& a = base.scene.animation;
+    if (!a.present) {
+        diags.error({job.scenePath.string(), 0, 0},
+                    "the scene has no [animation] section: add one, e.g. [animation] frames = 120 and path = "
+                    "\"orbit\" (docs/animation.md)");
+        return false;
+    }
+    // A frame's camera.position is the flyover's; the scene's own would be overridden unseen.
+    if (a.path == scene::CameraPath::Flyover && base.scene.look.camera.position) {
+        diags.error(a.locs.at("animation.path"),
+                    "animation.path = \"flyover\" moves the eye along the path, but camera.position places "
+                    "it: remove camera.position (and camera.look_at; animation.look_at fixes where the camera "
+                    "looks)");
+        return false;
+    }
+    film::VideoFormat format;
+    if (!film::videoFormatOf(film, format)) {
+        diags.error({film.string(), 0, 0}, "a film is written as .mp4 (H.264), .webm (VP9) or .gif: give -o one of them");
+        return false;
+    }
+    if (render::findOnPath("ffmpeg").empty()) {
+        outcome.status = JobStatus::ToolFailed;
+        outcome.toolError = "ffmpeg is not installed, and it encodes the film (Debian: apt-get install ffmpeg)";
         return false;
     }
     return true;
@@ -357,85 +576,74 @@ AnimateOutcome runAnimateJob(const AnimateJob& job, Diagnostics& diags, const Pr
         if (progress) progress({ProgressEvent::Stage::Reading, "reading " + job.scenePath.string(), -1});
         const auto base = loadScene(job.scenePath, diags, job.overrides);
         if (!base) return outcome;
-        const scene::AnimationSpec& a = base->scene.animation;
-        if (!a.present) {
-            diags.error({job.scenePath.string(), 0, 0},
-                        "the scene has no [animation] section: add one, e.g. [animation] frames = 120 and path = "
-                        "\"orbit\" (docs/animation.md)");
-            return outcome;
-        }
-        // A frame's camera.position is the flyover's; the scene's own would be overridden unseen.
-        if (a.path == scene::CameraPath::Flyover && base->scene.look.camera.position) {
-            diags.error(a.locs.at("animation.path"),
-                        "animation.path = \"flyover\" moves the eye along the path, but camera.position places "
-                        "it: remove camera.position (and camera.look_at; animation.look_at fixes where the camera "
-                        "looks)");
-            return outcome;
-        }
         outcome.film = job.output.empty() ? fs::path("out") / (job.scenePath.stem().string() + ".mp4") : job.output;
-        film::VideoRequest video;
-        if (!film::videoFormatOf(outcome.film, video.format)) {
-            diags.error({outcome.film.string(), 0, 0},
-                        "a film is written as .mp4 (H.264), .webm (VP9) or .gif: give "
-                        "-o one of them");
-            return outcome;
-        }
-        if (render::findOnPath("ffmpeg").empty()) {
-            outcome.status = JobStatus::ToolFailed;
-            outcome.toolError = "ffmpeg is not installed, and it encodes the film (Debian: apt-get install ffmpeg)";
-            return outcome;
-        }
         outcome.sidecar = fs::path(outcome.film).replace_extension(".json");
+        if (!filmCanBeMade(job, *base, outcome.film, outcome, diags)) return outcome;
+        film::FilmRecord record = filmRecordOf(job, *base, outcome.film);
         OutputSet outputs;
-        outputs.add(outcome.film, job.output.empty() ? "the film" : "-o");
-        outputs.add(outcome.sidecar, "the sidecar", true);
+        outputs.add(record.film, record.filmGiven ? "-o" : "the film");
+        outputs.add(record.sidecar, "the sidecar", true);
         outputs.addInput(job.scenePath, "the scene file");
         outputs.addInput(base->scene.samples.path, "samples.path");
-        for (auto& settings : film::frameSettings(base->scene)) outcome.frames.push_back({std::move(settings)});
 
         createParentFolder(outcome.film);
-        PrivateFolder workDir(outcome.film.has_parent_path() ? outcome.film.parent_path() : fs::path("."), "film");
+        const fs::path parent = outcome.film.has_parent_path() ? outcome.film.parent_path() : fs::path(".");
+        PrivateFolder building(parent, "film");
+        const auto lock = plan::PlanLock::take(building.path());  // held while the film is made; it moves with the folder
         FilmWork work;
-        work.dir = workDir.path();
-        if (!planFilm(job, *base, outcome, work, diags, progress)) return outcome;
-        outcome.compileSeconds = secondsSince(t0);
+        work.dir = building.path();
+        const bool planned = planFilm(job, *base, record, work, diags, progress);
+        outcome.frames = record.frames;
+        if (!planned) return outcome;
+        // --frames' PNGs are declared once it is known which frames are kept.
+        if (!record.framesDir.empty())
+            for (const auto& f : record.frames)
+                if (f.fileNumber) outputs.add(record.framesDir / film::frameFileName(f.fileNumber), "--frames");
+        outcome.terrains = record.terrains;
+        record.compileSeconds = outcome.compileSeconds = secondsSince(t0);
+        film::writeFilmRecord(record, work.dir);
+        const fs::path asked = parent / (outcome.film.stem().string() + ".film");
+        const auto named = nameWorkingFolder(work.dir, asked, kFilmFolder, diags);
+        if (!named) return outcome;
+        work.dir = *named;
+        for (auto& p : work.plans) p.dir = work.dir / p.dir.filename();
+        makeFilm(record, work, job.execution, &base->scene.limits, outputs, outcome, diags, progress);
+    } catch (const std::runtime_error& e) {
+        reportFilmFailure(e, outcome, diags);
+    }
+    return outcome;
+}
 
-        // One frame first: how long it took tells how long the rest will.
-        const auto r0 = Clock::now();
-        if (!renderPlans(work.plans, 0, 1, job, outcome, diags, progress)) return outcome;
-        outcome.probeSeconds = secondsSince(r0);
-        if (progress && work.plans.size() > 1)
-            progress({ProgressEvent::Stage::Rendering,
-                      fmt::format("frame 1 rendered in {:.1f} s: {} frames more, about {:.0f} s of rendering "
-                                  "(divided among the processes that run at once)",
-                                  outcome.probeSeconds, work.plans.size() - 1,
-                                  outcome.probeSeconds * double(work.plans.size() - 1)),
-                      -1});
-        if (!renderPlans(work.plans, 1, work.plans.size(), job, outcome, diags, progress)) return outcome;
-        outcome.renderSeconds = secondsSince(r0);
-
-        if (progress) progress({ProgressEvent::Stage::Finishing, "finishing " + outcome.film.string(), -1});
-        if (!finishFrames(job, work, outcome.frames, outputs, diags)) return outcome;
-        const auto e0 = Clock::now();
-        video.frames = work.dir / "frames";
-        video.frameCount = static_cast<int>(work.plans.size());
-        video.fps = a.fps;
-        video.output = outputs.staged(outcome.film);
-        if (const std::string error = film::encodeVideo(video); !error.empty()) {
-            outcome.status = JobStatus::ToolFailed;
-            outcome.toolError = error;
+AnimateOutcome resumeFilm(const fs::path& workDir, const execute::Options& execution, Diagnostics& diags,
+                          const ProgressFn& progress) {
+    AnimateOutcome outcome;
+    try {
+        auto record = film::readFilmRecord(workDir, diags);
+        if (!record) return outcome;
+        const auto lock = plan::PlanLock::take(workDir);
+        if (!lock) {
+            diags.error({(workDir / "film.json").string(), 0, 0}, "another relief is making this film now");
             return outcome;
         }
-        outcome.encodeSeconds = secondsSince(e0);
-        writeFileAtomically(outputs.staged(outcome.sidecar), filmSidecar(job, *base, outcome, video));
-        outputs.commit();
-        outcome.status = JobStatus::Ok;
+        outcome.film = record->film;
+        outcome.sidecar = record->sidecar;
+        outcome.frames = record->frames;
+        outcome.terrains = record->terrains;
+        outcome.compileSeconds = record->compileSeconds;
+        FilmWork work;
+        work.dir = fs::absolute(workDir);
+        for (size_t i = 0; i < record->frames.size(); ++i) {
+            if (!record->frames[i].fileNumber) continue;
+            auto plan = plan::readPlan(work.dir / film::framePlanName(record->frames[i].settings.number), diags);
+            if (!plan) return outcome;
+            work.plans.push_back(std::move(*plan));
+            work.planFrame.push_back(i);
+        }
+        OutputSet outputs;
+        declareFilmOutputs(*record, outputs);
+        makeFilm(*record, work, execution, nullptr, outputs, outcome, diags, progress);
     } catch (const std::runtime_error& e) {
-        if (const auto* out = dynamic_cast<const OutputError*>(&e))
-            diags.error(out->at(), out->problem());
-        else
-            diags.error({}, e.what());
-        outcome.status = JobStatus::BadInput;
+        reportFilmFailure(e, outcome, diags);
     }
     return outcome;
 }

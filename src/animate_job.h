@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <vector>
 
+#include "film/film_record.h"
 #include "film/frames.h"
 #include "film/video.h"
 #include "pipeline.h"
@@ -26,12 +27,7 @@ struct AnimateJob {
     execute::Options execution;
 };
 
-struct FilmFrame {
-    film::FrameSettings settings;
-    bool night = false;  ///< the sun below the horizon: left out (animation.skip_night)
-    double sunAltitudeDeg = 0;
-    int fileNumber = 0;  ///< its number among the frames kept (the film's and --frames' names); 0 when left out
-};
+using film::FilmFrame;
 
 struct AnimateOutcome {
     JobStatus status = JobStatus::BadInput;
@@ -40,11 +36,21 @@ struct AnimateOutcome {
     int terrains = 0;  ///< terrains compiled: 1 unless a varied key changes the terrain
     double compileSeconds = 0, probeSeconds = 0, renderSeconds = 0, encodeSeconds = 0;
     std::string toolError;  ///< POV-Ray's or ffmpeg's own words (status ToolFailed)
+    /// The film's working folder (<film>.film: a plan a frame, film.json),
+    /// kept when the film was not made after its frames were planned:
+    /// `relief animate --resume` of it renders what is missing.
+    std::filesystem::path workDir;
 };
 
 /// Loads the scene, compiles and renders every frame, encodes the film and
 /// writes it with its sidecar (and --frames) as one set. Errors go to
 /// `diags` at the key they belong to; progress to `progress` (may be empty).
 AnimateOutcome runAnimateJob(const AnimateJob& job, Diagnostics& diags, const ProgressFn& progress);
+
+/// `relief animate --resume DIR`: a kept working folder's missing tiles
+/// rendered (`execution` says where), then the film made as runAnimateJob
+/// makes it, from the folder alone (the scene is not read again).
+AnimateOutcome resumeFilm(const std::filesystem::path& workDir, const execute::Options& execution,
+                          Diagnostics& diags, const ProgressFn& progress);
 
 }  // namespace relief

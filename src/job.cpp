@@ -109,33 +109,6 @@ bool isRenderPlan(const fs::path& dir) {
     return j.is_object() && j.contains("relief_plan");
 }
 
-// The plan's folder: <still>.plan, or the next free <still>.plan-N when a
-// running relief holds that one (two renders onto one name at once). A plan
-// a run left (relief's, and nobody's now) is replaced; anything else there is
-// in the way.
-std::optional<fs::path> planFolder(const fs::path& asked, Diagnostics& diags) {
-    std::error_code ec;
-    for (int n = 1; n < 100; ++n) {
-        const fs::path dir = n == 1 ? asked : fs::path(asked.string() + "-" + std::to_string(n));
-        if (!fs::exists(fs::symlink_status(dir, ec))) return dir;
-        // Only a folder that reads as a whole plan of this relief's is ever removed: a folder
-        // of the user's that happens to hold a plan.json is in the way, never deleted.
-        if (!fs::is_directory(fs::symlink_status(dir, ec)) || !isRenderPlan(dir)) {
-            diags.error({dir.string(), 0, 0}, "in the way of the render plan: it is not a render plan of this "
-                                              "relief's; remove it or give --plan");
-            return std::nullopt;
-        }
-        if (auto lock = plan::PlanLock::take(dir)) {
-            fs::remove_all(dir, ec);
-            if (!ec) return dir;
-        }
-    }
-    diags.error({asked.string(), 0, 0},
-                "no folder for the render plan is free here or beside it (-2 to -99 "
-                "tried): let the renders using them end, or give --plan");
-    return std::nullopt;
-}
-
 // A render: the compiled scene and its facts in a plan, made in a private
 // folder and named when whole.
 void compileIntoPlan(PlannedJob& p, const LoadedScene& loaded, Diagnostics& diags, const ProgressFn& progress) {
@@ -162,18 +135,10 @@ void compileIntoPlan(PlannedJob& p, const LoadedScene& loaded, Diagnostics& diag
     if (!writePlan(plan, diags)) return;
     // Named when whole (the lock goes with it); another render onto the same
     // name may take the name first, and this one takes the next.
-    std::optional<fs::path> dir;
-    std::error_code ec;
-    for (int attempt = 0; attempt < 10; ++attempt) {
-        if (!(dir = planFolder(asked, diags))) return;
-        fs::rename(building.path(), *dir, ec);
-        if (ec != std::errc::directory_not_empty && ec != std::errc::file_exists) break;
-    }
-    if (ec) {
-        diags.error({dir->string(), 0, 0}, fmt::format("the render plan cannot be written here: {}", ec.message()));
-        return;
-    }
-    plan.dir = fs::absolute(*dir);
+    static const WorkingFolderKind kPlanFolder{"the render plan", "a render plan", "give --plan", isRenderPlan};
+    const std::optional<fs::path> dir = nameWorkingFolder(building.path(), asked, kPlanFolder, diags);
+    if (!dir) return;
+    plan.dir = *dir;
     p.plan = std::move(plan);
     p.outcome.plan = p.plan->dir;
     p.outcome.status = JobStatus::Ok;
@@ -209,6 +174,48 @@ bool writeStill(const plan::RenderPlan& plan, OutputSet& outputs, RenderFacts& f
 }
 
 }  // namespace
+
+std::optional<fs::path> nameWorkingFolder(const fs::path& building, const fs::path& asked,
+                                         const WorkingFolderKind& kind, Diagnostics& diags) {
+    std::error_code ec;
+    for (int attempt = 0; attempt < 10; ++attempt) {
+        std::optional<fs::path> dir;
+        for (int n = 1; n < 100 && !dir; ++n) {
+            const fs::path at = n == 1 ? asked : fs::path(asked.string() + "-" + std::to_string(n));
+            if (!fs::exists(fs::symlink_status(at, ec))) {
+                dir = at;
+                break;
+            }
+            // Only a folder that reads as a whole one of this relief's is ever removed: a folder
+            // of the user's that happens to hold a plan.json is in the way, never deleted.
+            if (!fs::is_directory(fs::symlink_status(at, ec)) || !kind.ours(at)) {
+                diags.error({at.string(), 0, 0}, fmt::format("in the way of {}: it is not {} of this relief's; "
+                                                             "remove it or {}",
+                                                             kind.what, kind.aKind, kind.fix));
+                return std::nullopt;
+            }
+            if (auto lock = plan::PlanLock::take(at)) {
+                fs::remove_all(at, ec);
+                if (!ec) dir = at;
+            }
+        }
+        if (!dir) {
+            diags.error({asked.string(), 0, 0}, fmt::format("no folder for {} is free here or beside it (-2 to -99 "
+                                                            "tried): let the renders using them end, or {}",
+                                                            kind.what, kind.fix));
+            return std::nullopt;
+        }
+        fs::rename(building, *dir, ec);
+        if (!ec) return fs::absolute(*dir);
+        if (ec != std::errc::directory_not_empty && ec != std::errc::file_exists) {
+            diags.error({dir->string(), 0, 0}, fmt::format("{} cannot be written here: {}", kind.what, ec.message()));
+            return std::nullopt;
+        }
+    }
+    diags.error({asked.string(), 0, 0}, fmt::format("{} cannot be named here: other renders keep taking the name; "
+                                                    "{}", kind.what, kind.fix));
+    return std::nullopt;
+}
 
 void describeRender(plan::RenderPlan& plan, const CompileResult& compiled, const OutputPaths& paths, int tiles,
                     bool sandbox, const fs::path& templatesDir) {

@@ -350,6 +350,7 @@ struct AnimateOptions {
     CommonOptions common;
     ExecutionOptions execution;
     std::string frames;
+    std::string resume;  ///< --resume DIR: a film's kept working folder
 };
 
 // `relief animate`: the film of a scene's [animation].
@@ -367,21 +368,30 @@ int runAnimate(const AnimateOptions& o) {
     job.sandbox = !o.common.noSandbox;
     job.tiles = o.execution.tiles;
     job.execution = executionOf(o.execution);
-    const relief::AnimateOutcome outcome = relief::runAnimateJob(job, diags, showing(progress));
+    const relief::AnimateOutcome outcome =
+        o.resume.empty() ? relief::runAnimateJob(job, diags, showing(progress))
+                         : relief::resumeFilm(o.resume, job.execution, diags, showing(progress));
     progress.done();
+    const std::string kept =
+        outcome.workDir.empty()
+            ? std::string()
+            : fmt::format("relief: the film's frames are kept: relief animate --resume {} renders what is missing\n",
+                          terminalText(shellQuoted(outcome.workDir.string()), 500));
     switch (outcome.status) {
         case relief::JobStatus::Ok:
             break;
         case relief::JobStatus::Cancelled:
             printDiagnostics(diags, false);
-            std::cerr << "relief: interrupted; nothing written\n";
+            std::cerr << "relief: interrupted; nothing written\n" << kept;
             return code(Exit::Interrupted);
         case relief::JobStatus::ToolFailed:
             printDiagnostics(diags, false);
-            std::cerr << "relief: error: " << terminalText(outcome.toolError, 8000, true) << " (nothing written)\n";
+            std::cerr << "relief: error: " << terminalText(outcome.toolError, 8000, true) << " (nothing written)\n"
+                      << kept;
             return code(Exit::ToolFailed);
         default:
             printDiagnostics(diags, false);
+            std::cerr << kept;
             return code(Exit::BadInput);
     }
     printDiagnostics(diags, true);
@@ -439,7 +449,10 @@ void addSceneCommands(CLI::App& app, std::vector<Command>& out) {
         "animate",
         "render the film of the scene's [animation] (an orbit, a flyover, the sun through a day, keys varied): "
         "every frame through the render plan's executors, encoded by ffmpeg");
-    animate->add_option("scene", a->common.scene, "scene file (TOML) with an [animation] section")->required();
+    animate->add_option("scene", a->common.scene, "scene file (TOML) with an [animation] section");
+    animate->add_option("--resume", a->resume,
+                        "finish a film a run did not: render the missing frames of its kept working folder "
+                        "(<film>.film), encode it (no scene file)");
     animate->add_option("-o,--output", a->common.output,
                         "the film: .mp4 (H.264), .webm (VP9) or .gif (default: out/<scene name>.mp4)");
     animate->add_option("--frames", a->frames, "also keep every frame's PNG in this folder (frame-00001.png, ...)");
@@ -451,6 +464,13 @@ void addSceneCommands(CLI::App& app, std::vector<Command>& out) {
     addExecutionOptions(animate, a->execution, true,
                         "tiles at once, of every frame (0: as many as cores here; on Slurm, as many as the cluster "
                         "runs)");
+    animate->callback([a] {
+        if (a->resume.empty() && a->common.scene.empty()) throw CLI::RequiredError("scene");
+        if (!a->resume.empty() && !a->common.scene.empty())
+            throw CLI::ValidationError("--resume", "give a film's folder to resume or a scene, not both");
+        if (!a->resume.empty() && (!a->common.output.empty() || !a->frames.empty() || !a->common.sets.empty()))
+            throw CLI::ValidationError("--resume", "the film's folder says what it makes: no -o, --frames or --set");
+    });
     out.push_back({animate, [a] { return runAnimate(*a); }});
 
     auto t = std::make_shared<TileOptions>();

@@ -4,6 +4,7 @@
 #include <numbers>
 #include <sstream>
 
+#include <fmt/format.h>
 #include <toml++/toml.h>
 
 #include "core/number_format.h"
@@ -78,13 +79,15 @@ std::vector<FrameSettings> frameSettings(const scene::SceneSpec& scene) {
         FrameSettings f;
         f.number = k + 1;
         if (a.path == scene::CameraPath::Orbit) f.overrides.emplace_back("camera.azimuth_deg", orbitAzimuth(scene, k));
+        std::string subtitle = scene.overlay.subtitle;
+        auto addToSubtitle = [&](const std::string& text) { subtitle += (subtitle.empty() ? "" : "  ") + text; };
         if (a.sun) {
             f.sunTime = sunTimeOf(*a.sun, k, a.frames);
             f.overrides.emplace_back("lighting.datetime", tomlString(formatOffsetDateTime(*f.sunTime)));
-            const std::string& own = scene.overlay.subtitle;
-            const std::string clock = clockText(*f.sunTime);
-            f.overrides.emplace_back("overlay.subtitle", tomlString(own.empty() ? clock : own + "  " + clock));
+            addToSubtitle(clockText(*f.sunTime));
         }
+        if (a.counter) addToSubtitle(fmt::format("frame {} of {}", k + 1, a.frames));
+        if (a.sun || a.counter) f.overrides.emplace_back("overlay.subtitle", tomlString(subtitle));
         for (const auto& v : a.vary) f.overrides.emplace_back(v.key, variedValue(v, k, a.frames));
         frames.push_back(std::move(f));
     }

@@ -236,6 +236,7 @@ ordered_json tileRecordJson(const TileRecord& r) {
             {"povray_version", r.povrayVersion},
             {"host", r.host.empty() ? hostName() : r.host},
             {"seconds", {{"povray_parse", r.parseSeconds}, {"povray_trace", r.traceSeconds}, {"povray_wall", r.wallSeconds}}},
+            {"povray_peak_memory_mb", r.peakMemoryMB},
             {"povray_command", r.povrayCommand}};
 }
 
@@ -254,6 +255,7 @@ std::optional<TileRecord> readTileRecord(const RenderPlan& plan, int index, std:
         r.parseSeconds = j.at("seconds").at("povray_parse").get<double>();
         r.traceSeconds = j.at("seconds").at("povray_trace").get<double>();
         r.wallSeconds = j.at("seconds").at("povray_wall").get<double>();
+        r.peakMemoryMB = j.at("povray_peak_memory_mb").get<double>();
         r.povrayCommand = j.at("povray_command").get<std::vector<std::string>>();
     } catch (const nlohmann::json::exception&) {
         problem = "its record is damaged";

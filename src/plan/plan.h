@@ -81,6 +81,7 @@ struct TileRecord {
     TileRows rows;
     std::string planHash, reliefVersion, povrayVersion, host;
     double parseSeconds = 0, traceSeconds = 0, wallSeconds = 0;
+    double peakMemoryMB = 0;  ///< POV-Ray's largest resident size while it rendered the tile
     std::vector<std::string> povrayCommand;
 };
 std::filesystem::path tileImage(const RenderPlan& plan, int index);

@@ -7,11 +7,13 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
 #include <cstdio>
 #include <deque>
+#include <fstream>
 #include <optional>
 #include <regex>
 
@@ -253,7 +255,26 @@ struct Watched {
     std::deque<std::string> lastLines;
     int status = 0;
     bool timedOut = false, cancelled = false;
+    double peakMemoryBytes = 0;  ///< the largest resident size of POV-Ray (or the sandbox holding it)
 };
+
+// The largest resident size any process of the tree under `pid` has had so
+// far (VmHWM), in bytes. Read from /proc, because the usage wait4 gives stops
+// at bubblewrap's own process when the sandbox has its own process ids.
+double treePeakBytes(pid_t pid) {
+    double most = 0;
+    std::vector<long> todo{pid};
+    for (size_t seen = 0; !todo.empty() && seen < 64; ++seen) {
+        const long p = todo.back();
+        todo.pop_back();
+        std::ifstream status(fmt::format("/proc/{}/status", p));
+        for (std::string line; std::getline(status, line);)
+            if (line.rfind("VmHWM:", 0) == 0) most = std::max(most, 1024.0 * std::atof(line.c_str() + 6));
+        std::ifstream children(fmt::format("/proc/{}/task/{}/children", p, p));
+        for (long child; children >> child;) todo.push_back(child);
+    }
+    return most;
+}
 
 // Reads POV-Ray's output until it ends, telling `progress` what it does;
 // stops it (SIGKILL: the sandbox goes with it, --die-with-parent) past the
@@ -266,6 +287,7 @@ Watched watch(pid_t pid, int fd, const RenderRequest& req, std::chrono::steady_c
     static const std::regex parsing(R"(^Parsing \d+K tokens)");
     const auto deadline = t0 + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                                    std::chrono::duration<double>(req.timeoutSeconds));
+    auto lastSample = t0;
     while (true) {
         int waitMs = 200;  // how often a cancellation is looked for
         if (req.timeoutSeconds > 0) {
@@ -282,6 +304,10 @@ Watched watch(pid_t pid, int fd, const RenderRequest& req, std::chrono::steady_c
             ::kill(pid, SIGKILL);
             w.cancelled = true;
             break;
+        }
+        if (const auto now = std::chrono::steady_clock::now(); now - lastSample > std::chrono::milliseconds(50)) {
+            w.peakMemoryBytes = std::max(w.peakMemoryBytes, treePeakBytes(pid));
+            lastSample = now;
         }
         pollfd pfd{fd, POLLIN, 0};
         const int ready = ::poll(&pfd, 1, waitMs);
@@ -439,6 +465,7 @@ RenderResult renderPov(const RenderRequest& req, const ProgressFn& progress) {
     }
     result.parseSeconds = parseSeconds(w.log, "Parse Time");
     result.traceSeconds = parseSeconds(w.log, "Trace Time");
+    result.peakMemoryBytes = w.peakMemoryBytes;
     std::error_code ec;
     if (!(WIFEXITED(w.status) && WEXITSTATUS(w.status) == 0) || !std::filesystem::exists(home.output(), ec)) {
         result.error = failureText(w, req, home);

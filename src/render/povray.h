@@ -59,6 +59,7 @@ struct RenderResult {
     double parseSeconds = 0;    ///< from POV-Ray's statistics
     double traceSeconds = 0;
     double wallSeconds = 0;
+    double peakMemoryBytes = 0;  ///< POV-Ray's largest resident size (the system's accounting)
     std::vector<std::string> command;  ///< the povray command line, for the record
 };
 

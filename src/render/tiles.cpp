@@ -1,5 +1,6 @@
 #include "render/tiles.h"
 
+#include <cmath>
 #include <cstring>
 
 #include <fmt/format.h>
@@ -43,6 +44,7 @@ RenderResult renderTile(const plan::RenderPlan& plan, int index, const TileOptio
     record.parseSeconds = result.parseSeconds;
     record.traceSeconds = result.traceSeconds;
     record.wallSeconds = result.wallSeconds;
+    record.peakMemoryMB = std::round(result.peakMemoryBytes / 1e5) / 10;  // to 0.1 MB
     record.povrayCommand = result.command;
     try {
         writeFileAtomically(plan::tileRecordPath(plan, index), plan::tileRecordJson(record).dump(1) + "\n");

@@ -219,6 +219,7 @@ void readAnimation(Section& s, const SceneFile& f, SceneSpec& scene) {
     a.sun = sunWindowOf(s);
     if (auto v = s.boolean("skip_night")) a.skipNight = *v;
     if (a.skipNight && !a.sun) s.warning("skip_night", "animation.skip_night is not used: there is no animation.sun");
+    if (auto v = s.boolean("counter")) a.counter = *v;
     a.vary = variedKeysOf(s, scene);
     checkOrbit(s, scene, a);
     readFlyover(s, f, a);

@@ -229,6 +229,7 @@ void readLimits(Section& s, const SceneFile&, SceneSpec& scene) {
     if (auto v = s.number("max_sdl_mb", 0.001, 1e6, "MB")) limits.maxSdlMB = *v;
     if (auto v = s.number("max_parse_s", 0.001, 1e6, "s")) limits.maxParseS = *v;
     if (auto v = s.number("max_memory_mb", 1, 1e9, "MB")) limits.maxMemoryMB = *v;
+    if (auto v = s.number("max_film_s", 0, 1e9, "s")) limits.maxFilmS = *v;
 }
 
 void readGeometry(Section& s, const SceneFile&, SceneSpec& scene) {

@@ -170,6 +170,7 @@ struct LimitsSpec {
     double maxSdlMB = 2048;
     double maxParseS = 120;
     double maxMemoryMB = 0;  ///< 0 = three quarters of this machine's memory
+    double maxFilmS = 0;     ///< a film's estimated rendering, wall seconds; 0 = no limit
     KeyLocations locs;
 };
 
@@ -359,6 +360,7 @@ struct AnimationSpec {
     };
     std::optional<SunWindow> sun;
     bool skipNight = false;  ///< frames with the sun below the horizon left out, not an error
+    bool counter = false;    ///< "frame k of n" added to the overlay's subtitle
     /// vary = { "section.key" = [from, to] }: a numeric key eased between two values.
     struct Varied {
         std::string key;

@@ -26,6 +26,27 @@ title = "Maungawhau"
 frames = 4
 path = "orbit"
 TOML
+# probe FILM EXPECTED: the stream's codec, size, pixel format, frame rate and frames, as ffprobe counts them.
+probe() {
+  local got
+  got=$(ffprobe -v error -select_streams v:0 -count_frames \
+          -show_entries stream=codec_name,pix_fmt,width,height,r_frame_rate,nb_read_frames -of csv=p=0 "$1")
+  [ "$got" = "$2" ] || fail "ffprobe $1: '$got', expected '$2'"
+}
+# frame_is_still SCENE SIDECAR K FRAME_PNG: relief render of the scene with the keys the film's sidecar gives
+# frame K gives the frame's bytes.
+frame_is_still() {
+  local keys
+  mapfile -t keys < <(python3 - "$2" "$3" <<'PY'
+import json, sys
+f = json.load(open(sys.argv[1]))['frames'][int(sys.argv[2]) - 1]['set']
+print('\n'.join(f"--set\n{k}={v}" for k, v in f.items()))
+PY
+)
+  "$relief" render -q "$1" "${keys[@]}" -o "still/$(basename "$2" .json)-$3.png" 2> /dev/null ||
+    { fail "frame $3 of $2 as a still"; return; }
+  cmp -s "still/$(basename "$2" .json)-$3.png" "$4" || fail "frame $3 of $2 is not relief render with its keys"
+}
 # Nothing but the outputs asked for: no working folder left beside them.
 only() { local want=$1 dir=$2; local got; got=$(cd "$dir" && ls -A | sort | tr '\n' ' '); [ "$got" = "$want" ] || fail "$dir holds '$got', expected '$want'"; }
 
@@ -37,9 +58,7 @@ only "frames orbit.json orbit.mp4 " a
 cmp -s still/az290.png a/frames/frame-00002.png || fail "frame 2 is not relief render at camera.azimuth_deg=290"
 cmp -s still/az290.png a/frames/frame-00001.png && fail "frames 1 and 2 are the same picture"
 grep -q '"camera.azimuth_deg": "290"' a/orbit.json || fail "the sidecar does not give frame 2's azimuth"
-probe=$(ffprobe -v error -select_streams v:0 -count_frames \
-          -show_entries stream=codec_name,pix_fmt,width,height,nb_read_frames -of csv=p=0 a/orbit.mp4)
-[ "$probe" = "h264,480,320,yuv420p,4" ] || fail "ffprobe: '$probe', expected h264,480,320,yuv420p,4"
+probe a/orbit.mp4 h264,480,320,yuv420p,30/1,4
 python3 - a/orbit.mp4 <<'PY' || fail "the MP4's index (moov) is not before its data (mdat): no +faststart"
 import sys
 b = open(sys.argv[1], 'rb').read()
@@ -76,6 +95,36 @@ grep -q '"left_out": "night"' sun/sun.json || fail "the sidecar does not say fra
   --set 'overlay.subtitle="2026-06-21 13:30:00 +12:00"' --set vertical.exaggeration=2 -o still/noon.png ||
   fail "the still at 13:30"
 cmp -s still/noon.png sun/frames/frame-00002.png || fail "frame 2 is not relief render at 13:30 with exaggeration 2"
+probe sun/sun.mp4 h264,480,320,yuv420p,30/1,2
+
+# 2b. Interrupted once frame 2 is rendered, the working folder is kept (nothing else), and
+# --resume renders the rest: the same MP4 bytes as a film made in one run.
+sed -e 's/^frames = 4/frames = 6/' -e 's/^width = 480/width = 240/' -e 's/^height = 320/height = 160/' orbit.toml > six.toml
+"$relief" animate -q six.toml -o whole/six.mp4 || fail "the six-frame orbit"
+"$relief" animate -q six.toml -o cut/six.mp4 --jobs 1 2> cut.txt & pid=$!
+for _ in $(seq 1 300); do [ -e cut/six.film/frame-00002.plan/tiles/tile-0000.png ] && break; sleep 0.1; done
+kill -INT $pid; wait $pid; code=$?
+if [ $code = 0 ]; then
+  echo "NOTE: the film ended before it could be interrupted; --resume is not tested this run"
+else
+  [ $code = 130 ] || fail "interrupted: exit $code, expected 130"
+  grep -q "relief animate --resume .*cut/six.film.* renders what is missing" cut.txt || { fail "no word of --resume:"; cat cut.txt; }
+  only "six.film " cut
+  "$relief" animate --resume cut/six.film 2> resume.txt || { fail "--resume"; cat resume.txt; }
+  grep -q "of 6 frames were rendered before" resume.txt || { fail "--resume rendered every frame again:"; cat resume.txt; }
+  only "six.json six.mp4 " cut
+  cmp -s whole/six.mp4 cut/six.mp4 || fail "the resumed film is not the one-run film's bytes"
+fi
+mkdir -p notafilm
+"$relief" animate --resume notafilm 2> notafilm.txt; code=$?
+[ $code = 2 ] || fail "--resume of a folder that is no film's: exit $code"
+grep -qF "notafilm/film.json: error: not a film's working folder (no film.json)" notafilm.txt || { fail "--resume notafilm:"; cat notafilm.txt; }
+
+# 2c. A frame counter in the subtitle: frame 2 is relief render with its keys.
+sed -e 's/^frames = 4/frames = 2/' -e 's/^path = "orbit"/path = "orbit"\ncounter = true/' orbit.toml > counter.toml
+"$relief" animate -q counter.toml -o counter/c.mp4 --frames counter/frames || fail "the film with a counter"
+grep -q '"overlay.subtitle": "\\"frame 2 of 2\\""' counter/c.json || fail "the counter is not frame 2's subtitle"
+frame_is_still counter.toml counter/c.json 2 counter/frames/frame-00002.png
 
 # 4. Bad input: exit 2, one line naming the file or key, nothing written.
 bad() {  # bad NAME EXPECTED_LINE relief-arguments...
@@ -89,6 +138,12 @@ sed '/^\[animation\]/,$d' orbit.toml > still.toml
 bad no-section "still.toml: error: the scene has no [animation] section" still.toml -o bad-no-section/x.mp4
 bad extension "bad-extension/x.avi: error: a film is written as .mp4 (H.264), .webm (VP9) or .gif" orbit.toml -o bad-extension/x.avi
 bad frames "error: animation.frames = 0 is outside [1, 10000] frames" orbit.toml --set animation.frames=0 -o bad-frames/x.mp4
+bad over-time "error: the film would take about" orbit.toml --set limits.max_film_s=0.001 -o bad-over-time/x.mp4
+[ -e bad-over-time ] && [ -n "$(ls -A bad-over-time)" ] && fail "a film over limits.max_film_s left $(ls -A bad-over-time)"
+sed -e 's/^frames = 4/frames = 2/' -e '/^path = "orbit"/d' orbit.toml > night.toml
+echo 'sun = { from = "2026-06-21T20:00:00+12:00", to = "2026-06-21T23:00:00+12:00" }' >> night.toml
+echo 'skip_night = true' >> night.toml
+bad all-night "night.toml:14:7: error: animation.sun: the sun is below the horizon over the terrain's centre at every frame: choose a window in daylight" night.toml -o bad-all-night/x.mp4
 touch file
 bad unwritable "file: error: cannot be made as the folder of x.mp4" orbit.toml -o file/x.mp4
 
@@ -109,15 +164,8 @@ TOML
 cp fly.toml track.toml
 echo 'waypoints = [[174.7622, -36.8733], [174.7644, -36.8767], [174.7667, -36.8785]]' >> fly.toml
 "$relief" animate -q fly.toml -o f/fly.mp4 --frames f/frames 2> f.txt || { fail "the flyover"; cat f.txt; }
-sets=$(python3 - f/fly.json <<'PY'
-import json, sys
-f = json.load(open(sys.argv[1]))['frames'][1]['set']
-print('\n'.join(f"--set\n{k}={v}" for k, v in f.items()))
-PY
-)
-mapfile -t keys <<< "$sets"
-"$relief" render -q fly.toml "${keys[@]}" -o still/fly2.png 2> /dev/null || fail "the flyover's frame 2 as a still"
-cmp -s still/fly2.png f/frames/frame-00002.png || fail "flyover frame 2 is not relief render with its camera keys"
+frame_is_still fly.toml f/fly.json 2 f/frames/frame-00002.png
+probe f/fly.mp4 h264,240,160,yuv420p,30/1,3
 python3 - f/fly.json <<'PY' || fail "the flyover's eye: not along the waypoints at the ends, or not looking ahead"
 import json, sys
 frames = json.load(open(sys.argv[1]))['frames']
@@ -132,7 +180,9 @@ echo 'track = "walk.gpx"' >> track.toml
 cp "$src/tests/data/vectors/maungawhau-walk.gpx" walk.gpx
 ogr2ogr -f GPKG -t_srs EPSG:2193 walk.gpkg walk.gpx tracks 2> /dev/null || fail "ogr2ogr"
 sed 's/walk.gpx/walk.gpkg/' track.toml > track-nztm.toml
-"$relief" animate -q track.toml -o t/walk.mp4 2> t.txt || { fail "the flyover along a GPX track"; cat t.txt; }
+"$relief" animate -q track.toml -o t/walk.mp4 --frames t/frames 2> t.txt || { fail "the flyover along a GPX track"; cat t.txt; }
+frame_is_still track.toml t/walk.json 3 t/frames/frame-00003.png
+probe t/walk.mp4 h264,240,160,yuv420p,30/1,3
 "$relief" animate -q track-nztm.toml -o t/walk-nztm.mp4 2> t.txt || { fail "the track from a GeoPackage"; cat t.txt; }
 python3 - t/walk.json t/walk-nztm.json <<'PY' || fail "the track in NZTM does not land where the GPX does"
 import json, sys

@@ -85,5 +85,17 @@ TEST(FrameSettings, OnlyViewKeysShareATerrain) {
         EXPECT_FALSE(changesOnlyTheView(key)) << key;
 }
 
+TEST(FrameSettings, ACounterFollowsTheSubtitleAndTheClock) {
+    const auto frames = frameSettings(sceneWith(
+        "frames = 3\ncounter = true\nsun = { from = \"2026-06-21T09:00:00+12:00\", to = \"2026-06-21T11:00:00+12:00\" }\n",
+        "[overlay]\nsubtitle = \"Maungawhau\"\n"));
+    ASSERT_EQ(frames.size(), 3u);
+    EXPECT_EQ(valueOf(frames, 1, "overlay.subtitle"), "\"Maungawhau  2026-06-21 10:00:00 +12:00  frame 2 of 3\"");
+    const auto alone = frameSettings(sceneWith("frames = 2\npath = \"orbit\"\ncounter = true\n"));
+    EXPECT_EQ(valueOf(alone, 0, "overlay.subtitle"), "\"frame 1 of 2\"");
+    const auto none = frameSettings(sceneWith("frames = 2\npath = \"orbit\"\n"));
+    EXPECT_EQ(valueOf(none, 0, "overlay.subtitle"), "");
+}
+
 }  // namespace
 }  // namespace relief::film

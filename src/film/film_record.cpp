@@ -1,0 +1,122 @@
+#include "film/film_record.h"
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "core/atomic_file.h"
+#include "core/input_file.h"
+#include "relief/version.h"
+
+namespace relief::film {
+
+namespace fs = std::filesystem;
+using nlohmann::ordered_json;
+
+namespace {
+
+constexpr int kFilmRecordFormat = 1;
+constexpr size_t kMaxRecordBytes = 64 << 20;  // 10,000 frames of a few keys each fit many times over
+
+ordered_json frameJson(const FilmFrame& f) {
+    ordered_json set = ordered_json::object();
+    for (const auto& [k, v] : f.settings.overrides) set[k] = v;
+    ordered_json j = {{"number", f.settings.number}, {"set", set}};
+    if (f.settings.sunTime) {
+        j["sun_time"] = formatOffsetDateTime(*f.settings.sunTime);
+        j["sun_altitude_deg"] = f.sunAltitudeDeg;
+    }
+    j["file_number"] = f.fileNumber;
+    return j;
+}
+
+FilmFrame frameOf(const ordered_json& j) {
+    FilmFrame f;
+    f.settings.number = j.at("number").get<int>();
+    for (const auto& [k, v] : j.at("set").items()) f.settings.overrides.emplace_back(k, v.get<std::string>());
+    if (j.contains("sun_time")) {
+        std::string why;
+        f.settings.sunTime = parseOffsetDateTime(j.at("sun_time").get<std::string>(), why);
+        if (!f.settings.sunTime) throw std::invalid_argument("sun_time: " + why);
+        f.sunAltitudeDeg = j.at("sun_altitude_deg").get<double>();
+    }
+    f.fileNumber = j.at("file_number").get<int>();
+    f.night = f.fileNumber == 0;
+    return f;
+}
+
+// Frames numbered 1, 2, ... and the kept ones 1, 2, ... in order: what the
+// frames' names and the film's order rest on.
+bool framesInOrder(const std::vector<FilmFrame>& frames) {
+    int kept = 0;
+    for (size_t i = 0; i < frames.size(); ++i) {
+        if (frames[i].settings.number != int(i) + 1) return false;
+        if (frames[i].fileNumber != 0 && frames[i].fileNumber != ++kept) return false;
+    }
+    return kept > 0;
+}
+
+}  // namespace
+
+std::string framePlanName(int number) {
+    return fmt::format("frame-{:05}.plan", number);
+}
+
+void writeFilmRecord(const FilmRecord& r, const fs::path& dir) {
+    ordered_json frames = ordered_json::array();
+    for (const auto& f : r.frames) frames.push_back(frameJson(f));
+    const ordered_json j = {{"relief_film", kFilmRecordFormat},
+                            {"relief_version", kVersion},
+                            {"scene", r.scene.string()},
+                            {"scene_sha1", r.sceneSha1},
+                            {"fps", r.fps},
+                            {"film", r.film.string()},
+                            {"sidecar", r.sidecar.string()},
+                            {"frames_dir", r.framesDir.string()},
+                            {"film_given", r.filmGiven},
+                            {"terrains", r.terrains},
+                            {"compile_seconds", r.compileSeconds},
+                            {"frames", frames}};
+    writeFileAtomically(dir / "film.json", j.dump(1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
+}
+
+std::optional<FilmRecord> readFilmRecord(const fs::path& dir, Diagnostics& diags) {
+    const fs::path file = dir / "film.json";
+    const SourceLoc at{file.string(), 0, 0};
+    std::string problem;
+    const auto text = readInputFile(file, kMaxRecordBytes, problem);
+    if (!text) {
+        diags.error(at, problem == "no such file"
+                            ? "not a film's working folder (no film.json): give the folder a relief animate kept"
+                            : "cannot read the film's record: " + problem);
+        return std::nullopt;
+    }
+    FilmRecord r;
+    try {
+        const ordered_json j = ordered_json::parse(*text);
+        if (j.at("relief_film").get<int>() != kFilmRecordFormat || j.at("relief_version").get<std::string>() != kVersion) {
+            diags.error(at, "the film was begun by another relief: make it again with this one (relief animate SCENE)");
+            return std::nullopt;
+        }
+        r.scene = j.at("scene").get<std::string>();
+        r.sceneSha1 = j.at("scene_sha1").get<std::string>();
+        r.fps = j.at("fps").get<double>();
+        r.film = j.at("film").get<std::string>();
+        r.sidecar = j.at("sidecar").get<std::string>();
+        r.framesDir = j.at("frames_dir").get<std::string>();
+        r.filmGiven = j.at("film_given").get<bool>();
+        r.terrains = j.at("terrains").get<int>();
+        r.compileSeconds = j.at("compile_seconds").get<double>();
+        for (const auto& f : j.at("frames")) r.frames.push_back(frameOf(f));
+    } catch (const std::exception&) {  // nlohmann's, or a sun time that is not one
+        diags.error(at, "the film's record is damaged (not the JSON relief writes): make the film again");
+        return std::nullopt;
+    }
+    if (!framesInOrder(r.frames) || !(r.fps > 0) || !r.film.is_absolute() || !r.sidecar.is_absolute() ||
+        (!r.framesDir.empty() && !r.framesDir.is_absolute())) {
+        diags.error(at, "the film's record is damaged (its frames or names are not a film's): make the film again");
+        return std::nullopt;
+    }
+    return r;
+}
+
+}  // namespace relief::film

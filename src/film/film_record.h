@@ -1,0 +1,48 @@
+#pragma once
+// A film's working folder (<film>.film, beside the film) holds a render plan
+// a frame and this record, film.json: what the film is made of, so that a run
+// that did not finish (interrupted, a POV-Ray or Slurm failure) can be
+// finished by another (`relief animate --resume DIR`) without the scene being
+// read again. Input: the frames and the film's names. Output: film.json, and
+// the record read back and checked (it is untrusted, like any input).
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/diagnostics.h"
+#include "film/frames.h"
+
+namespace relief::film {
+
+struct FilmFrame {
+    FrameSettings settings;
+    bool night = false;  ///< the sun below the horizon: left out (animation.skip_night)
+    double sunAltitudeDeg = 0;
+    int fileNumber = 0;  ///< its number among the frames kept (the film's and --frames' names); 0 when left out
+};
+
+/// The folder of frame `number`'s render plan in the film's working folder.
+std::string framePlanName(int number);
+
+struct FilmRecord {
+    std::filesystem::path scene;       ///< the scene file, as given
+    std::string sceneSha1;
+    double fps = 30;
+    std::filesystem::path film;        ///< absolute, as every path below
+    std::filesystem::path sidecar;
+    std::filesystem::path framesDir;   ///< --frames; empty: none
+    bool filmGiven = false;            ///< -o named the film (its role in messages)
+    int terrains = 0;                  ///< terrains compiled
+    double compileSeconds = 0;
+    std::vector<FilmFrame> frames;     ///< every frame, kept or left out, in film order
+};
+
+/// Writes `record` as `dir`/film.json (atomically).
+void writeFilmRecord(const FilmRecord& record, const std::filesystem::path& dir);
+
+/// The record in `dir`, or nullopt with an error naming film.json and what is
+/// wrong (missing, not a film's, damaged, frames out of order).
+std::optional<FilmRecord> readFilmRecord(const std::filesystem::path& dir, Diagnostics& diags);
+
+}  // namespace relief::film

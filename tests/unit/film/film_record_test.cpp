@@ -1,0 +1,101 @@
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <string>
+
+#include "core/diagnostics.h"
+#include "film/film_record.h"
+#include "unit/test_dirs.h"
+
+namespace relief::film {
+namespace {
+
+FilmRecord aRecord(const std::filesystem::path& dir) {
+    FilmRecord r;
+    r.scene = "films/orbit.toml";
+    r.sceneSha1 = "A34811D94C15800AA4F48C37E064E9FBCC2E7D74";
+    r.fps = 24;
+    r.film = dir / "orbit.mp4";
+    r.sidecar = dir / "orbit.json";
+    r.framesDir = dir / "frames";
+    r.filmGiven = true;
+    r.terrains = 2;
+    r.compileSeconds = 1.25;
+    for (int k = 1; k <= 3; ++k) {
+        FilmFrame f;
+        f.settings.number = k;
+        f.settings.overrides = {{"camera.azimuth_deg", std::to_string(90 * k)}, {"overlay.subtitle", "\"a \\\"b\\\"\""}};
+        f.settings.sunTime = OffsetDateTime{1782000000 + 3600 * k, 720};
+        f.sunAltitudeDeg = k == 2 ? -3.5 : 20.0 + k;
+        f.night = k == 2;
+        f.fileNumber = k == 1 ? 1 : k == 3 ? 2 : 0;
+        r.frames.push_back(f);
+    }
+    return r;
+}
+
+void writeText(const std::filesystem::path& file, const std::string& text) {
+    std::ofstream(file) << text;
+}
+
+TEST(FilmRecord, ReadsBackWhatWasWritten) {
+    const auto dir = testing::freshTestDir("film-record");
+    const FilmRecord written = aRecord(dir);
+    writeFilmRecord(written, dir);
+    Diagnostics diags;
+    const auto read = readFilmRecord(dir, diags);
+    ASSERT_TRUE(read) << (diags.all().empty() ? "" : diags.all().front().message);
+    EXPECT_EQ(read->scene, written.scene);
+    EXPECT_EQ(read->sceneSha1, written.sceneSha1);
+    EXPECT_EQ(read->fps, 24);
+    EXPECT_EQ(read->film, written.film);
+    EXPECT_EQ(read->framesDir, written.framesDir);
+    EXPECT_TRUE(read->filmGiven);
+    EXPECT_EQ(read->terrains, 2);
+    ASSERT_EQ(read->frames.size(), 3u);
+    for (size_t i = 0; i < 3; ++i) {
+        const FilmFrame &a = written.frames[i], &b = read->frames[i];
+        EXPECT_EQ(b.settings.number, a.settings.number);
+        EXPECT_EQ(b.settings.overrides, a.settings.overrides);
+        ASSERT_TRUE(b.settings.sunTime);
+        EXPECT_EQ(b.settings.sunTime->utcSeconds, a.settings.sunTime->utcSeconds);
+        EXPECT_EQ(b.settings.sunTime->offsetMinutes, 720);
+        EXPECT_EQ(b.sunAltitudeDeg, a.sunAltitudeDeg);
+        EXPECT_EQ(b.fileNumber, a.fileNumber);
+        EXPECT_EQ(b.night, a.night);
+    }
+    EXPECT_EQ(framePlanName(7), "frame-00007.plan");
+}
+
+// A record is an input like any other: a damaged one, one of another film's
+// order, or one naming its outputs by relative paths is refused, naming it.
+TEST(FilmRecord, RefusesWhatIsNotAWholeRecord) {
+    const auto dir = testing::freshTestDir("film-record-bad");
+    Diagnostics missing;
+    EXPECT_FALSE(readFilmRecord(dir, missing));
+    ASSERT_EQ(missing.errorCount(), 1);
+    EXPECT_NE(missing.all().front().message.find("not a film's working folder"), std::string::npos);
+    EXPECT_EQ(missing.all().front().loc.file, (dir / "film.json").string());
+
+    writeText(dir / "film.json", "{\"relief_film\": 1, \"frames\": [");
+    Diagnostics damaged;
+    EXPECT_FALSE(readFilmRecord(dir, damaged));
+    EXPECT_NE(damaged.all().front().message.find("damaged"), std::string::npos);
+
+    FilmRecord outOfOrder = aRecord(dir);
+    std::swap(outOfOrder.frames[0].fileNumber, outOfOrder.frames[2].fileNumber);
+    writeFilmRecord(outOfOrder, dir);
+    Diagnostics order;
+    EXPECT_FALSE(readFilmRecord(dir, order));
+    EXPECT_NE(order.all().front().message.find("its frames or names are not a film's"), std::string::npos);
+
+    FilmRecord relative = aRecord(dir);
+    relative.film = "orbit.mp4";
+    writeFilmRecord(relative, dir);
+    Diagnostics names;
+    EXPECT_FALSE(readFilmRecord(dir, names));
+    EXPECT_EQ(names.errorCount(), 1);
+}
+
+}  // namespace
+}  // namespace relief::film
