@@ -27,6 +27,7 @@
 #include "emit/write_scene.h"
 #include "geo/normalize.h"
 #include "geo/samples.h"
+#include "geo/sky_view.h"
 #include "reference/naive_four_point.h"
 #include "subdiv/refine.h"
 #include "subdiv/row_kernels.h"
@@ -594,5 +595,37 @@ void BM_ReadSamplesFileBytes(benchmark::State& state) {
     state.SetBytesProcessed(static_cast<int64_t>(state.iterations() * bytes));
 }
 BENCHMARK(BM_ReadSamplesFileBytes)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// render.quality = "high": the sky-view factor of a 2001 x 2001 refined grid
+// (16 directions, the default radius), against the stage before it, refining a
+// 1001 x 1001 net once to that grid (the default scene's four-point scheme).
+const geo::GeoGrid& skyGrid() {
+    static const geo::GeoGrid g = [] {
+        geo::GeoGrid grid;
+        grid.grid = subdiv::refineGrid(subdiv::dlgFourPoint(1.0 / 16), terrainNet(1001), 1);
+        grid.dx = grid.dy = 15;
+        return grid;
+    }();
+    return g;
+}
+
+void BM_SkyView(benchmark::State& state) {
+    const geo::GeoGrid& grid = skyGrid();
+    for (auto _ : state) {
+        auto svf = geo::skyViewFactor(grid, {});
+        benchmark::DoNotOptimize(svf.data());
+    }
+    state.counters["nodes"] = double(grid.grid.points.size());
+}
+BENCHMARK(BM_SkyView)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
+
+void BM_SkyViewBaselineRefine(benchmark::State& state) {
+    const Grid net = terrainNet(1001);
+    for (auto _ : state) {
+        Grid out = subdiv::refineGrid(subdiv::dlgFourPoint(1.0 / 16), net, 1);
+        benchmark::DoNotOptimize(out.points.data());
+    }
+}
+BENCHMARK(BM_SkyViewBaselineRefine)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
 
 }  // namespace

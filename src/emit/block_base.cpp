@@ -114,6 +114,16 @@ BlockGeometry buildBlockBase(const geo::GeoGrid& refined) {
     return block;
 }
 
+LinearRgb blockWallColour(const ScenePlacement& where) {
+    // The lowest colour of the ramp (in slope colouring, of the flat), half greyed: a ramp's lowest
+    // colour may be near black (the deep sea of a topobathy), and the side of a block is not the
+    // lowest ground's colour but a plinth under it. Then a shade darker than the surface.
+    const LinearRgb grey{kBlockWallGrey, kBlockWallGrey, kBlockWallGrey};
+    const LinearRgb lowest = where.paletteColors.empty() ? grey : where.paletteColors.front();
+    const LinearRgb c = mix(lowest, grey, 0.5);
+    return {kBlockWallShade * c.r, kBlockWallShade * c.g, kBlockWallShade * c.b};
+}
+
 void writeBlockBase(std::FILE* out, const geo::GeoGrid& refined, const ScenePlacement& where) {
     const BlockGeometry block = buildBlockBase(refined);
     if (block.faces.empty()) return;
@@ -127,22 +137,17 @@ void writeBlockBase(std::FILE* out, const geo::GeoGrid& refined, const ScenePlac
     for (const auto& v : block.vertices)
         fmt::format_to(std::back_inserter(sdl), ",\n{}", point(v.floor ? where.scenePointAtElevation(points[v.node], floorM)
                                               : where.scenePoint(points[v.node])));
-    fmt::format_to(std::back_inserter(sdl), "\n  }}\n  texture_list {{\n    {}", where.paletteColors.size());
-    for (const auto& c : where.paletteColors)
-        fmt::format_to(std::back_inserter(sdl), ",\n    texture {{ pigment {{ rgb {} }} finish {{ TerrainFinish }} }}",
-                       fixedVector(kBlockWallShade * c.r, kBlockWallShade * c.g, kBlockWallShade * c.b, 5));
-    // The walls' colours: the surface's at the top, the lowest at the floor.
-    const auto shade = [&](std::uint32_t v) {
-        const auto& vertex = block.vertices[v];
-        // Slope colouring: a wall is the steepest ground there is.
-        if (where.colouring == scene::TextureSpec::Colouring::Slope) return kPaletteSize - 1;
-        return vertex.floor ? 0 : int(paletteIndex(where, where.elevation(points[vertex.node])));
-    };
     fmt::format_to(std::back_inserter(sdl), "\n  }}\n  face_indices {{\n    {}", block.faces.size());
-    for (const auto& f : block.faces)
-        fmt::format_to(std::back_inserter(sdl), ",\n<{},{},{}>,{},{},{}", f[0], f[1], f[2], shade(f[0]), shade(f[1]), shade(f[2]));
-    // It casts no shadow the still could show: the walls hang below the surface's edge, the floor under all.
-    fmt::format_to(std::back_inserter(sdl), "\n  }}\n  no_shadow\n}}\n");
+    for (const auto& f : block.faces) fmt::format_to(std::back_inserter(sdl), ",\n<{},{},{}>", f[0], f[1], f[2]);
+    // One colour, lit mostly by the even light: a colour that changed along the walls would streak
+    // them under every change of the surface's edge, and a wall facing away from the sun must not
+    // go black. It casts no shadow the still could show: the walls hang below the surface's edge,
+    // the floor under all.
+    const LinearRgb c = blockWallColour(where);
+    fmt::format_to(std::back_inserter(sdl),
+                   "\n  }}\n  texture {{ pigment {{ rgb {} }} finish {{ ambient {} diffuse {} specular 0 }} }}\n"
+                   "  no_shadow\n}}\n",
+                   fixedVector(c.r, c.g, c.b, 5), kBlockWallAmbient, 1 - kBlockWallAmbient);
     std::fwrite(sdl.data(), 1, sdl.size(), out);
 }
 

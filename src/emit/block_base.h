@@ -31,16 +31,22 @@ struct BlockGeometry {
 /// lattice's cells has (cut along the south-east to north-west diagonal, as
 /// the mesh2 and POV-Ray's height field cut them; nodes without data make
 /// holes, and walls line them), and a floor at the base elevation under every
-/// such triangle (cells in runs, two triangles a run). The walls' colours
-/// are the ramp's, darkened: the surface's colour at the top, the lowest at
-/// the floor. With the surface's triangles it closes a solid: every edge
+/// such triangle (cells in runs, two triangles a run). With the surface's triangles it closes a solid: every edge
 /// belongs to two triangles.
 BlockGeometry buildBlockBase(const geo::GeoGrid& refined);
 
 /// Writes the block as a mesh2.
 void writeBlockBase(std::FILE* out, const geo::GeoGrid& refined, const ScenePlacement& where);
 
-/// The factor the walls' colours are darkened by (linear RGB).
-inline constexpr double kBlockWallShade = 0.45;
+/// The walls' one colour: the ramp's lowest half greyed (kBlockWallGrey),
+/// darkened by kBlockWallShade.
+LinearRgb blockWallColour(const ScenePlacement& where);
+
+/// The factor the walls' colour is darkened by (linear RGB), and the share of
+/// their light that is the even (ambient) light, so that the wall the sun
+/// does not reach still reads as the block's side.
+inline constexpr double kBlockWallShade = 0.6;
+inline constexpr double kBlockWallGrey = 0.25;
+inline constexpr double kBlockWallAmbient = 0.5;
 
 }  // namespace relief::emit

@@ -231,7 +231,7 @@ struct TextureSpec {
 /// [lighting]
 struct LightingSpec {
     double sunAzimuthDeg = 315;  ///< compass bearing the light comes from
-    double sunAltitudeDeg = 45;
+    double sunAltitudeDeg = 30;  ///< low enough that ridges cast the shadows that make them read (docs/scene-format.md)
     /// The sun's angular diameter, for render.quality = "high" (soft shadows);
     /// the real sun's by default.
     double sunDiameterDeg = 0.53;

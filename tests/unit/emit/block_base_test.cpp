@@ -135,5 +135,25 @@ TEST(BlockBase, TheFloorIsATenthOfTheReliefBelowTheLowestPointByDefault) {
     EXPECT_DOUBLE_EQ(placeTerrain(grid, look).boundsMin.y, 50.0 * 2 / 10);
 }
 
+// The walls are one colour, lit mostly by the even light: no colour changes
+// along them (which streaked them under every change of the surface's edge),
+// and a ramp whose lowest colour is near black (a topobathy's deep sea) gives
+// a wall that still reads as the block's side, not a black slab.
+TEST(BlockBase, TheWallsAreOneColourNeverNearBlack) {
+    const geo::GeoGrid grid = rampGrid(4, 5);
+    scene::LookSpec look;
+    ScenePlacement where = placeTerrain(grid, look);
+    where.paletteColors.front() = {0.0, 0.0, 0.0};  // the darkest a ramp can start
+    const std::string sdl = written(grid, where);
+    EXPECT_EQ(sdl.find("texture_list"), std::string::npos);
+    size_t textures = 0;
+    for (size_t at = sdl.find("texture {"); at != std::string::npos; at = sdl.find("texture {", at + 1)) ++textures;
+    EXPECT_EQ(textures, 1u);
+    const LinearRgb c = blockWallColour(where);
+    const double luminance = 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
+    EXPECT_GT(luminance, 0.05);  // sRGB 63 or more: the shadowed wall (half its light even) about 45
+    EXPECT_NE(sdl.find("ambient 0.5 diffuse 0.5"), std::string::npos) << sdl.substr(sdl.size() - 300);
+}
+
 }  // namespace
 }  // namespace relief::emit
