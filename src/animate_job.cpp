@@ -170,7 +170,7 @@ bool planFrame(const AnimateJob& job, const LoadedScene& scene, const SharedTerr
     const auto compiled = compileView(scene, terrain, options, diags);
     if (!compiled) return false;
     OutputPaths paths;
-    paths.png = plan.dir / "frame.png";  // a label only: finishFrames names the frames kept
+    paths.still = plan.dir / "frame.png";  // a label only: finishFrames names the frames kept
     paths.pov = options.povPath;
     paths.sidecar = plan.dir / "frame.json";
     describeRender(plan, *compiled, paths, job.tiles, job.sandbox, job.templatesDir);

@@ -20,6 +20,7 @@
 #include "geo/sun_position.h"
 #include "pipeline.h"
 #include "scene_header.h"
+#include "surface_marks.h"
 
 namespace relief {
 
@@ -123,7 +124,7 @@ bool buildMeshes(const LoadedScene& loaded, const Surface& surface, const View& 
                 budgetOf(spec.limits), budgetKey(spec), surface.depth, diags, true))
             return false;
     }
-    emit::lightBySky(*t.mesh);
+    emit::nodeTextures(*t.mesh);
     t.vertices = static_cast<long long>(t.mesh->vertices);
     t.triangles = t.mesh->triangles;
     return true;
@@ -183,15 +184,15 @@ std::optional<emit::ContourRibbons> buildContours(const scene::SceneSpec& spec, 
     }
     // The lines' triangles join the surface's in POV-Ray's parse; their SDL is the .pov's beside the surface's.
     subdiv::OutputEstimate withLines;
-    withLines.triangles = double(ribbons.faces.size()) + double(meshTriangles);
+    withLines.triangles = double(ribbons.ribbons.faces.size()) + double(meshTriangles);
     withLines.parseSeconds = withLines.triangles * subdiv::kParseSecondsPerTriangle;
-    withLines.sdlBytes = ribbons.sdlBytes();
+    withLines.sdlBytes = ribbons.ribbons.sdlBytes();
     if (const std::string over = subdiv::overBudget(withLines, budgetOf(spec.limits)); !over.empty()) {
         const std::string beside = meshTriangles > 0 ? fmt::format(" beside the surface's {}", meshTriangles) : "";
         diags.error(at, fmt::format("overlay.contours: interval_m = {} m draws {} lines of {} triangles{}: {}; choose "
                                     "a wider interval, or raise [limits]",
                                     formatShortest(spec.overlay.contours->intervalM), ribbons.made.lines,
-                                    ribbons.faces.size(), beside, over));
+                                    ribbons.ribbons.faces.size(), beside, over));
         return std::nullopt;
     }
     return ribbons;
@@ -229,10 +230,10 @@ void creditImage(const scene::SceneSpec& spec, const Terrain& t, CompileResult& 
     if (!r.imageAttribution.empty()) r.parameters.emplace_back("texture.image_attribution", r.imageAttribution);
 }
 
-// The writers the template's placeholders call: terrain, block model, contours.
+// The writers the template's placeholders call: terrain, block model, what lies on the surface.
 emit::GeometryWriters writersOf(const Surface& surface, const View& view, const Terrain& t,
-                                const emit::ContourRibbons& ribbons, const scene::SceneSpec& spec,
-                                const CompileOptions& options) {
+                                const emit::ContourRibbons& ribbons, const SurfaceMarks& marks,
+                                const scene::SceneSpec& spec, const CompileOptions& options) {
     const geo::GeoGrid& refined = surface.refined;
     emit::GeometryWriters w;
     if (t.field) {
@@ -257,8 +258,11 @@ emit::GeometryWriters writersOf(const Surface& surface, const View& view, const 
         };
     }
     if (view.where.baseElevationM) w.base = [&](std::FILE* out) { emit::writeBlockBase(out, refined, view.where); };
-    if (!ribbons.faces.empty())
-        w.contours = [&](std::FILE* out) { emit::writeSurfaceContours(out, ribbons, *spec.overlay.contours); };
+    if (!ribbons.ribbons.faces.empty() || !marks.empty())
+        w.onSurface = [&](std::FILE* out) {
+            if (!ribbons.ribbons.faces.empty()) emit::writeSurfaceContours(out, ribbons, *spec.overlay.contours);
+            writeSurfaceMarks(out, marks, spec, view.where, view.camera);
+        };
     return w;
 }
 
@@ -305,7 +309,7 @@ void recordTerrain(CompileResult& r, const Terrain& t) {
 // The SDL files a film's frames include in place of the geometry: written
 // once by the writers a still's .pov calls, each frame's .pov naming them.
 struct SdlFiles {
-    std::filesystem::path terrain, base, contours;  ///< final names ("" when none)
+    std::filesystem::path terrain, base, onSurface;  ///< final names ("" when none)
 };
 
 SdlFiles writeSdlFiles(const emit::GeometryWriters& writers, const CompileOptions& options) {
@@ -321,7 +325,7 @@ SdlFiles writeSdlFiles(const emit::GeometryWriters& writers, const CompileOption
     };
     files.terrain = write(writers.terrain, "terrain.inc", "the terrain's SDL");
     files.base = write(writers.base, "base.inc", "the block's SDL");
-    files.contours = write(writers.contours, "contours.inc", "the contours' SDL");
+    files.onSurface = write(writers.onSurface, "on_surface.inc", "the SDL of the lines on the surface");
     return files;
 }
 
@@ -331,7 +335,7 @@ emit::GeometryWriters includesOf(const SdlFiles& files) {
         return
             [name = file.filename().string()](std::FILE* out) { std::fprintf(out, "#include \"%s\"\n", name.c_str()); };
     };
-    return {include(files.terrain), include(files.base), include(files.contours)};
+    return {include(files.terrain), include(files.base), include(files.onSurface)};
 }
 
 }  // namespace
@@ -346,6 +350,7 @@ struct SharedTerrain::State {
     View view;
     Terrain terrain;
     emit::ContourRibbons ribbons;
+    SurfaceMarks marks;
     bool inFiles = false;  ///< the geometry is in SDL files the frames include
     SdlFiles sdl;
     double seconds = 0;  ///< emitting the terrain
@@ -384,19 +389,27 @@ std::unique_ptr<SharedTerrain::State> compileTerrain(const LoadedScene& loaded, 
     const auto t0 = Clock::now();
     if (scene::qualityLevel(spec.render.quality).skyLight)
         emit::addSkyLight(st->view.where, st->surface.refined, {.threads = options.threads});
-    if (!buildMeshes(st->loaded, st->surface, st->view, st->terrain, diags)) return nullptr;
-    CompileResult facts;  // the view's metres per pixel sizes the contour lines
+    CompileResult facts;  // the view's metres per pixel sizes the contour lines and the layers' lines
     describeView(spec, st->surface.net, st->view, facts);
+    const double metresPerPixel = facts.overlayFacts.metresPerPixel;
+    auto marks = buildSurfaceMarks(spec, st->surface.refined, st->view.where, metresPerPixel, diags);
+    if (!marks) return nullptr;
+    st->marks = std::move(*marks);
+    st->view.where.fills = st->marks.layers.fills;  // the polygons' tints, in every geometry's colours
+    if (!buildMeshes(st->loaded, st->surface, st->view, st->terrain, diags)) return nullptr;
     const long long parsedTriangles =
         st->terrain.field ? 0 : st->terrain.triangles;  // a height field's are POV-Ray's own
-    auto ribbons =
-        buildContours(spec, st->surface, st->view, facts.overlayFacts.metresPerPixel, parsedTriangles, diags);
-    if (!ribbons || !dumpNetFits(options, st->surface.net, diags) ||
+    auto ribbons = buildContours(spec, st->surface, st->view, metresPerPixel, parsedTriangles, diags);
+    if (!ribbons ||
+        !surfaceMarksWithinLimits(st->marks, spec,
+                                  parsedTriangles + static_cast<long long>(ribbons->ribbons.faces.size()), diags) ||
+        !dumpNetFits(options, st->surface.net, diags) ||
         !writeTerrainPngs(spec, st->surface, st->view, options, st->terrain, diags))
         return nullptr;
     st->ribbons = std::move(*ribbons);
     if (inFiles)
-        st->sdl = writeSdlFiles(writersOf(st->surface, st->view, st->terrain, st->ribbons, spec, options), options);
+        st->sdl = writeSdlFiles(
+            writersOf(st->surface, st->view, st->terrain, st->ribbons, st->marks, spec, options), options);
     st->seconds = secondsSince(t0);
     return st;
 }
@@ -418,12 +431,13 @@ std::optional<CompileResult> compileView(const LoadedScene& frame, const SharedT
     recordSurface(r, st.loaded, st.surface, view.where, view.sunRecord);
     recordTerrain(r, st.terrain);
     r.contours = st.ribbons.made;
+    r.layers = describeSurfaceMarks(st.marks, spec, st.surface.refined, view.where, view.camera, r.overlayFacts);
     r.parameters = sceneHeader(spec, st.surface.net, st.loaded.resolved, st.surface.depth, r);
     creditImage(spec, st.terrain, r);
 
     const std::filesystem::path pov = options.writeAt(options.povPath, "the .pov");
     const emit::GeometryWriters writers =
-        st.inFiles ? includesOf(st.sdl) : writersOf(st.surface, view, st.terrain, st.ribbons, spec, options);
+        st.inFiles ? includesOf(st.sdl) : writersOf(st.surface, view, st.terrain, st.ribbons, st.marks, spec, options);
     if (!emit::writeScene(pov, st.tmpl, view.where, view.camera, view.sun, writers, spec.look, spec.render,
                           r.parameters, diags))
         return std::nullopt;

@@ -50,7 +50,7 @@ OutputPaths jobPaths(const SceneJob& job, const LoadedScene& loaded) {
 void declareOutputs(const SceneJob& job, const LoadedScene& loaded, const OutputPaths& paths, OutputSet& outputs) {
     const bool render = job.until == SceneJob::Until::Png;
     const char* given = job.output.empty() ? nullptr : "-o";
-    if (render) outputs.add(paths.png, given ? given : "the still");
+    if (render) outputs.add(paths.still, given ? given : "the still");
     if (!job.stillOnly) {
         outputs.add(paths.pov, !render && given ? given : "the .pov");
         if (!job.dumpNetPath.empty()) outputs.add(job.dumpNetPath, "--dump-net");
@@ -73,6 +73,23 @@ bool outputStaysHere(const SceneJob& job, const LoadedScene& loaded, Diagnostics
                 fmt::format("render.output = \"{}\" leads out of the current folder through a link; give -o to write "
                             "there",
                             printableExcerpt(output, 200)));
+    return false;
+}
+
+// A still written as a document (.pdf, .svg), or nothing: a PNG.
+std::optional<annotate::DocumentFormat> documentFormatOf(const fs::path& still) {
+    const std::string extension = asciiLower(still.extension().string());
+    if (extension == ".pdf") return annotate::DocumentFormat::Pdf;
+    if (extension == ".svg") return annotate::DocumentFormat::Svg;
+    return std::nullopt;
+}
+
+// A still is a .png, or a .pdf or .svg with vector text over the image.
+bool stillFormatKnown(const SceneJob& job, const OutputPaths& paths, Diagnostics& diags) {
+    const std::string extension = asciiLower(paths.still.extension().string());
+    if (job.until != SceneJob::Until::Png || extension == ".png" || documentFormatOf(paths.still)) return true;
+    diags.error({paths.still.string(), 0, 0}, "a still is written as .png, .pdf or .svg (the image with the "
+                                              "overlays as vector text over it): give -o one of them");
     return false;
 }
 
@@ -114,7 +131,7 @@ bool isRenderPlan(const fs::path& dir) {
 void compileIntoPlan(PlannedJob& p, const LoadedScene& loaded, Diagnostics& diags, const ProgressFn& progress) {
     const SceneJob& job = p.job;
     const OutputPaths& paths = p.outcome.paths;
-    const fs::path asked = job.planDir.empty() ? paths.png.parent_path() / (paths.png.stem().string() + ".plan")
+    const fs::path asked = job.planDir.empty() ? paths.still.parent_path() / (paths.still.stem().string() + ".plan")
                                                : job.planDir;
     createParentFolder(asked);
     PrivateFolder building(asked.has_parent_path() ? asked.parent_path() : fs::path("."), "plan");
@@ -161,15 +178,28 @@ void reportWriteFailure(const std::runtime_error& e, Diagnostics& diags) {
         diags.error({}, e.what());
 }
 
-// The still's pixels, written once.
+// The still written once: a PNG (with its resolution when render.dpi gives
+// one), or a document with the ray-traced image in it and the overlays as
+// vectors and text over it.
 bool writeStill(const plan::RenderPlan& plan, OutputSet& outputs, RenderFacts& facts, Diagnostics& diags) {
+    const auto document = documentFormatOf(plan.still);
     std::optional<annotate::OverlayRecord> record;
-    auto still = stillOfPlan(plan, record, diags);
+    auto still = document ? stitchedStill(plan, diags) : stillOfPlan(plan, record, diags);
     if (!still) return false;
-    facts.overlays = record;
-    const fs::path png =
-        outputs.contains(plan.still) ? outputs.staged(plan.still) : outputs.add(plan.still, "the still");
-    writePngAtomically(png, {still->width, still->height, still->channels, false, still->pixels.data()});
+    const fs::path at = outputs.contains(plan.still) ? outputs.staged(plan.still) : outputs.add(plan.still, "the still");
+    if (!document) {
+        facts.overlays = record;
+        writePngAtomically(at, {still->width, still->height, still->channels, false, still->pixels.data(), -1, plan.dpi});
+        return true;
+    }
+    annotate::DocumentRequest request{*document, at, plan.dpi > 0 ? plan.dpi : scene::RenderSpec::kDocumentDpi,
+                                      plan.overlays, plan.overlaySpec, plan.overlayFacts};
+    annotate::OverlayRecord drawn;
+    if (const std::string error = annotate::writeDocument(*still, request, &drawn); !error.empty()) {
+        diags.error({shownPath(plan.still).string(), 0, 0}, error);
+        return false;
+    }
+    if (plan.overlays) facts.overlays = drawn;
     return true;
 }
 
@@ -231,8 +261,9 @@ void describeRender(plan::RenderPlan& plan, const CompileResult& compiled, const
     plan.alpha = s.render.background == scene::Background::Transparent;
     plan.sandbox = sandbox;
     plan.timeoutS = s.render.timeoutS;
+    plan.dpi = s.render.dpi.value_or(0);
     plan.templatesDir = templatesDir.empty() ? fs::path() : fs::absolute(templatesDir);
-    plan.still = fs::absolute(paths.png);
+    plan.still = fs::absolute(paths.still);
     plan.sidecar = fs::absolute(paths.sidecar);
     plan.overlays = annotate::overlaysWanted(s.overlay, s.render.width);
     plan.overlaySpec = s.overlay;
@@ -241,17 +272,20 @@ void describeRender(plan::RenderPlan& plan, const CompileResult& compiled, const
     plan.sidecar0 = sidecarJson(compiled, paths);
 }
 
-std::optional<PngImage8> stillOfPlan(const plan::RenderPlan& plan, std::optional<annotate::OverlayRecord>& overlays,
-                                     Diagnostics& diags) {
+std::optional<PngImage8> stitchedStill(const plan::RenderPlan& plan, Diagnostics& diags) {
     std::string error;
     auto still = render::stitchTiles(plan, error);
-    if (!still) {
-        diags.error({(plan.dir / "plan.json").string(), 0, 0}, error);
-        return std::nullopt;
-    }
-    if (!plan.overlays) return still;
+    if (!still) diags.error({(plan.dir / "plan.json").string(), 0, 0}, error);
+    return still;
+}
+
+std::optional<PngImage8> stillOfPlan(const plan::RenderPlan& plan, std::optional<annotate::OverlayRecord>& overlays,
+                                     Diagnostics& diags) {
+    auto still = stitchedStill(plan, diags);
+    if (!still || !plan.overlays) return still;
     annotate::OverlayRecord record;
-    if (error = annotate::drawOverlays(*still, plan.overlaySpec, plan.overlayFacts, &record); !error.empty()) {
+    if (const std::string error = annotate::drawOverlays(*still, plan.overlaySpec, plan.overlayFacts, &record);
+        !error.empty()) {
         diags.error({shownPath(plan.still).string(), 0, 0}, "the overlays cannot be drawn: " + error);
         return std::nullopt;
     }
@@ -268,7 +302,7 @@ PlannedJob planJob(const SceneJob& job, Diagnostics& diags, const ProgressFn& pr
         auto loaded = loadScene(job.scenePath, diags, job.overrides);
         if (!loaded) return p;
         p.outcome.paths = jobPaths(job, *loaded);
-        if (!outputStaysHere(job, *loaded, diags)) return p;
+        if (!outputStaysHere(job, *loaded, diags) || !stillFormatKnown(job, p.outcome.paths, diags)) return p;
         declareOutputs(job, *loaded, p.outcome.paths, p.outputs());
         if (progress)
             progress({ProgressEvent::Stage::Compiling,
@@ -381,7 +415,7 @@ JobOutcome runSceneJob(const SceneJob& job, Diagnostics& diags, const ProgressFn
         return std::move(p.outcome);
     }
     if (!renderTiles(*p.plan, job.execution, p.outcome, diags, progress)) return std::move(p.outcome);
-    if (progress) progress({ProgressEvent::Stage::Finishing, "finishing " + p.outcome.paths.png.string(), -1});
+    if (progress) progress({ProgressEvent::Stage::Finishing, "finishing " + p.outcome.paths.still.string(), -1});
     if (!finishPlan(*p.plan, p.outputs(), job.stillOnly, !job.outputs, job.keepPlan || job.outputs, p.outcome, diags))
         p.outcome.status = JobStatus::BadInput;
     return std::move(p.outcome);

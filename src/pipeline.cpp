@@ -76,12 +76,12 @@ std::string autoDepthSummary(const measure::DepthChoice& choice, double toleranc
 
 
 
-OutputPaths outputPathsFor(const std::filesystem::path& png) {
+OutputPaths outputPathsFor(const std::filesystem::path& still) {
     OutputPaths p;
-    p.png = png;
-    p.pov = png;
+    p.still = still;
+    p.pov = still;
     p.pov.replace_extension(".pov");
-    p.sidecar = png;
+    p.sidecar = still;
     p.sidecar.replace_extension(".json");
     return p;
 }

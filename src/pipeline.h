@@ -157,6 +157,7 @@ struct CompileResult {
         double lonDeg = 0, latDeg = 0; ///< where it was computed (fromDatetime)
     } sun;
     emit::SurfaceContours contours;             ///< [overlay] contours as drawn
+    nlohmann::ordered_json layers = nlohmann::ordered_json::array();  ///< what each [[layer]] became (sidecar)
     std::optional<double> drapeImageCoverage;  ///< [texture] image: the share of the surface's nodes it covers
     std::string dataAttribution;   ///< the samples' credit: the scene's, else the raster's metadata's
     std::string imageAttribution;  ///< [texture] image's credit: the scene's, else the image's metadata's
@@ -215,9 +216,9 @@ std::optional<std::pair<geo::SunPosition, GeoPoint>> sunOverTerrain(const geo::C
 /// Output paths derived from a scene: the .pov and the .json sidecar sit
 /// beside the still (or stand in for it when only compiling).
 struct OutputPaths {
-    std::filesystem::path png, pov, sidecar;
+    std::filesystem::path still, pov, sidecar;  ///< still: .png, .pdf or .svg
 };
-OutputPaths outputPathsFor(const std::filesystem::path& png);
+OutputPaths outputPathsFor(const std::filesystem::path& still);
 
 /// One scene file to a .pov and its sidecar, or all the way to a PNG: what
 /// `relief compile`, `relief render`, `relief test` and `relief sweep` do.
@@ -302,6 +303,9 @@ std::optional<std::filesystem::path> nameWorkingFolder(const std::filesystem::pa
 /// facts, the sidecar so far (compiling into plan.dir adds its files).
 void describeRender(plan::RenderPlan& plan, const CompileResult& compiled, const OutputPaths& paths, int tiles,
                     bool sandbox, const std::filesystem::path& templatesDir);
+
+/// The plan's tiles stitched into the still's pixels, no overlays; nullopt with the reason.
+std::optional<PngImage8> stitchedStill(const plan::RenderPlan& plan, Diagnostics& diags);
 
 /// The still of a plan whose tiles are rendered: the tiles stitched, the
 /// overlays drawn (`overlays` says what they show); nullopt with the reason.

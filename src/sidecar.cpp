@@ -1,6 +1,8 @@
 // The JSON sidecar: what made the still, what it cost, what it shows.
 #include "sidecar.h"
 
+#include "core/text_escape.h"
+
 #include <fmt/format.h>
 
 #include "emit/geometry_kind.h"
@@ -69,6 +71,7 @@ ordered_json sidecarJson(const CompileResult& c, const OutputPaths& paths) {
         j["contours"] = {{"interval_m", c.scene.overlay.contours->intervalM},
                          {"levels", c.contours.levels},
                          {"lines", c.contours.lines}};
+    if (!c.layers.empty()) j["layers"] = c.layers;
     if (c.baseFloorM)
         j["base"] = {{"floor_elevation_m", *c.baseFloorM}, {"thickness_m", c.zRangeM[0] - *c.baseFloorM}};
     j["sun"] = {{"azimuth_deg", c.sun.azimuthDeg},
@@ -99,7 +102,11 @@ ordered_json sidecarJson(const CompileResult& c, const OutputPaths& paths) {
         j["texture"] = {{"image", c.scene.look.texture.drapeImageText},
                         {"image_covers", *c.drapeImageCoverage},
                         {"image_attribution", c.imageAttribution}};
-    if (!paths.png.empty()) j["outputs"]["png"] = paths.png.string();
+    // Keyed by what the still is: "png", "pdf" or "svg".
+    if (!paths.still.empty()) {
+        const std::string extension = asciiLower(paths.still.extension().string());
+        j["outputs"][extension.size() > 1 ? extension.substr(1) : "still"] = paths.still.string();
+    }
     return j;
 }
 
@@ -128,6 +135,20 @@ void addRenderToSidecar(ordered_json& j, const RenderFacts& r) {
     j["overlay"]["north_deg_clockwise_from_up"] = o.northDeg;
     j["overlay"]["placement"] = o.placement;
     j["overlay"]["on_terrain"] = o.onTerrain;
+    if (o.labels.empty()) return;
+    ordered_json labels = ordered_json::array();
+    for (const auto& l : o.labels) {
+        ordered_json label = {{"text", l.text}, {"layer", l.layer}};
+        if (l.placed) {
+            label["box_px"] = {std::round(l.x0 * 10) / 10, std::round(l.y0 * 10) / 10, std::round(l.x1 * 10) / 10,
+                               std::round(l.y1 * 10) / 10};
+            label["leader"] = l.leader;
+        } else {
+            label["left_out"] = "no free place beside its marker";
+        }
+        labels.push_back(label);
+    }
+    j["overlay"]["labels"] = labels;
 }
 
 std::string sidecarText(const ordered_json& sidecar) {

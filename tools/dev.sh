@@ -30,11 +30,12 @@ esac
 # gdal-bin: gdal_translate and gdalwarp, which the tests cut DEM tiles with and the benchmarks make
 # rasters of every size with (relief itself links libgdal).
 # ffmpeg: relief animate encodes its frames to MP4, WebM or GIF with it.
+# poppler-utils: pdftotext, pdffonts, pdfimages, pdfinfo, which the tests read PDF stills back with.
 packages=(cmake make g++ pkg-config
           libgeographiclib-dev libgdal-dev libopenimageio-dev openimageio-tools libtomlplusplus-dev
           libcli11-dev libfmt-dev nlohmann-json3-dev libnanoflann-dev libpng-dev libssl-dev libcairo2-dev libpango1.0-dev libnova-dev libgtest-dev libbenchmark-dev
           povray bubblewrap chromium fonts-dejavu-core locales clang libfuzzer-14-dev libclang-rt-14-dev libomp-14-dev
-          slurm-wlm munge gdal-bin ffmpeg)
+          slurm-wlm munge gdal-bin ffmpeg poppler-utils)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -1,15 +1,23 @@
 #include "annotate/overlay.h"
 
+#include "annotate/labels.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <memory>
 
 #include <fmt/format.h>
+#include <cairo-pdf.h>
+#include <cairo-svg.h>
 #include <pango/pangocairo.h>
 
 #include "core/number_format.h"
+#include "core/text_escape.h"
 
 namespace relief::annotate {
 
@@ -45,11 +53,22 @@ struct CairoDeleter {
 template <class T>
 using Owned = std::unique_ptr<T, CairoDeleter>;
 
+// What the drawing goes onto: the still's pixels, or a document's page (whose
+// device units are points, devicePerPixel of them a pixel of the still).
+struct DrawingTarget {
+    bool realText = false;
+    double devicePerPixel = 1;
+};
+
 // Text in one place: dark, with a pale halo so it reads over any terrain.
 // anchorX: 0 left, 0.5 centre, 1 right of (x, y); y is the top.
 class Painter {
 public:
-    Painter(cairo_t* cr, double unit) : cr_(cr), unit_(unit) {}
+    /// realText: the glyphs' fill as text (a PDF's fonts, which pdftotext and
+    /// a reader's search find), not as outlines; the halo is an outline either
+    /// way. Every string drawn is recorded in `drawn`.
+    Painter(cairo_t* cr, double unit, const DrawingTarget& target, std::vector<DrawnText>& drawn)
+        : cr_(cr), unit_(unit), realText_(target.realText), devicePerPixel_(target.devicePerPixel), drawn_(drawn) {}
 
     // Returns the text's width and height, in pixels. With maxWidth, the text
     // wraps at words onto at most maxLines lines, the last cut with an
@@ -90,19 +109,33 @@ private:
         pango_layout_get_pixel_extents(layout.get(), nullptr, &box);
         const double w = box.width, h = box.height;
         if (!draw) return {w, h};
-        cairo_move_to(cr_, x - anchorX * w - box.x, y - anchorY * h - box.y);
+        const double left = x - anchorX * w, top = y - anchorY * h;
+        cairo_move_to(cr_, left - box.x, top - box.y);
         pango_cairo_layout_path(cr_, layout.get());
         cairo_set_line_join(cr_, CAIRO_LINE_JOIN_ROUND);
         cairo_set_line_width(cr_, std::max(1.0, 0.35 * sizeUnits * unit_ / 3));
         cairo_set_source_rgba(cr_, 1, 1, 1, 0.85);
-        cairo_stroke_preserve(cr_);
-        cairo_set_source_rgb(cr_, 0.08, 0.08, 0.08);
-        cairo_fill(cr_);
+        if (realText_) {
+            cairo_stroke(cr_);
+            cairo_set_source_rgb(cr_, 0.08, 0.08, 0.08);
+            cairo_move_to(cr_, left - box.x, top - box.y);
+            pango_cairo_show_layout(cr_, layout.get());
+        } else {
+            cairo_stroke_preserve(cr_);
+            cairo_set_source_rgb(cr_, 0.08, 0.08, 0.08);
+            cairo_fill(cr_);
+        }
+        double px = left, py = top;  // the box in the still's pixels, wherever the drawing was moved
+        cairo_user_to_device(cr_, &px, &py);
+        drawn_.push_back({s, px / devicePerPixel_, py / devicePerPixel_, w, h, std::max(sizeUnits * unit_, 10.0), bold});
         return {w, h};
     }
 
     cairo_t* cr_;
     double unit_;
+    bool realText_;
+    double devicePerPixel_;
+    std::vector<DrawnText>& drawn_;
 };
 
 struct Box {
@@ -166,6 +199,9 @@ public:
         placed_.push_back(chosen->first);
         return {chosen->first.x0 - box.x0, chosen->first.y0 - box.y0, chosen->second, coversTerrain(chosen->first)};
     }
+
+    /// The boxes placed so far.
+    const std::vector<Box>& placed() const { return placed_; }
 
 private:
     bool coversTerrain(const Box& b) const {
@@ -301,8 +337,9 @@ void copyBack(cairo_surface_t* surface, PngImage8& image) {
 // place the placer chooses.
 class OverlayDrawing {
 public:
-    OverlayDrawing(cairo_t* c, int W, int H, const OverlayFacts& facts)
-        : c(c), W(W), H(H), u(std::min(W, H * 4 / 3) / 100.0), paint(c, u), placer(W, H, u, facts.terrain) {}
+    OverlayDrawing(cairo_t* c, int W, int H, const OverlayFacts& facts, const DrawingTarget& target)
+        : c(c), W(W), H(H), u(std::min(W, H * 4 / 3) / 100.0), paint(c, u, target, record.texts),
+          placer(W, H, u, facts.terrain) {}
 
     // Title and subtitle, top left.
     void title(const scene::OverlaySpec& spec) {
@@ -460,9 +497,114 @@ public:
         placed("legend", choice);
     }
 
+    // The [[layer]]s' legend: a swatch and a line of text an entry, on a pale card.
+    void layerLegend(const OverlayFacts& facts) {
+        const double size = 1.6, rowH = 2.6 * u, swatchW = 3.2 * u, pad = 1.0 * u;
+        double textW = 0;
+        for (const auto& e : facts.layerLegend) textW = std::max(textW, paint.measure(drawnText(e.text), size, false, 0.35 * W).first);
+        const double w = 2 * pad + swatchW + 0.8 * u + textW, h = 2 * pad + rowH * facts.layerLegend.size();
+        const Box box{2.5 * u, H - 11 * u - h, 2.5 * u + w, H - 11 * u};
+        const auto choice = placer.place(box, "bottom-left", {"bottom-right", "top-left", "top-right"});
+        cairo_save(c);
+        cairo_translate(c, choice.dx, choice.dy);
+        cairo_rectangle(c, box.x0, box.y0, w, h);
+        cairo_set_source_rgba(c, 1, 1, 1, 0.8);
+        cairo_fill_preserve(c);
+        cairo_set_line_width(c, std::max(1.0, 0.12 * u));
+        cairo_set_source_rgb(c, 0.35, 0.35, 0.35);
+        cairo_stroke(c);
+        double y = box.y0 + pad;
+        for (const auto& e : facts.layerLegend) {
+            swatch(e, box.x0 + pad, y + 0.3 * u, swatchW, rowH - 0.6 * u);
+            paint.text(drawnText(e.text), box.x0 + pad + swatchW + 0.8 * u, y + 0.25 * u, size, false, 0, 0.35 * W);
+            y += rowH;
+        }
+        cairo_restore(c);
+        placed("layer_legend", choice);
+    }
+
+    // Every label at the first free place beside its anchor (annotate/labels.h),
+    // clear of the furniture placed before and of every marker.
+    void labels(const OverlayFacts& facts) {
+        // The furniture a little larger: a label beside the scale bar's figures would read as one of them.
+        std::vector<LabelBox> obstacles;
+        const double margin = 0.6 * u;
+        for (const Box& b : placer.placed()) obstacles.push_back({b.x0 - margin, b.y0 - margin, b.x1 + margin, b.y1 + margin});
+        std::vector<LabelRequest> requests;
+        std::vector<std::string> texts;
+        for (const auto& l : facts.labels) {
+            texts.push_back(drawnText(l.text));
+            const auto [w, h] = paint.measure(texts.back(), l.sizePx / u, false, 0.3 * W);
+            const LabelBox marker = l.markerPx > 0 ? LabelBox{l.x - l.markerPx, l.y - l.markerPx, l.x + l.markerPx, l.groundY}
+                                                   : LabelBox{};
+            requests.push_back({l.x, l.y, l.markerPx, w, h, marker});
+        }
+        const auto places = placeLabels(requests, W, H, obstacles);
+        for (size_t i = 0; i < places.size(); ++i) {
+            OverlayRecord::Label rec{texts[i], facts.labels[i].layer};
+            if (places[i]) {
+                const PlacedLabel& p = *places[i];
+                if (p.leader) leader(facts.labels[i].x, facts.labels[i].y, p.leaderX, p.leaderY);
+                paint.text(texts[i], p.box.x0, p.box.y0, facts.labels[i].sizePx / u, false, 0, 0.3 * W);
+                rec = {texts[i], facts.labels[i].layer, true, p.leader, p.box.x0, p.box.y0, p.box.x1, p.box.y1};
+            }
+            record.labels.push_back(rec);
+        }
+    }
+
     OverlayRecord record;
 
 private:
+    void swatch(const LegendEntry& e, double x, double y, double w, double h) {
+        cairo_save(c);
+        const auto rgb = [&](const LinearRgb& k, double alpha) {
+            cairo_set_source_rgba(c, linearToSrgb(k.r), linearToSrgb(k.g), linearToSrgb(k.b), alpha);
+        };
+        if (e.kind == LegendEntry::Kind::Point) {
+            cairo_arc(c, x + w / 2, y + h / 2, 0.3 * h, 0, 2 * kPi);
+            rgb(e.colour, 1);
+            cairo_fill_preserve(c);
+            cairo_set_line_width(c, std::max(1.0, 0.1 * u));
+            cairo_set_source_rgb(c, 0.08, 0.08, 0.08);
+            cairo_stroke(c);
+        } else if (e.kind == LegendEntry::Kind::Polygon) {
+            cairo_rectangle(c, x, y, w, h);
+            if (e.fill) {
+                rgb(*e.fill, e.fillOpacity);
+                cairo_fill_preserve(c);
+            }
+            rgb(e.colour, 1);
+            cairo_set_line_width(c, std::max(1.0, e.widthPx));
+            cairo_stroke(c);
+        } else {
+            if (e.dashed) {
+                const double dash[] = {0.8 * u, 0.5 * u};
+                cairo_set_dash(c, dash, 2, 0);
+            }
+            cairo_move_to(c, x, y + h / 2);
+            cairo_line_to(c, x + w, y + h / 2);
+            rgb(e.colour, 1);
+            cairo_set_line_width(c, std::max(1.0, e.widthPx));
+            cairo_stroke(c);
+        }
+        cairo_restore(c);
+    }
+
+    // A leader from a marker to its label: dark on a pale halo.
+    void leader(double x0, double y0, double x1, double y1) {
+        cairo_save(c);
+        cairo_move_to(c, x0, y0);
+        cairo_line_to(c, x1, y1);
+        cairo_set_line_cap(c, CAIRO_LINE_CAP_ROUND);
+        cairo_set_source_rgba(c, 1, 1, 1, 0.85);
+        cairo_set_line_width(c, 3);
+        cairo_stroke_preserve(c);
+        cairo_set_source_rgb(c, 0.08, 0.08, 0.08);
+        cairo_set_line_width(c, 1.2);
+        cairo_stroke(c);
+        cairo_restore(c);
+    }
+
     void placed(const char* name, const Placer::Choice& choice) {
         record.drawn.push_back(name);
         record.placement[name] = choice.where;
@@ -478,20 +620,108 @@ private:
 
 }  // namespace
 
+namespace {
+
+// Every overlay the spec asks for, drawn with `cr` over a still W x H pixels.
+OverlayRecord drawOverlaysOn(cairo_t* cr, int W, int H, const scene::OverlaySpec& spec, const OverlayFacts& facts,
+                             const DrawingTarget& target) {
+    OverlayDrawing drawing(cr, W, H, facts, target);
+    if (!spec.title.empty() || !spec.subtitle.empty()) drawing.title(spec);
+    if (spec.northArrow) drawing.northArrow(facts);
+    if (!facts.credits.empty()) drawing.credits(facts);
+    if (spec.scaleBar) drawing.scaleBar(facts);
+    if (spec.legend && facts.palette.size() >= 2) drawing.legend(facts);
+    if (!facts.layerLegend.empty()) drawing.layerLegend(facts);
+    if (!facts.labels.empty()) drawing.labels(facts);
+    return drawing.record;
+}
+
+// An invisible text of every string drawn, over its glyphs: cairo's SVG draws
+// glyphs as outlines, which a reader cannot search or copy. Escaped as text.
+std::string svgTextLayer(const std::vector<DrawnText>& texts, double pointsPerPixel) {
+    std::string layer = "<g id=\"relief-text\" fill-opacity=\"0\" font-family=\"DejaVu Sans\">\n";
+    for (const auto& t : texts)
+        layer += fmt::format("<text x=\"{:.2f}\" y=\"{:.2f}\" font-size=\"{:.2f}\"{} textLength=\"{:.2f}\" "
+                             "lengthAdjust=\"spacingAndGlyphs\">{}</text>\n",
+                             t.x * pointsPerPixel, (t.y + 0.8 * t.h) * pointsPerPixel, t.sizePx * pointsPerPixel,
+                             t.bold ? " font-weight=\"bold\"" : "", t.w * pointsPerPixel, markupText(t.text));
+    return layer + "</g>\n";
+}
+
+// cairo's SVG with the text layer put in before its end.
+std::string withTextLayer(const std::filesystem::path& svg, const std::vector<DrawnText>& texts, double pointsPerPixel,
+                          std::string& error) {
+    std::ifstream in(svg, std::ios::binary);
+    std::string doc((std::istreambuf_iterator<char>(in)), {});
+    const size_t end = doc.rfind("</svg>");
+    if (end == std::string::npos) {
+        error = "cairo wrote no whole SVG";
+        return {};
+    }
+    return doc.insert(end, svgTextLayer(texts, pointsPerPixel));
+}
+
+}  // namespace
+
 std::string drawOverlays(PngImage8& image, const scene::OverlaySpec& spec, const OverlayFacts& facts,
                          OverlayRecord* record) {
     if (image.channels != 3 && image.channels != 4) return "overlays need an RGB or RGBA image";
     const Owned<cairo_surface_t> surface = surfaceOf(image);
     if (!surface) return "cannot make a drawing surface";
     const Owned<cairo_t> cr(cairo_create(surface.get()));
-    OverlayDrawing drawing(cr.get(), image.width, image.height, facts);
-    if (!spec.title.empty() || !spec.subtitle.empty()) drawing.title(spec);
-    if (spec.northArrow) drawing.northArrow(facts);
-    if (!facts.credits.empty()) drawing.credits(facts);
-    if (spec.scaleBar) drawing.scaleBar(facts);
-    if (spec.legend && facts.palette.size() >= 2) drawing.legend(facts);
+    const OverlayRecord drawn = drawOverlaysOn(cr.get(), image.width, image.height, spec, facts, {});
     copyBack(surface.get(), image);
-    if (record) *record = drawing.record;
+    if (record) *record = drawn;
+    return {};
+}
+
+std::string writeDocument(const PngImage8& still, const DocumentRequest& request, OverlayRecord* record) {
+    if (still.channels != 3 && still.channels != 4) return "a document needs an RGB or RGBA still";
+    const double pointsPerPixel = 72.0 / request.dpi;
+    const double widthPt = still.width * pointsPerPixel, heightPt = still.height * pointsPerPixel;
+    const std::filesystem::path drawnAt =
+        request.format == DocumentFormat::Svg ? std::filesystem::path(request.path.string() + ".cairo") : request.path;
+    Owned<cairo_surface_t> page(request.format == DocumentFormat::Pdf
+                                    ? cairo_pdf_surface_create(drawnAt.c_str(), widthPt, heightPt)
+                                    : cairo_svg_surface_create(drawnAt.c_str(), widthPt, heightPt));
+    if (cairo_surface_status(page.get()) != CAIRO_STATUS_SUCCESS)
+        return fmt::format("cannot be written: {}", cairo_status_to_string(cairo_surface_status(page.get())));
+    if (request.format == DocumentFormat::Pdf) {
+        // No clock in the file: the same still gives the same bytes.
+        cairo_pdf_surface_set_metadata(page.get(), CAIRO_PDF_METADATA_CREATE_DATE, kDocumentDate);
+        cairo_pdf_surface_set_metadata(page.get(), CAIRO_PDF_METADATA_CREATOR, "relief");
+        if (!request.spec.title.empty())
+            cairo_pdf_surface_set_metadata(page.get(), CAIRO_PDF_METADATA_TITLE, request.spec.title.c_str());
+    } else {
+        cairo_svg_surface_set_document_unit(page.get(), CAIRO_SVG_UNIT_PT);
+    }
+    const Owned<cairo_t> cr(cairo_create(page.get()));
+    cairo_scale(cr.get(), pointsPerPixel, pointsPerPixel);
+    // The ray-traced image once, at its own pixels: drawn unscaled in pixel units, never resampled.
+    const Owned<cairo_surface_t> image = surfaceOf(still);
+    if (!image) return "cannot make a drawing surface";
+    cairo_set_source_surface(cr.get(), image.get(), 0, 0);
+    cairo_pattern_set_filter(cairo_get_source(cr.get()), CAIRO_FILTER_NEAREST);
+    cairo_paint(cr.get());
+    OverlayRecord drawn;
+    if (request.overlays)
+        drawn = drawOverlaysOn(cr.get(), still.width, still.height, request.spec, request.facts,
+                               {true, pointsPerPixel});
+    cairo_show_page(cr.get());
+    cairo_surface_finish(page.get());
+    if (const cairo_status_t status = cairo_surface_status(page.get()); status != CAIRO_STATUS_SUCCESS)
+        return fmt::format("cannot be written: {}", cairo_status_to_string(status));
+    if (request.format == DocumentFormat::Svg) {
+        std::string error;
+        const std::string svg = withTextLayer(drawnAt, drawn.texts, pointsPerPixel, error);
+        std::error_code ec;
+        std::filesystem::remove(drawnAt, ec);
+        if (!error.empty()) return error;
+        std::ofstream out(request.path, std::ios::binary | std::ios::trunc);
+        out << svg;
+        if (!out.flush()) return "cannot be written";
+    }
+    if (record) *record = drawn;
     return {};
 }
 

@@ -236,7 +236,7 @@ int runSweep(const SweepOptions& o) {
             if (e.outcome->status == relief::JobStatus::ToolFailed)
                 std::cerr << "relief: POV-Ray failed:\n" << relief::terminalText(e.outcome->render.error, 8000, true) << '\n';
             if (ok && !o.common.quiet)
-                std::cerr << fmt::format("{} -> {} ({})\n", still, e.outcome->paths.png.string(),
+                std::cerr << fmt::format("{} -> {} ({})\n", still, e.outcome->paths.still.string(),
                                          e.outcome->compiled->certified);
         }
     });

@@ -76,7 +76,7 @@ void printWritten(const relief::JobOutcome& outcome, bool rendered) {
     }
     if (rendered)
         std::cerr << fmt::format("wrote {} ({} x {}{}; POV-Ray parse {:.2f} s, trace {:.2f} s)\n",
-                                 terminalText(outcome.paths.png.string(), 500), c.scene.render.width,
+                                 terminalText(outcome.paths.still.string(), 500), c.scene.render.width,
                                  c.scene.render.height,
                                  outcome.tiles > 1 ? fmt::format(", {} tiles", outcome.tiles) : std::string(),
                                  outcome.render.parseSeconds, outcome.render.traceSeconds);
@@ -132,7 +132,7 @@ int runScene(const SceneOptions& o, relief::SceneJob::Until until) {
     if (!o.common.quiet && outcome.compiled) printWritten(outcome, until == relief::SceneJob::Until::Png);
     if (!o.common.quiet && !outcome.compiled)
         std::cerr << fmt::format("wrote {} (from the plan {}; POV-Ray parse {:.2f} s, trace {:.2f} s)\n",
-                                 terminalText(outcome.paths.png.string(), 500), terminalText(o.resume, 500),
+                                 terminalText(outcome.paths.still.string(), 500), terminalText(o.resume, 500),
                                  outcome.render.parseSeconds, outcome.render.traceSeconds);
     return code(Exit::Ok);
 }
@@ -153,7 +153,7 @@ int runPlan(const SceneOptions& o) {
         std::cerr << fmt::format("planned {} tile{} of {}: relief render-tile {} --tile K (K from 0), then relief "
                                  "finish {}\n",
                                  planned.plan->tiles, planned.plan->tiles == 1 ? "" : "s",
-                                 terminalText(planned.outcome.paths.png.string(), 500),
+                                 terminalText(planned.outcome.paths.still.string(), 500),
                                  terminalText(shellQuoted(planned.plan->dir.string()), 500),
                                  terminalText(shellQuoted(planned.plan->dir.string()), 500));
     return code(Exit::Ok);

@@ -2,6 +2,7 @@
 
 #include <cerrno>
 #include <csetjmp>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <memory>
@@ -62,6 +63,10 @@ bool encode(std::FILE* file, const PngPixels& p, png_bytep* rows, std::string& e
     png_set_IHDR(png, info, png_uint_32(p.width), png_uint_32(p.height), p.sixteenBit ? 16 : 8,
                  colourType(p.channels), PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
                  PNG_FILTER_TYPE_DEFAULT);
+    if (p.dpi > 0) {
+        const auto perMetre = static_cast<png_uint_32>(std::lround(p.dpi / 0.0254));
+        png_set_pHYs(png, info, perMetre, perMetre, PNG_RESOLUTION_METER);
+    }
     png_write_info(png, info);
     if (p.sixteenBit) png_set_swap(png);  // PNG stores 16-bit samples big-endian
     png_write_image(png, rows);

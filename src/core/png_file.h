@@ -1,6 +1,7 @@
 #pragma once
 // PNG files through libpng: written whole or not at all, with pixels only (no
-// date, software or gamma chunks), so the same pixels give the same bytes.
+// date, software or gamma chunks; the resolution only when one is given), so
+// the same pixels give the same bytes.
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -13,6 +14,7 @@ struct PngPixels {
     bool sixteenBit = false;     ///< 16-bit samples in native byte order (else 8-bit)
     const void* data = nullptr;  ///< rows top first, channels interleaved
     int compression = -1;        ///< zlib level 0..9 (0: stored); -1: zlib's default
+    double dpi = 0;              ///< > 0: a pHYs chunk, so a word processor places it at this size
 };
 
 /// Writes `pixels` to `path` through a temporary file renamed into place.

@@ -148,6 +148,25 @@ std::string oneLineText(std::string_view text) {
     return out;
 }
 
+std::string drawnText(std::string_view text, std::size_t maxChars) {
+    std::string out;
+    size_t i = 0, chars = 0;
+    for (; i < text.size() && chars < maxChars; ++chars) {
+        const auto c = static_cast<unsigned char>(text[i]);
+        if (c < 0x80) {
+            out += c < 0x20 || c == 0x7f ? ' ' : static_cast<char>(c);
+            ++i;
+            continue;
+        }
+        const size_t n = utf8Length(text, i);
+        if (n == 0) out += kReplacement, ++i;
+        else if (invisibleControl(codePoint(text.substr(i, n)))) out += ' ', i += n;
+        else out += text.substr(i, n), i += n;
+    }
+    if (i < text.size()) out += "\u2026";
+    return out;
+}
+
 std::string printableExcerpt(std::string_view text, std::size_t maxChars) {
     std::string out;
     for (size_t i = 0; i < text.size() && i < maxChars; ++i) {

@@ -36,6 +36,12 @@ std::string shellQuoted(std::string_view text);
 /// compared in any case, as GDAL compares file names and units.
 std::string asciiLower(std::string text);
 
+/// A string drawn on a still (a vector file's label, from any format): valid
+/// UTF-8 (bytes that are not as U+FFFD), on one line (control characters and
+/// invisible marks as spaces), at most `maxChars` characters, cut with "…".
+/// Drawn as text, never as markup.
+std::string drawnText(std::string_view text, std::size_t maxChars = 80);
+
 /// Whether `text` is well-formed UTF-8 (RFC 3629).
 bool isUtf8(std::string_view text);
 

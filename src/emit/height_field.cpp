@@ -115,9 +115,9 @@ Drape elevationDrape(const geo::GeoGrid& refined, const ScenePlacement& where) {
             const bool slope = where.colouring == C::Slope || where.colouring == C::Blend;
             const auto& colour =
                 where.paletteColors[slope ? paletteEntry(where, e, slopeDeg(refined, where, r, c)) : paletteIndex(where, e)];
-            const double light = where.skyLightAt(static_cast<size_t>(r) * g.cols + c);
+            const LinearRgb drawn = where.nodeColour(static_cast<size_t>(r) * g.cols + c, colour);
             std::uint16_t* px = row + n * static_cast<size_t>(c);
-            px[0] = level(light * colour.r), px[1] = level(light * colour.g), px[2] = level(light * colour.b);
+            px[0] = level(drawn.r), px[1] = level(drawn.g), px[2] = level(drawn.b);
             if (n == 4) px[3] = refined.isMasked(r, c) ? 0 : 65535;
         }
     }
@@ -142,6 +142,15 @@ Drape imageDrape(const geo::GeoGrid& refined, const ScenePlacement& where, const
             if (!image.covered[node]) continue;
             std::uint16_t* px = row + n * static_cast<size_t>(c);
             const double light = where.skyLightAt(node);
+            if (where.fillAt(node)) {  // a fill laid over the image: its colour as a fraction, filled and lit
+                const LinearRgb drawn = where.nodeColour(
+                    node, {linear[image.rgb[3 * node]] / 65535.0, linear[image.rgb[3 * node + 1]] / 65535.0,
+                           linear[image.rgb[3 * node + 2]] / 65535.0});
+                px[0] = static_cast<std::uint16_t>(std::lround(drawn.r * 65535));
+                px[1] = static_cast<std::uint16_t>(std::lround(drawn.g * 65535));
+                px[2] = static_cast<std::uint16_t>(std::lround(drawn.b * 65535));
+                continue;
+            }
             for (int k = 0; k < 3; ++k)
                 px[k] = light == 1.0 ? linear[image.rgb[3 * node + k]]
                                      : static_cast<std::uint16_t>(std::lround(light * linear[image.rgb[3 * node + k]]));

@@ -24,6 +24,17 @@ inline constexpr int kPaletteSize = 256;
 /// not mirrored). One scene unit is `metresPerUnit` metres, a power of ten
 /// chosen so the terrain spans 10-100 units: POV-Ray stores vertices as
 /// 32-bit floats and treats bounding boxes over ~2e10 cubic units as infinite.
+/// Tints laid over the surface's colour, node by node: [[layer]] polygons'
+/// fills. fillOf[node] is 0 (none) or k, the fill fills[k - 1].
+struct NodeFills {
+    struct Fill {
+        LinearRgb colour;
+        double opacity = 0.35;
+    };
+    std::vector<std::uint8_t> fillOf;
+    std::vector<Fill> fills;
+};
+
 struct ScenePlacement {
     double metresPerUnit = 1;
     Vec3 originM;                 ///< frame position (metres) of the scene origin (x, y; z = 0)
@@ -52,8 +63,21 @@ struct ScenePlacement {
     /// geometry's colours are multiplied by it. Null: no sky light.
     std::shared_ptr<const std::vector<float>> skyLight;
 
+    /// [[layer]] fills, per refined node (row-major); null: none.
+    std::shared_ptr<const NodeFills> fills;
+
     /// Node `node`'s sky light: the factor its colour is multiplied by.
     double skyLightAt(size_t node) const { return skyLight ? (*skyLight)[node] : 1.0; }
+    /// Node `node`'s fill (0: none, k: fills->fills[k - 1]).
+    unsigned fillAt(size_t node) const { return fills ? fills->fillOf[node] : 0u; }
+    /// A node's colour as every geometry draws it: its fill laid over `base`
+    /// (the ramp's, or a draped image's), then its sky light.
+    LinearRgb nodeColour(size_t node, const LinearRgb& base) const {
+        LinearRgb c = base;
+        if (const unsigned f = fillAt(node)) c = mix(c, fills->fills[f - 1].colour, fills->fills[f - 1].opacity);
+        const double light = skyLightAt(node);
+        return {c.r * light, c.g * light, c.b * light};
+    }
 
     double fallAt(const Vec3& p) const { return curvature ? curvature->at(p.x, p.y) : 0.0; }
     /// A frame point's elevation: its height above the ellipsoid (in UTM, its z).
@@ -171,10 +195,11 @@ struct Mesh : ScenePlacement {
     /// Node `node`'s entry of paletteColors: its true elevation on the ramp
     /// (and its slope, when the colouring uses it).
     unsigned palette(size_t node) const { return litTexture.empty() ? basePalette(node) : litTexture[node]; }
-    /// The colours palette() indexes: paletteColors, or the sky-lit ones.
+    /// The colours palette() indexes: paletteColors, or the lit and filled ones.
     const std::vector<LinearRgb>& textureColours() const { return litTexture.empty() ? paletteColors : litColours; }
-    /// With sky light (emit/sky_light.h): each node's entry of litColours, and
-    /// those colours (the palette entries times the sky light, quantized).
+    /// With sky light or fills (nodeTextures, emit/sky_light.h): each node's
+    /// entry of litColours, and those colours (the palette entries filled and
+    /// times the sky light, quantized).
     std::vector<std::uint32_t> litTexture;
     std::vector<LinearRgb> litColours;
 

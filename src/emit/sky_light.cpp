@@ -9,22 +9,25 @@ void addSkyLight(ScenePlacement& where, const geo::GeoGrid& refined, const geo::
     where.skyLight = std::make_shared<const std::vector<float>>(geo::skyViewFactor(refined, options));
 }
 
-void lightBySky(Mesh& mesh) {
-    if (!mesh.skyLight) return;
+void nodeTextures(Mesh& mesh) {
+    if (!mesh.skyLight && !mesh.fills) return;
     const size_t nodes = mesh.grid->grid.points.size();
     constexpr int kSteps = kSkyLightLevels + 1;  // 0/128 .. 128/128
-    std::vector<std::int32_t> entryOf(mesh.paletteColors.size() * kSteps, -1);
+    const size_t fills = mesh.fills ? mesh.fills->fills.size() + 1 : 1;
+    std::vector<std::int32_t> entryOf(mesh.paletteColors.size() * kSteps * fills, -1);
     mesh.litTexture.assign(nodes, 0);
     mesh.litColours.clear();
     for (size_t node = 0; node < nodes; ++node) {
         if (!mesh.isVertex(node)) continue;
-        const unsigned base = mesh.basePalette(node);
+        const unsigned base = mesh.basePalette(node), fill = mesh.fillAt(node);
         const long level = std::clamp(std::lround(mesh.skyLightAt(node) * kSkyLightLevels), 0L, long{kSkyLightLevels});
-        std::int32_t& entry = entryOf[static_cast<size_t>(base) * kSteps + level];
+        std::int32_t& entry = entryOf[(static_cast<size_t>(base) * kSteps + level) * fills + fill];
         if (entry < 0) {
             entry = static_cast<std::int32_t>(mesh.litColours.size());
-            const double light = static_cast<double>(level) / kSkyLightLevels;
-            const LinearRgb& c = mesh.paletteColors[base];
+            // The colour of a node with this palette entry, fill and (quantized) light.
+            LinearRgb c = mesh.paletteColors[base];
+            if (fill) c = mix(c, mesh.fills->fills[fill - 1].colour, mesh.fills->fills[fill - 1].opacity);
+            const double light = double(level) / kSkyLightLevels;
             mesh.litColours.push_back({c.r * light, c.g * light, c.b * light});
         }
         mesh.litTexture[node] = static_cast<std::uint32_t>(entry);

@@ -18,8 +18,10 @@ inline constexpr int kSkyLightLevels = 128;
 /// Sets where.skyLight to every node's sky-view factor over `refined`.
 void addSkyLight(ScenePlacement& where, const geo::GeoGrid& refined, const geo::SkyViewOptions& options);
 
-/// With where.skyLight set: gives `mesh` its lit texture list (Mesh::litTexture,
-/// litColours), the entries in the order the nodes first use them.
-void lightBySky(Mesh& mesh);
+/// With where.skyLight or where.fills set: gives `mesh` its own texture list
+/// (Mesh::litTexture, litColours): each node's palette colour with its fill
+/// and sky light (nodeColour), the light quantized to kSkyLightLevels, the
+/// entries in the order the nodes first use them.
+void nodeTextures(Mesh& mesh);
 
 }  // namespace relief::emit

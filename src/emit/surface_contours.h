@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "emit/mesh.h"
+#include "emit/surface_ribbons.h"
 #include "geo/geo_grid.h"
 #include "scene/scene_spec.h"
 
@@ -20,14 +21,9 @@ struct SurfaceContours {
     long long lines = 0, points = 0;
 };
 
-/// The ribbons: two vertices a point of a line (scene units), two triangles
-/// between consecutive points.
 struct ContourRibbons {
     SurfaceContours made;
-    std::vector<SceneVec3> vertices;
-    std::vector<std::array<std::uint32_t, 3>> faces;
-    /// The SDL they will take, in bytes (about 30 a vertex, 20 a face).
-    double sdlBytes() const { return 30.0 * vertices.size() + 20.0 * faces.size(); }
+    Ribbons ribbons;
 };
 
 /// The contour lines of `refined` at every multiple of spec.intervalM within

@@ -277,7 +277,7 @@ Bindings sceneBindings(const ScenePlacement& where, const CameraView& view, cons
     b["terrain"].writer = std::move(writers.terrain);
     if (writers.base) b["base"].writer = std::move(writers.base);
     else b["base"].text = "";
-    if (writers.contours) b["contours"].writer = std::move(writers.contours);
+    if (writers.onSurface) b["contours"].writer = std::move(writers.onSurface);
     else b["contours"].text = "";
     return b;
 }

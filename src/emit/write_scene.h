@@ -41,10 +41,11 @@ struct SunDirection {
 using GeometryWriter = std::function<void(std::FILE* out)>;
 
 /// What goes in the template's placeholders besides the camera and the sun:
-/// the terrain, the block model under it (empty: a floating surface) and the
-/// contour lines on it (empty: none).
+/// the terrain, the block model under it (empty: a floating surface) and
+/// what lies on its surface, in the placeholder {{contours}}: contour lines,
+/// the [[layer]]s' lines and markers, the graticule (empty: none).
 struct GeometryWriters {
-    GeometryWriter terrain, base, contours;
+    GeometryWriter terrain, base, onSurface;
 };
 
 /// The template's bindings: header (every key and value through

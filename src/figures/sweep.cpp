@@ -211,7 +211,7 @@ public:
             event.diags = &diags;
             emit(event);
             result.tiles.push_back(
-                {p.outcome.paths.png, fmt::format("{}\n{}", labelOf(combos_[i]), p.outcome.compiled->certified)});
+                {p.outcome.paths.still, fmt::format("{}\n{}", labelOf(combos_[i]), p.outcome.compiled->certified)});
         }
         return true;
     }

@@ -37,7 +37,7 @@ Dataset openRaster(const std::filesystem::path& path, std::string& problem, cons
 }
 
 Dataset openChecked(const std::filesystem::path& path, unsigned kind, std::string& problem,
-                    const FolderNames* siblings) {
+                    const FolderNames* siblings, const char* const* openOptions) {
     std::optional<FolderNames> listedHere;
     if (!siblings) siblings = &listedHere.emplace(FolderNames::of(path));
     problem = gdalInputProblem(path, siblings);
@@ -48,7 +48,7 @@ Dataset openChecked(const std::filesystem::path& path, unsigned kind, std::strin
     // Only the files beside it that were checked: GDAL lists no folder itself.
     const SiblingFiles beside(*siblings, path.filename().string());
     CPLPushErrorHandler(CPLQuietErrorHandler);
-    Dataset ds(GDALOpenEx(name.c_str(), kind | GDAL_OF_READONLY, nullptr, nullptr, beside.forGdal()));
+    Dataset ds(GDALOpenEx(name.c_str(), kind | GDAL_OF_READONLY, nullptr, openOptions, beside.forGdal()));
     CPLPopErrorHandler();
     return ds;
 }

@@ -41,9 +41,10 @@ std::pair<Transform, Transform> wgs84Transforms(OGRSpatialReferenceH srs);
 /// (null with `problem` empty: GDAL cannot read it). `siblings`: the names in
 /// its folder, when the caller has them (a folder of tiles).
 Dataset openRaster(const std::filesystem::path& path, std::string& problem, const FolderNames* siblings = nullptr);
-/// The same for any kind of dataset: `kind` is GDAL_OF_RASTER or GDAL_OF_VECTOR.
+/// The same for any kind of dataset: `kind` is GDAL_OF_RASTER or GDAL_OF_VECTOR;
+/// `openOptions` (a null-ended list of NAME=VALUE) go to the driver.
 Dataset openChecked(const std::filesystem::path& path, unsigned kind, std::string& problem,
-                    const FolderNames* siblings = nullptr);
+                    const FolderNames* siblings = nullptr, const char* const* openOptions = nullptr);
 
 /// The credit a raster's metadata carries (GeoTIFF's copyright tag, or a
 /// COPYRIGHT, LICENSE, LICENCE or ATTRIBUTION item), cut to what a still can

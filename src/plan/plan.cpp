@@ -22,7 +22,7 @@ using nlohmann::ordered_json;
 
 namespace {
 
-constexpr int kPlanFormat = 3;
+constexpr int kPlanFormat = 5;
 constexpr std::uintmax_t kMaxPlanBytes = 64'000'000;
 
 ordered_json coloursJson(const std::vector<LinearRgb>& colours) {
@@ -33,6 +33,54 @@ ordered_json coloursJson(const std::vector<LinearRgb>& colours) {
 std::vector<LinearRgb> coloursOf(const ordered_json& a) {
     std::vector<LinearRgb> out;
     for (const auto& c : a) out.push_back({c.at(0).get<double>(), c.at(1).get<double>(), c.at(2).get<double>()});
+    return out;
+}
+
+ordered_json labelsJson(const std::vector<annotate::LabelFact>& labels) {
+    ordered_json a = ordered_json::array();
+    for (const auto& l : labels)
+        a.push_back({{"text", l.text}, {"x", l.x}, {"y", l.y}, {"marker_px", l.markerPx}, {"ground_y", l.groundY},
+                     {"size_px", l.sizePx}, {"layer", l.layer}});
+    return a;
+}
+std::vector<annotate::LabelFact> labelsOf(const ordered_json& a) {
+    std::vector<annotate::LabelFact> out;
+    for (const auto& l : a)
+        out.push_back({l.at("text").get<std::string>(), l.at("x").get<double>(), l.at("y").get<double>(),
+                       l.at("marker_px").get<double>(), l.at("ground_y").get<double>(), l.at("size_px").get<double>(),
+                       l.at("layer").get<int>()});
+    return out;
+}
+
+ordered_json legendJson(const std::vector<annotate::LegendEntry>& entries) {
+    ordered_json a = ordered_json::array();
+    for (const auto& e : entries) {
+        ordered_json j = {{"text", e.text},
+                          {"kind", static_cast<int>(e.kind)},
+                          {"colour", coloursJson({e.colour})[0]},
+                          {"fill_opacity", e.fillOpacity},
+                          {"width_px", e.widthPx},
+                          {"dashed", e.dashed}};
+        if (e.fill) j["fill"] = coloursJson({*e.fill})[0];
+        a.push_back(j);
+    }
+    return a;
+}
+std::vector<annotate::LegendEntry> legendOf(const ordered_json& a) {
+    std::vector<annotate::LegendEntry> out;
+    for (const auto& j : a) {
+        annotate::LegendEntry e;
+        e.text = j.at("text").get<std::string>();
+        const int kind = j.at("kind").get<int>();
+        if (kind < 0 || kind > 2) throw nlohmann::json::other_error::create(501, "a legend entry's kind", nullptr);
+        e.kind = static_cast<annotate::LegendEntry::Kind>(kind);
+        e.colour = coloursOf(ordered_json::array({j.at("colour")}))[0];
+        if (j.contains("fill")) e.fill = coloursOf(ordered_json::array({j.at("fill")}))[0];
+        e.fillOpacity = j.at("fill_opacity").get<double>();
+        e.widthPx = j.at("width_px").get<double>();
+        e.dashed = j.at("dashed").get<bool>();
+        out.push_back(e);
+    }
     return out;
 }
 
@@ -53,7 +101,9 @@ ordered_json overlayJson(const RenderPlan& p) {
         {"metres_per_pixel", f.metresPerPixel},
         {"perspective", f.perspective},
         {"north_deg", f.northDeg},
-        {"terrain", {{"band_px", f.terrain.bandPx}, {"top", f.terrain.top}, {"bottom", f.terrain.bottom}}}};
+        {"terrain", {{"band_px", f.terrain.bandPx}, {"top", f.terrain.top}, {"bottom", f.terrain.bottom}}},
+        {"labels", labelsJson(f.labels)},
+        {"layer_legend", legendJson(f.layerLegend)}};
     return {{"drawn", p.overlays}, {"spec", spec}, {"facts", facts}};
 }
 
@@ -82,6 +132,8 @@ void readOverlay(const ordered_json& j, RenderPlan& p) {
     o.terrain.bandPx = f.at("terrain").at("band_px").get<double>();
     o.terrain.top = f.at("terrain").at("top").get<std::vector<double>>();
     o.terrain.bottom = f.at("terrain").at("bottom").get<std::vector<double>>();
+    o.labels = labelsOf(f.at("labels"));
+    o.layerLegend = legendOf(f.at("layer_legend"));
 }
 
 ordered_json fileJson(const PlanFile& f) { return {{"name", f.name}, {"final", f.final.string()}, {"role", f.role}}; }
@@ -110,6 +162,7 @@ ordered_json planJson(const RenderPlan& p) {
               {"alpha", p.alpha},
               {"sandbox", p.sandbox},
               {"timeout_s", p.timeoutS},
+              {"dpi", p.dpi},
               {"templates", p.templatesDir.string()}}},
             {"still", p.still.string()},
             {"sidecar", p.sidecar.string()},
@@ -201,6 +254,7 @@ std::optional<RenderPlan> readPlan(const fs::path& dir, Diagnostics& diags) {
         p.alpha = r.at("alpha").get<bool>();
         p.sandbox = r.at("sandbox").get<bool>();
         p.timeoutS = r.at("timeout_s").get<double>();
+        p.dpi = r.at("dpi").get<double>();
         p.templatesDir = r.at("templates").get<std::string>();
         p.still = j.at("still").get<std::string>();
         p.sidecar = j.at("sidecar").get<std::string>();

@@ -58,8 +58,9 @@ struct RenderPlan {
     double antialiasThreshold = 0.3;
     int antialiasDepth = 3;
     double timeoutS = 0;
+    double dpi = 0;  ///< render.dpi: a PNG's pHYs, a PDF's or SVG's page size; 0: unset
     std::filesystem::path templatesDir;  ///< absolute: the template's own #include files
-    std::filesystem::path still, sidecar;  ///< the final PNG and sidecar (absolute)
+    std::filesystem::path still, sidecar;  ///< the final still (.png, .pdf, .svg) and sidecar (absolute)
     // What finishing draws and writes.
     bool overlays = false;
     scene::OverlaySpec overlaySpec;     ///< without key locations

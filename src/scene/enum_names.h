@@ -72,6 +72,11 @@ struct EnumNames<CameraPath> {
         {CameraPath::Still, "still"}, {CameraPath::Orbit, "orbit"}, {CameraPath::Flyover, "flyover"}};
 };
 template <>
+struct EnumNames<MarkerKind> {
+    static constexpr NameRow<MarkerKind> rows[] = {
+        {MarkerKind::Pin, "pin"}, {MarkerKind::Dot, "dot"}, {MarkerKind::Flag, "flag"}, {MarkerKind::None, "none"}};
+};
+template <>
 struct EnumNames<Quality> {
     static constexpr NameRow<Quality> rows[] = {
         {Quality::Draft, "draft"}, {Quality::Report, "report"}, {Quality::High, "high"}};

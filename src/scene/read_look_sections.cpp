@@ -234,6 +234,31 @@ std::optional<ContourSpec> contoursOf(const toml::node& n) {
     return ok ? std::optional(contours) : std::nullopt;
 }
 
+// overlay.graticule: "auto", or { step_deg = 0.01, color = "#080808", width_px = 1.2 }.
+std::optional<GraticuleSpec> graticuleOf(const toml::node& n) {
+    GraticuleSpec g;
+    if (n.value_exact<std::string>() == std::optional<std::string>("auto")) return g;
+    const toml::table* t = n.as_table();
+    bool ok = t != nullptr;
+    for (auto&& [k, v] : t ? *t : toml::table{}) {
+        const std::string key(k.str());
+        const auto d = v.value<double>();
+        if (key == "step_deg") {
+            ok = ok && d && *d >= 1.0 / 3600 && *d <= 30;
+            if (d) g.stepDeg = *d;
+        } else if (key == "width_px") {
+            ok = ok && d && *d >= 0.5 && *d <= 20;
+            if (d) g.widthPx = *d;
+        } else if (key == "color") {
+            const auto c = v.value_exact<std::string>();
+            ok = ok && c && parseHexColor(*c, g.colour);
+        } else {
+            ok = false;
+        }
+    }
+    return ok ? std::optional(g) : std::nullopt;
+}
+
 }  // namespace
 
 void readOverlay(Section& s, const SceneFile&, SceneSpec& scene) {
@@ -245,6 +270,13 @@ void readOverlay(Section& s, const SceneFile&, SceneSpec& scene) {
     if (auto v = s.boolean("legend")) overlay.legend = *v;
     if (auto v = s.boolean("scale_bar")) overlay.scaleBar = *v;
     if (auto v = s.boolean("north_arrow")) overlay.northArrow = *v;
+    s.markKnown("graticule");
+    if (const toml::node* n = s.find("graticule")) {
+        if (auto graticule = graticuleOf(*n)) overlay.graticule = graticule;
+        else
+            s.error("graticule", "overlay.graticule must be \"auto\" or { step_deg = <degrees, 1/3600 to 30> } with "
+                                 "optional width_px = <0.5 to 20> and color = \"#rrggbb\"");
+    }
     s.markKnown("contours");
     const toml::node* n = s.find("contours");
     if (!n) return;

@@ -43,6 +43,7 @@ std::span<const SectionReader> sectionReaders() {
         {"atmosphere", [](SceneSpec& s) -> KeyLocations& { return s.look.atmosphere.locs; }, readAtmosphere},
         {"overlay", [](SceneSpec& s) -> KeyLocations& { return s.overlay.locs; }, readOverlay},
         {"animation", [](SceneSpec& s) -> KeyLocations& { return s.animation.locs; }, readAnimation},
+        {"layer", [](SceneSpec& s) -> KeyLocations& { return s.layers.emplace_back().locs; }, readLayer, true},
     };
     return kReaders;
 }
@@ -78,6 +79,12 @@ std::optional<double> parseFraction(std::string_view text) {
 
 namespace {
 
+// Whether `name` is a section of many tables ([[layer]]).
+bool isManySection(const std::string& name) {
+    const auto readers = sectionReaders();
+    return std::any_of(readers.begin(), readers.end(), [&](const SectionReader& r) { return r.many && name == r.name; });
+}
+
 // Where an override came from: the command line's --set, named as the user wrote it.
 SourceLoc overrideLoc(const std::string& dotted) {
     return {"--set " + terminalText(dotted, 200), 0, 0};
@@ -95,6 +102,13 @@ bool applyOverrides(toml::table& root, const SceneOverrides& overrides, Diagnost
             continue;
         }
         const std::string section = dotted.substr(0, dot), key = dotted.substr(dot + 1);
+        if (isManySection(section)) {
+            diags.error(overrideLoc(dotted), fmt::format("[[{}]] keys cannot be set with --set: there may be many "
+                                                         "[[{}]] tables; change the scene file",
+                                                         section, section));
+            ok = false;
+            continue;
+        }
         if (!root.contains(section)) root.insert(section, toml::table{});
         toml::table* t = root.get_as<toml::table>(section);
         if (!t) {
@@ -140,8 +154,25 @@ void checkSections(const toml::table& root, const std::string& file, Diagnostics
         const std::string key(k.str());
         if (std::find(names.begin(), names.end(), key) == names.end())
             diags.error(locOf(file, k.source()), fmt::format("unknown section [{}]{}", key, didYouMean(key, names)));
-        else if (!v.is_table())
+        else if (isManySection(key) && !v.is_array_of_tables())
+            diags.error(locOf(file, k.source()), fmt::format("\"{}\" must be tables, each written [[{}]] (one for "
+                                                             "each {}), not [{}]",
+                                                             key, key, key, key));
+        else if (!isManySection(key) && !v.is_table())
             diags.error(locOf(file, k.source()), fmt::format("\"{}\" must be a section ([{}])", key, key));
+    }
+}
+
+// A section of many tables: each read as a section of its own into a new element.
+void readEachTable(const SectionReader& reader, const SceneFile& f, SceneSpec& scene) {
+    const toml::array* tables = f.root.get_as<toml::array>(reader.name);
+    if (!tables || !tables->is_array_of_tables()) return;
+    for (const toml::node& n : *tables) {
+        const toml::table* t = n.as_table();
+        Section s(t, reader.name, f.name, f.diags, locOf(f.name, t->source()));
+        s.recordLocations(reader.locations(scene));
+        reader.read(s, f, scene);
+        s.finish();
     }
 }
 
@@ -177,6 +208,10 @@ std::optional<SceneSpec> readSceneText(const std::string& text, const std::files
     checkSections(root, file, diags);
     const SceneFile sceneFile{path, file, root, diags};
     for (const auto& reader : sectionReaders()) {
+        if (reader.many) {
+            readEachTable(reader, sceneFile, scene);
+            continue;
+        }
         const toml::table* t = root.get_as<toml::table>(reader.name);
         Section s(t, reader.name, file, diags, t ? locOf(file, t->source()) : SourceLoc{file, 0, 0});
         s.recordLocations(reader.locations(scene));

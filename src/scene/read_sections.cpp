@@ -230,6 +230,7 @@ void readLimits(Section& s, const SceneFile&, SceneSpec& scene) {
     if (auto v = s.number("max_parse_s", 0.001, 1e6, "s")) limits.maxParseS = *v;
     if (auto v = s.number("max_memory_mb", 1, 1e9, "MB")) limits.maxMemoryMB = *v;
     if (auto v = s.number("max_film_s", 0, 1e9, "s")) limits.maxFilmS = *v;
+    if (auto v = s.number("max_layer_vertices", 1, 1e9, "vertices")) limits.maxLayerVertices = *v;
 }
 
 void readGeometry(Section& s, const SceneFile&, SceneSpec& scene) {
@@ -246,8 +247,10 @@ void readOutput(Section& s, RenderSpec& render) {
     if (!v) return;
     const std::filesystem::path out(*v);
     const bool climbs = std::any_of(out.begin(), out.end(), [](const auto& part) { return part == ".."; });
-    if (v->size() < 5 || v->substr(v->size() - 4) != ".png")
-        s.error("output", fmt::format("render.output = \"{}\" must name a .png file", printableExcerpt(*v, 200)));
+    const std::string extension = asciiLower(out.extension().string());
+    if (out.stem().empty() || (extension != ".png" && extension != ".pdf" && extension != ".svg"))
+        s.error("output", fmt::format("render.output = \"{}\" must name a .png, .pdf or .svg file",
+                                      printableExcerpt(*v, 200)));
     else if (out.is_absolute() || climbs)
         // A scene from elsewhere must not choose where on the disk it writes; -o can.
         s.error("output", fmt::format("render.output = \"{}\" must stay inside the current folder (no "
@@ -266,6 +269,7 @@ void readRender(Section& s, const SceneFile&, SceneSpec& scene) {
     if (auto v = s.boolean("antialias")) render.antialias = *v;
     if (auto q = s.named<Quality>("quality")) render.quality = *q;
     if (auto v = s.number("timeout_s", 0, 1e7, "seconds (0: no limit)")) render.timeoutS = *v;
+    if (auto v = s.number("dpi", 1, 4800, "dots an inch")) render.dpi = *v;
     if (auto v = s.string("background")) {
         if (*v == "sky") render.background = Background::Sky;
         else if (*v == "transparent") render.background = Background::Transparent;

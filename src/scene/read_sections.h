@@ -21,11 +21,15 @@ struct SceneFile {
 
 using SectionReadFn = void (*)(Section&, const SceneFile&, SceneSpec&);
 
-/// A [section]: its name, where its keys' locations go, and its reader.
+/// A [section]: its name, where its keys' locations go, and its reader. A
+/// `many` section is an array of tables ([[layer]]): `locations` appends a
+/// new element to the spec and gives its locations, once for each table,
+/// before `read` reads the table into that element.
 struct SectionReader {
     const char* name;
     KeyLocations& (*locations)(SceneSpec&);
     SectionReadFn read;
+    bool many = false;
 };
 
 /// Every section, in the order they are read (and their problems reported).
@@ -54,5 +58,8 @@ std::optional<std::string> dateTimeText(const toml::node& n);
 
 // The film (read_animation.cpp).
 void readAnimation(Section& s, const SceneFile& f, SceneSpec& scene);
+
+// The vector layers (read_layers.cpp): one [[layer]] into scene.layers.back().
+void readLayer(Section& s, const SceneFile& f, SceneSpec& scene);
 
 }  // namespace relief::scene

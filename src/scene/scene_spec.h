@@ -171,6 +171,7 @@ struct LimitsSpec {
     double maxParseS = 120;
     double maxMemoryMB = 0;  ///< 0 = three quarters of this machine's memory
     double maxFilmS = 0;     ///< a film's estimated rendering, wall seconds; 0 = no limit
+    double maxLayerVertices = 1e7;  ///< read from one [[layer]]'s file
     KeyLocations locs;
 };
 
@@ -299,8 +300,13 @@ struct RenderSpec {
     Quality quality = Quality::Report;
     Background background = Background::Sky;
     LinearRgb backgroundColour;  ///< Background::Colour
-    std::string output;  ///< "" = out/<scene stem>.png
+    std::string output;  ///< "" = out/<scene stem>.png; .png, .pdf or .svg
     double timeoutS = 0; ///< POV-Ray stopped after this long; 0 = no limit
+    /// The still's resolution for print: a PNG's pHYs chunk, a PDF's or SVG's
+    /// page size (the pixels at this many a inch). Unset: none in a PNG,
+    /// kDocumentDpi for a PDF or SVG.
+    std::optional<double> dpi;
+    static constexpr double kDocumentDpi = 300;
     KeyLocations locs;
 };
 
@@ -312,6 +318,14 @@ struct ContourSpec {
     LinearRgb colour{0.05, 0.035, 0.02};  ///< #3e3426 in sRGB
 };
 
+/// [overlay] graticule: lines of longitude and latitude lying on the surface,
+/// labelled where they leave the terrain at the still's edges.
+struct GraticuleSpec {
+    double stepDeg = 0;  ///< 0: "auto", about five lines over the terrain's larger span
+    LinearRgb colour{0.03, 0.03, 0.03};
+    double widthPx = 1.2;
+};
+
 struct OverlaySpec {
     enum class Enabled { Auto, On, Off };
     Enabled enabled = Enabled::Auto;  ///< Auto: on for stills at least kMinAutoWidthPx wide
@@ -320,6 +334,7 @@ struct OverlaySpec {
     std::optional<std::string> credits;  ///< unset: the samples' attribution
     bool legend = true, scaleBar = true, northArrow = true;
     std::optional<ContourSpec> contours;  ///< unset: none
+    std::optional<GraticuleSpec> graticule;  ///< unset: none
     KeyLocations locs;
 };
 
@@ -387,6 +402,33 @@ struct AnimationSpec {
 };
 
 /// The whole scene file: one spec per stage, and where it came from.
+/// [[layer]]: one layer of a vector file, drawn on the terrain: points as
+/// markers standing on the surface with labels beside them, lines as ribbons
+/// lying on it, polygons as their outlines and an optional tint.
+enum class MarkerKind { Pin, Dot, Flag, None };
+
+struct LayerSpec {
+    static constexpr int kMaxLayers = 64;
+    static constexpr double kMinLabelPx = 10;  ///< no label a reader cannot read
+    std::filesystem::path path;       ///< resolved against the scene file's folder
+    std::string pathAsWritten;
+    std::string layer;                ///< the file's layer; "" = its first holding a feature
+    std::string crs;                  ///< the CRS of a file that declares none (EPSG:2193, a WKT, a PROJ string)
+    std::string labelField;           ///< label = "name": each point's label is this attribute's value
+    std::string labelText;            ///< label_text = "Summit": every point's label
+    std::string legend;               ///< the legend's entry for the layer; "" = none
+    MarkerKind marker = MarkerKind::Pin;
+    double markerSizePx = 20;         ///< a marker's height on the still
+    double labelSizePx = 13;
+    double widthPx = 2.5;             ///< lines and outlines, at the centre of the view
+    std::vector<double> dashPx;       ///< [on, off] along lines; empty: solid
+    LinearRgb colour;                 ///< markers, lines, outlines
+    std::optional<LinearRgb> fill;    ///< polygons: a tint laid over the surface's colour
+    double fillOpacity = 0.35;
+    int number = 0;                   ///< 1-based, in the scene's order (messages, the sidecar)
+    KeyLocations locs;
+};
+
 struct SceneSpec {
     std::filesystem::path sceneFile;  ///< as given
     std::string sceneSha1;            ///< hash of the scene file's bytes
@@ -403,6 +445,7 @@ struct SceneSpec {
     OverlaySpec overlay;
     LimitsSpec limits;
     AnimationSpec animation;
+    std::vector<LayerSpec> layers;  ///< [[layer]], drawn in this order
 };
 
 }  // namespace relief::scene

@@ -34,9 +34,9 @@ TEST(SurfaceContours, RingsOnAConeLieOnItsCircles) {
     // Levels 20 to 100 over the surface's 15.1..100 m: 90 and below reach the grid (100 is the apex).
     EXPECT_EQ(ribbons.made.levels, 9);
     EXPECT_GE(ribbons.made.lines, 7);
-    ASSERT_GT(ribbons.vertices.size(), 100u);
-    EXPECT_EQ(ribbons.faces.size() % 2, 0u);
-    for (const SceneVec3& v : ribbons.vertices) {
+    ASSERT_GT(ribbons.ribbons.vertices.size(), 100u);
+    EXPECT_EQ(ribbons.ribbons.faces.size() % 2, 0u);
+    for (const SceneVec3& v : ribbons.ribbons.vertices) {
         ASSERT_TRUE(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z));
         const double x = v.x * where.metresPerUnit + where.originM.x - 500000;
         const double y = v.z * where.metresPerUnit + where.originM.y - 5000000;
@@ -47,7 +47,7 @@ TEST(SurfaceContours, RingsOnAConeLieOnItsCircles) {
         // On the cone (bilinear between nodes: within 0.3 m near the apex), lifted.
         EXPECT_NEAR(height, 100 - r, 0.35) << x << "," << y;
     }
-    EXPECT_LT(ribbons.sdlBytes(), 2e6);
+    EXPECT_LT(ribbons.ribbons.sdlBytes(), 2e6);
 }
 
 }  // namespace

@@ -38,6 +38,7 @@ TEST(EnumNames, EveryValueHasOneName) {
     expectOneNameEach(GeometryKind::HeightField);
     expectOneNameEach(CameraPath::Flyover);
     expectOneNameEach(Quality::High);
+    expectOneNameEach(MarkerKind::None);
     EXPECT_STREQ(nameOf(Gridding::InverseDistance), "invdist");
     EXPECT_STREQ(nameOf(GeometryKind::HeightField), "height_field");
 }
@@ -48,7 +49,7 @@ TEST(SectionReaders, EverySectionHasOneReader) {
         EXPECT_TRUE(names.insert(reader.name).second) << reader.name << " has two readers";
         EXPECT_NE(reader.read, nullptr);
     }
-    EXPECT_EQ(names.size(), 16u);
+    EXPECT_EQ(names.size(), 17u);
 }
 
 struct SceneText {

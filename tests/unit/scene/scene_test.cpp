@@ -49,16 +49,18 @@ TEST(ReadScene, MinimalSceneGetsDefaults) {
 TEST(ReadScene, EveryKeyTheStagesLookUpIsASceneKey) {
     const auto dir = relief::testing::freshTestDir("relief-scene-keys-test");
     std::ofstream(dir / "s.csv") << "lon,lat,elev\n";
-    std::ofstream(dir / "s.toml") << "[samples]\npath = \"s.csv\"\n[animation]\nframes = 2\npath = \"orbit\"\n";
+    std::ofstream(dir / "s.toml") << "[samples]\npath = \"s.csv\"\n[animation]\nframes = 2\npath = \"orbit\"\n"
+                                     "[[layer]]\npath = \"s.csv\"\n";
     Diagnostics diags;
     const auto s = readScene(dir / "s.toml", diags);
     ASSERT_TRUE(s);
+    ASSERT_EQ(s->layers.size(), 1u);
     std::set<std::string> known;
     for (const KeyLocations* locs :
          {&s->samples.locs, &s->frame.locs, &s->net.locs, &s->subdivision.locs, &s->look.vertical.locs,
           &s->look.texture.locs, &s->look.lighting.locs, &s->look.camera.locs, &s->look.base.locs, &s->look.water.locs,
           &s->look.atmosphere.locs, &s->geometry.locs, &s->render.locs, &s->overlay.locs, &s->limits.locs,
-          &s->animation.locs})
+          &s->animation.locs, &s->layers[0].locs})
         known.insert(locs->known.begin(), locs->known.end());
     ASSERT_GT(known.size(), 50u);
     const std::regex lookup(R"re(locs\.(?:at|has)\("([a-z_]+\.[a-z_.]+)"\))re");
@@ -202,4 +204,57 @@ TEST(ColorRamp, TopobathyShoreAtSeaLevel) {
 }
 
 }  // namespace
+// [[layer]] tables: each a layer of its own, in order, its keys at their own
+// lines; colours taken in turn when none is given; [layer] written as one
+// table, a label too small to read, both label keys, and --set of a layer key
+// are errors saying what to write.
+TEST(ReadScene, LayerTablesAreReadInOrderWithTheirOwnLocations) {
+    const auto dir = relief::testing::freshTestDir("relief-scene-layers-test");
+    std::ofstream(dir / "s.csv") << "lon,lat,elev\n";
+    std::ofstream(dir / "a.geojson") << "{}";
+    std::ofstream(dir / "s.toml") << "[samples]\npath = \"s.csv\"\n"
+                                     "[[layer]]\npath = \"a.geojson\"\nlabel = \"name\"\nlegend = \"Summits\"\n"
+                                     "[[layer]]\npath = \"a.geojson\"\nlayer = \"tracks\"\ncolor = \"#112233\"\n"
+                                     "dash_px = [6, 4]\nfill = \"#0000ff\"\nmarker = \"flag\"\n";
+    Diagnostics diags;
+    const auto s = readScene(dir / "s.toml", diags);
+    ASSERT_TRUE(s);
+    EXPECT_EQ(diags.errorCount(), 0) << (diags.all().empty() ? "" : diags.all().front().message);
+    ASSERT_EQ(s->layers.size(), 2u);
+    EXPECT_EQ(s->layers[0].number, 1);
+    EXPECT_EQ(s->layers[0].labelField, "name");
+    EXPECT_EQ(s->layers[0].legend, "Summits");
+    EXPECT_EQ(s->layers[0].marker, MarkerKind::Pin);
+    EXPECT_EQ(s->layers[0].path, dir / "a.geojson");
+    EXPECT_EQ(s->layers[1].layer, "tracks");
+    EXPECT_EQ(s->layers[1].marker, MarkerKind::Flag);
+    EXPECT_EQ(s->layers[1].dashPx, (std::vector<double>{6, 4}));
+    EXPECT_TRUE(s->layers[1].fill);
+    EXPECT_NE(s->layers[0].colour, s->layers[1].colour);
+    EXPECT_EQ(s->layers[0].locs.at("layer.label").line, 5);
+    EXPECT_EQ(s->layers[1].locs.at("layer.layer").line, 9);
+
+    const auto errorsOf = [&](const std::string& text, const SceneOverrides& overrides = {}) {
+        std::ofstream(dir / "b.toml") << "[samples]\npath = \"s.csv\"\n" << text;
+        Diagnostics d;
+        readScene(dir / "b.toml", d, overrides);
+        std::string all;
+        for (const auto& x : d.all()) all += formatDiagnostic(x) + "\n";
+        return all;
+    };
+    EXPECT_NE(errorsOf("[layer]\npath = \"a.geojson\"\n").find("\"layer\" must be tables, each written [[layer]]"),
+              std::string::npos);
+    EXPECT_NE(errorsOf("[[layer]]\npath = \"a.geojson\"\nlabel_size_px = 8\n").find("b.toml:5:17: error: layer.label_size_px"),
+              std::string::npos)
+        << errorsOf("[[layer]]\npath = \"a.geojson\"\nlabel_size_px = 8\n");
+    EXPECT_NE(errorsOf("[[layer]]\npath = \"a.geojson\"\nlabel = \"name\"\nlabel_text = \"x\"\n")
+                  .find("give label (an attribute's name) or label_text (one text), not both"),
+              std::string::npos);
+    EXPECT_NE(errorsOf("[[layer]]\npath = \"missing.gpx\"\n").find("layer.path: file \"missing.gpx\" not found"),
+              std::string::npos);
+    EXPECT_NE(errorsOf("[[layer]]\npath = \"a.geojson\"\n", {{"layer.color", "\"#ffffff\""}})
+                  .find("[[layer]] keys cannot be set with --set"),
+              std::string::npos);
+}
+
 }  // namespace relief::scene
