@@ -129,5 +129,49 @@ TEST(PlaceLayers, APolygonWithAHoleTintsWhatIsInsideAndNotTheHole) {
     EXPECT_NEAR(c.b, 1, 1e-12);
 }
 
+// A track across nodes without data is cut there: two runs of ribbon, none of
+// their vertices over the masked band.
+TEST(AddRibbon, ALineIsCutWhereTheSurfaceHasNoData) {
+    geo::GeoGrid grid = cone();
+    grid.masked.assign(grid.grid.points.size(), 0);
+    for (int r = 0; r < 121; ++r)
+        for (int c = 55; c <= 65; ++c) grid.masked[size_t(r) * 121 + size_t(c)] = 1;  // a band 10 m wide, north-south
+    const ScenePlacement where = placeTerrain(grid, scene::LookSpec{});
+    Ribbons ribbons;
+    const std::vector<curves::Point2> line{{300000 - 50, 5917000 - 50}, {300000 + 50, 5917000 - 50}};
+    addRibbon(ribbons, grid, where, line, {1.0, 0, 1.0});
+    int runs = 0;
+    for (size_t f = 0; f < ribbons.faces.size(); f += 2)  // a quad's first vertex not the previous quad's last: a new run
+        runs += f == 0 || ribbons.faces[f][0] != ribbons.faces[f - 2][0] + 2;
+    EXPECT_EQ(runs, 2);
+    for (const SceneVec3& v : ribbons.vertices) {
+        const double x = v.x * where.metresPerUnit + where.originM.x - 300000;
+        EXPECT_FALSE(x > -6 && x < 6) << x;  // nothing over the masked band (a cell either side of it)
+    }
+}
+
+// A layer of a million vertices (a track traced at a centimetre) is simplified
+// to the still's resolution: what POV-Ray gets is a few hundred points.
+TEST(PlaceLayers, AMillionVerticesAreSimplifiedToTheStillsResolution) {
+    const geo::GeoGrid grid = cone();
+    const ScenePlacement where = placeTerrain(grid, scene::LookSpec{});
+    geo::VectorFeature track;
+    track.kind = geo::FeatureKind::Line;
+    std::vector<GeoPoint>& part = track.parts.emplace_back();
+    for (int i = 0; i < 1'000'000; ++i) {  // 100 m east, wobbling a millimetre
+        const double x = -50 + 1e-4 * i, y = -40 + 1e-3 * std::sin(i * 0.01);
+        part.push_back(*geo::reverse(grid.frame, Vec3{300000 + x, 5917000 + y, 0}));
+    }
+    scene::LayerSpec spec;
+    spec.number = 1;
+    Diagnostics diags;
+    const SurfaceLayers placed = placeLayers({spec}, {geo::VectorLayer{"track", {track}, 1'000'000, 0}}, grid, where,
+                                             0.5, diags);
+    EXPECT_EQ(placed.counts[0].vertices, 1'000'000);
+    EXPECT_EQ(placed.counts[0].drawn, 1);
+    EXPECT_LT(placed.counts[0].ribbonPoints, 200);  // a point each refined metre (the pieces' length), no more
+    EXPECT_GT(placed.counts[0].ribbonPoints, 90);
+}
+
 }  // namespace
 }  // namespace relief::emit
