@@ -267,9 +267,10 @@ emit::GeometryWriters writersOf(const Surface& surface, const View& view, const 
 }
 
 bool dumpNetFits(const CompileOptions& options, const geo::ControlNet& net, Diagnostics& diags) {
-    if (options.dumpNetPath.empty() || options.dumpNetPath.extension() != ".asc") return true;
+    const bool asc = options.dumpNetPath.extension() == ".asc" || options.dumpSurfacePath.extension() == ".asc";
+    if (!asc) return true;
     if (std::abs(net.dx - net.dy) <= 1e-9 * net.dx) return true;
-    diags.error({options.dumpNetPath.string(), 0, 0},
+    diags.error({(options.dumpNetPath.extension() == ".asc" ? options.dumpNetPath : options.dumpSurfacePath).string(), 0, 0},
                 fmt::format("an ESRI ASCII grid needs square cells, but the net's spacing is {} x {} m; set "
                             "net.spacing_m or dump to .csv",
                             formatShortest(net.dx), formatShortest(net.dy)));
@@ -293,6 +294,9 @@ void recordSurface(CompileResult& r, const LoadedScene& loaded, const Surface& s
     r.baseFloorM = where.baseElevationM;
     r.zRangeM = {where.zMinM, where.zMaxM};
     r.sun = sunRecord;
+    r.fit = surface.fit;
+    r.prefilter = surface.prefilter;
+    r.peakLoss = surface.peakLoss;
 }
 
 // What the geometry became.
@@ -467,10 +471,13 @@ std::optional<CompileResult> compileScene(const LoadedScene& loaded, const Compi
     const SharedTerrain shared(std::move(st));
     auto r = compileView(loaded, shared, options, diags);
     if (!r) return std::nullopt;
-    if (!options.dumpNetPath.empty())
-        writeFileAtomically(options.writeAt(options.dumpNetPath, "--dump-net"),
-                            options.dumpNetPath.extension() == ".asc" ? geo::netToAsciiGrid(shared.net())
-                                                                      : geo::netToCsv(shared.net()));
+    const auto dump = [&](const std::filesystem::path& path, const geo::GeoGrid& grid, std::string_view role) {
+        if (path.empty()) return;
+        writeFileAtomically(options.writeAt(path, role),
+                            path.extension() == ".asc" ? geo::netToAsciiGrid(grid) : geo::netToCsv(grid));
+    };
+    dump(options.dumpNetPath, shared.net(), "--dump-net");
+    dump(options.dumpSurfacePath, shared.refined(), "--dump-surface");
     return r;
 }
 

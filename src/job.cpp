@@ -54,6 +54,7 @@ void declareOutputs(const SceneJob& job, const LoadedScene& loaded, const Output
     if (!job.stillOnly) {
         outputs.add(paths.pov, !render && given ? given : "the .pov");
         if (!job.dumpNetPath.empty()) outputs.add(job.dumpNetPath, "--dump-net");
+        if (!job.dumpSurfacePath.empty()) outputs.add(job.dumpSurfacePath, "--dump-surface");
         outputs.add(paths.sidecar, "the sidecar", true);
     }
     const scene::SceneSpec& s = loaded.scene;
@@ -98,6 +99,7 @@ CompileOptions compileOptions(const SceneJob& job, const OutputPaths& paths, con
     c.povPath = paths.pov;
     c.templatesDir = job.templatesDir;
     c.dumpNetPath = job.dumpNetPath;
+    c.dumpSurfacePath = job.dumpSurfacePath;
     c.threads = job.threads;
     c.progress = progress;
     return c;
@@ -142,7 +144,7 @@ void compileIntoPlan(PlannedJob& p, const LoadedScene& loaded, Diagnostics& diag
     copts.writeAt = [&](const fs::path& final, std::string_view role) {
         plan::PlanFile f{final.filename().string(), fs::absolute(final), std::string(role)};
         if (role == "the .pov") plan.pov = f;
-        else if (role == "--dump-net") plan.extras.push_back(f);
+        else if (role == "--dump-net" || role == "--dump-surface") plan.extras.push_back(f);
         else plan.reads.push_back(f);
         return plan.dir / f.name;
     };

@@ -265,6 +265,32 @@ void chooseStillDepth(const LoadedScene& loaded, const geo::ControlNet& net, Sur
     if (depth < wanted) s.depthReason += fmt::format(" (depth {} would be over [limits])", wanted);
 }
 
+// net.gridding = "fit" and net.fit = true: the net made for the scheme's
+// surface at the depth rendered (chosen on the gridded net before).
+bool fitToScheme(const LoadedScene& loaded, int depth, geo::ControlNet& net, Surface& s, Diagnostics& diags,
+                 const ProgressFn& progress) {
+    const scene::NetSpec& spec = loaded.scene.net;
+    const subdiv::Scheme& scheme = loaded.resolved.scheme;
+    if (net.fitSamples) {
+        const auto told = [&](const std::string& task) {
+            if (progress) progress({ProgressEvent::Stage::Compiling, task, -1});
+        };
+        s.fit = fit::fitNet(scheme, depth, *net.fitSamples, spec, net, diags, told);
+        if (!s.fit) return false;
+        if (progress)
+            progress({ProgressEvent::Stage::Compiling,
+                      fmt::format("fitted {} samples: RMSE {:.3g} m, largest residual {:.3g} m, smoothing {:.3g} ({}), "
+                                  "{:.1f} s",
+                                  s.fit->samples, s.fit->rmseM, s.fit->maxResidualM, s.fit->smoothing,
+                                  s.fit->chosenBy, s.fit->seconds),
+                      -1});
+        return true;
+    }
+    if (!spec.fit) return true;
+    s.prefilter = fit::prefilterNet(scheme, depth, spec, net, diags);
+    return s.prefilter.has_value();
+}
+
 }  // namespace
 
 std::optional<Surface> planSurface(const LoadedScene& loaded, Diagnostics& diags, int threads,
@@ -290,6 +316,8 @@ std::optional<Surface> planSurface(const LoadedScene& loaded, Diagnostics& diags
     } else {
         chooseStillDepth(loaded, *net, s);
     }
+    s.dataPeak = net->highestSample.value_or(measure::highestNode(*net));
+    if (!fitToScheme(loaded, s.depth, *net, s, diags, progress)) return std::nullopt;
     auto cost = costAt(loaded, *net, s.depth, diags);
     if (!cost) return std::nullopt;
     s.geometry = cost->geometry;
@@ -314,6 +342,12 @@ std::optional<Surface> buildSurface(const LoadedScene& loaded, Diagnostics& diag
     s->refined =
         s->net.refined(subdiv::refineGrid(scheme, s->net.grid, s->depth, threads), std::pow(scheme.arity, s->depth));
     s->subdivideSeconds += secondsSince(t0);
+    s->peakLoss = measure::peakLoss(s->dataPeak, s->refined, std::max(s->net.dx, s->net.dy));
+    if (progress)
+        progress({ProgressEvent::Stage::Compiling,
+                  fmt::format("peak loss {:.3g} m: the data's highest point {:.2f} m, the surface's near it {:.2f} m",
+                              s->peakLoss.lossM, s->peakLoss.peak.z, s->peakLoss.surfaceHighest.z),
+                  -1});
     return s;
 }
 

@@ -35,7 +35,10 @@
 #include "emit/write_scene.h"
 #include "geo/normalize.h"
 #include "geo/sun_position.h"
+#include "fit/fit_net.h"
+#include "fit/prefilter.h"
 #include "measure/auto_depth.h"
+#include "measure/peak_loss.h"
 #include "render/povray.h"
 
 #include <nlohmann/json.hpp>
@@ -95,6 +98,10 @@ struct Surface {
     std::string depthReason;  ///< "subdivision.depth", the auto summary, or how the still chose it
     std::optional<measure::DepthChoice> autoDepth;  ///< the change per level, for depth = "auto"
     double normalizeSeconds = 0, subdivideSeconds = 0;  ///< subdivide includes choosing the depth
+    std::optional<fit::FitReport> fit;              ///< net.gridding = "fit"
+    std::optional<fit::PrefilterReport> prefilter;  ///< net.fit = true
+    Vec3 dataPeak;                                  ///< the highest sample (or node) the data have
+    measure::PeakLoss peakLoss;                     ///< of the refined surface against dataPeak
 };
 /// What buildSurface will make, without refining: the net, the depth and why,
 /// the geometry and its cost, checked against [limits] (a net whose work is
@@ -118,6 +125,7 @@ struct CompileOptions {
     std::function<std::filesystem::path(const std::filesystem::path& finalPath, std::string_view role)> writeAt;
     std::filesystem::path templatesDir;
     std::filesystem::path dumpNetPath;   ///< optional: .csv (x,y,z) or .asc (ESRI ASCII grid)
+    std::filesystem::path dumpSurfacePath;  ///< optional: the refined surface, .csv or .asc
     int threads = 0;                     ///< refiner threads; 0 = all cores
     ProgressFn progress;                 ///< may be empty
 };
@@ -157,6 +165,9 @@ struct CompileResult {
         double lonDeg = 0, latDeg = 0; ///< where it was computed (fromDatetime)
     } sun;
     emit::SurfaceContours contours;             ///< [overlay] contours as drawn
+    std::optional<fit::FitReport> fit;              ///< net.gridding = "fit": what the fit did
+    std::optional<fit::PrefilterReport> prefilter;  ///< net.fit = true
+    measure::PeakLoss peakLoss;                     ///< the data's peak against the surface's
     nlohmann::ordered_json layers = nlohmann::ordered_json::array();  ///< what each [[layer]] became (sidecar)
     std::optional<double> drapeImageCoverage;  ///< [texture] image: the share of the surface's nodes it covers
     std::string dataAttribution;   ///< the samples' credit: the scene's, else the raster's metadata's
@@ -232,6 +243,7 @@ struct SceneJob {
     std::filesystem::path output;
     std::filesystem::path templatesDir;
     std::filesystem::path dumpNetPath;
+    std::filesystem::path dumpSurfacePath;  ///< the refined surface rendered (--dump-surface)
     int threads = 0;            ///< refiner threads; 0 = all cores
     bool sandbox = true;        ///< POV-Ray in bubblewrap (render/povray.h)
     bool stillOnly = false;     ///< keep the PNG alone (relief test): no .pov, PNGs or sidecar beside it

@@ -50,6 +50,23 @@ void addData(Header& h, const scene::SceneSpec& s, const geo::ControlNet& net) {
     h.add("vertical.exaggeration", formatShortest(s.look.vertical.exaggeration));
 }
 
+// What made the net fit the scheme's surface, and how much of the data's peak the surface keeps.
+void addFit(Header& h, const CompileResult& c) {
+    if (c.fit)
+        h.add("net.fit", fmt::format("{} samples fitted at depth {}: RMSE {:.3g} m, largest residual {:.3g} m, "
+                                     "smoothing {:.3g} ({}), {} of {} nodes constrained, data within {:.3g} m "
+                                     "of every node",
+                                     c.fit->samples, c.fit->depth, c.fit->rmseM, c.fit->maxResidualM,
+                                     c.fit->smoothing, c.fit->chosenBy, c.fit->nodesConstrained, c.fit->nodes,
+                                     c.fit->dataReachM));
+    if (c.prefilter)
+        h.add("net.fit", fmt::format("prefiltered at depth {}: the surface through the net's values, the largest "
+                                     "change {:.3g} m, gain {:.3g}",
+                                     c.prefilter->depth, c.prefilter->largestChangeM, c.prefilter->gain));
+    h.add("peak_loss_m", fmt::format("{:.3f} (the data's highest point {:.2f} m, the surface's near it {:.2f} m)",
+                                     c.peakLoss.lossM, c.peakLoss.peak.z, c.peakLoss.surfaceHighest.z));
+}
+
 // The scheme, its certificate and the depth, and the refined grid.
 void addSubdivision(Header& h, const scene::SubdivisionSpec& sub, const subdiv::ResolvedScheme& scheme, int depth,
                     const CompileResult& compiled) {
@@ -71,6 +88,7 @@ void addSubdivision(Header& h, const scene::SubdivisionSpec& sub, const subdiv::
     h.add("refined.size", fmt::format("{} rows x {} cols", est.rows, est.cols));
     h.add("refined.vertices", fmt::format("{:.0f}", est.vertices));
     h.add("refined.triangles", fmt::format("{:.0f}", est.triangles));
+    addFit(h, compiled);
 }
 
 // The geometry written, and what is drawn on it or under it.

@@ -14,6 +14,45 @@ namespace relief {
 
 using nlohmann::ordered_json;
 
+namespace {
+
+// The net's fit (or prefilter) and the peak loss.
+void addFitToSidecar(ordered_json& j, const CompileResult& c) {
+    const auto point = [](const Vec3& p) { return ordered_json::array({p.x, p.y, p.z}); };
+    j["peak_loss"] = {{"loss_m", c.peakLoss.lossM},
+                      {"data_peak_m", point(c.peakLoss.peak)},
+                      {"surface_highest_m", point(c.peakLoss.surfaceHighest)},
+                      {"within_m", std::max(c.net.dx, c.net.dy)}};
+    if (c.prefilter)
+        j["net"]["fit"] = {{"kind", "prefilter"},
+                           {"depth", c.prefilter->depth},
+                           {"largest_change_m", c.prefilter->largestChangeM},
+                           {"gain", c.prefilter->gain}};
+    if (!c.fit) return;
+    const fit::FitReport& f = *c.fit;
+    ordered_json gcv = ordered_json::array();
+    for (const auto& t : f.gcv) gcv.push_back({{"smoothing", t.smoothing}, {"score", t.score}, {"trace_h", t.traceH}});
+    j["net"]["fit"] = {{"kind", "least squares of the scheme's surface"},
+                       {"depth", f.depth},
+                       {"samples", f.samples},
+                       {"samples_outside_the_net", f.samplesOutside},
+                       {"rmse_m", f.rmseM},
+                       {"max_residual_m", f.maxResidualM},
+                       {"max_residual_at_m", point(f.worstSample)},
+                       {"smoothing", f.smoothing},
+                       {"smoothing_chosen_by", f.chosenBy},
+                       {"gcv", gcv},
+                       {"trace_method", f.traceMethod},
+                       {"nodes", f.nodes},
+                       {"nodes_constrained", f.nodesConstrained},
+                       {"data_reach_m", f.dataReachM},
+                       {"refinement_steps", f.refinementSteps},
+                       {"relative_residual", f.relativeResidual},
+                       {"seconds", f.seconds}};
+}
+
+}  // namespace
+
 ordered_json sidecarJson(const CompileResult& c, const OutputPaths& paths) {
     ordered_json j;
     j["relief_version"] = kVersion;
@@ -72,6 +111,7 @@ ordered_json sidecarJson(const CompileResult& c, const OutputPaths& paths) {
                          {"levels", c.contours.levels},
                          {"lines", c.contours.lines}};
     if (!c.layers.empty()) j["layers"] = c.layers;
+    addFitToSidecar(j, c);
     if (c.baseFloorM)
         j["base"] = {{"floor_elevation_m", *c.baseFloorM}, {"thickness_m", c.zRangeM[0] - *c.baseFloorM}};
     j["sun"] = {{"azimuth_deg", c.sun.azimuthDeg},

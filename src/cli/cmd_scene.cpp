@@ -21,6 +21,7 @@ namespace {
 struct SceneOptions {
     CommonOptions common;
     std::string dumpNet;
+    std::string dumpSurface;
     ExecutionOptions execution;
     std::string plan;    ///< --plan: the plan's folder
     std::string resume;  ///< --resume PLAN
@@ -35,6 +36,7 @@ relief::SceneJob sceneJob(const SceneOptions& o, relief::SceneJob::Until until, 
     job.output = o.common.output;
     job.templatesDir = findTemplates(o.common.templates);
     job.dumpNetPath = o.dumpNet;
+    job.dumpSurfacePath = o.dumpSurface;
     job.threads = o.common.threads;
     job.sandbox = !o.common.noSandbox;
     job.tiles = o.execution.tiles;
@@ -333,6 +335,7 @@ void addCommonSceneOptions(CLI::App* sub, SceneOptions& o, const char* outputHel
 // has is its to say, where and how many at once are not.
 void addRenderOptions(CLI::App* sub, SceneOptions& o, bool renders) {
     sub->add_option("--dump-net", o.dumpNet, "also write the control net (.csv or .asc)");
+    sub->add_option("--dump-surface", o.dumpSurface, "also write the refined surface rendered (.csv or .asc)");
     sub->add_flag("--no-sandbox", o.common.noSandbox,
                   "run POV-Ray without its bubblewrap sandbox (only for scenes you trust; see docs/security.md)");
     sub->add_option("--plan", o.plan, "the render plan's folder (default: <still>.plan beside the still)");
@@ -420,6 +423,8 @@ void addSceneCommands(CLI::App& app, std::vector<Command>& out) {
     compile->add_option("--dump-net", o->dumpNet,
                         "also write the control net: .csv (x,y,z in the frame, metres) or .asc (ESRI ASCII grid; "
                         "needs net.spacing_m)");
+    compile->add_option("--dump-surface", o->dumpSurface,
+                        "also write the refined surface, as rendered: .csv (x,y,z) or .asc (needs net.spacing_m)");
     out.push_back({compile, [o] { return runScene(*o, relief::SceneJob::Until::Pov); }});
 
     CLI::App* render = app.add_subcommand(

@@ -428,6 +428,7 @@ std::optional<ControlNet> gridSamples(const scene::NetSpec& spec, const std::str
     std::vector<double> z(static_cast<size_t>(rows) * cols, kNoData);
     std::string error;
     switch (spec.gridding) {
+        case scene::Gridding::Fit:  // the linear gridding first: where the fit starts from, and its fallback
         case scene::Gridding::Linear: {
             const GridLayout layout{net.x0 - 0.5 * net.dx, net.x0 + (cols - 0.5) * net.dx,
                                     net.y0 - 0.5 * net.dy, net.y0 + (rows - 0.5) * net.dy, cols, rows};
@@ -459,6 +460,15 @@ std::optional<ControlNet> gridSamples(const scene::NetSpec& spec, const std::str
         for (int c = 0; c < cols; ++c)
             net.grid.at(r, c) = {net.x0 + c * net.dx, net.y0 + r * net.dy,
                                  z[static_cast<size_t>(r) * cols + c]};
+    const auto highest = std::max_element(points.begin(), points.end(),
+                                           [](const FramePoint& a, const FramePoint& b) { return a.p.z < b.p.z; });
+    net.highestSample = highest->p;
+    if (spec.gridding == scene::Gridding::Fit) {
+        auto samples = std::make_shared<std::vector<Vec3>>();
+        samples->reserve(points.size());
+        for (const auto& fp : points) samples->push_back(fp.p);
+        net.fitSamples = std::move(samples);
+    }
     return net;
 }
 
@@ -473,7 +483,7 @@ std::optional<ControlNet> normalize(const scene::FrameSpec& frameSpec, const sce
     return gridSamples(net, samplesName, *frame, points, diags, progress, budget);
 }
 
-std::string netToCsv(const ControlNet& net) {
+std::string netToCsv(const GeoGrid& net) {
     std::string out = "x,y,z\n";
     char buf[100];
     for (const Vec3& p : net.grid.points) {
@@ -488,7 +498,7 @@ std::string netToCsv(const ControlNet& net) {
     return out;
 }
 
-std::string netToAsciiGrid(const ControlNet& net) {
+std::string netToAsciiGrid(const GeoGrid& net) {
     const int rows = net.grid.rows, cols = net.grid.cols;
     std::string out = fmt::format(
         "ncols {}\nnrows {}\nxllcenter {}\nyllcenter {}\ncellsize {}\nNODATA_value -9999\n", cols,

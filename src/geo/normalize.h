@@ -5,6 +5,7 @@
 // x = east, y = north, z = up) ready for subdivision.
 #include <array>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -37,6 +38,13 @@ struct ControlNet : GeoGrid {
     bool copiedCells = false;  ///< rasters: every node a cell's centre, its height the cell's (not resampled)
     double metresPerUnit = 1;  ///< rasters: of the band's heights (0.3048 for feet)
     bool verticalUnitAssumed = false;  ///< rasters: the band named no length, and metres were taken (a warning)
+    /// Scattered samples: the highest of them, in the frame (the peak a surface
+    /// should keep); unset for a raster or a lattice (their highest node is).
+    std::optional<Vec3> highestSample;
+    /// net.gridding = "fit": the samples in the frame, which the fit (fit/)
+    /// makes the scheme's surface pass near; the net holds the linear gridding
+    /// until then.
+    std::shared_ptr<const std::vector<Vec3>> fitSamples;
 };
 
 /// A geographic point in `frame`'s metres: GeographicLib's UTMUPS (z the
@@ -130,10 +138,10 @@ std::optional<ControlNet> normalize(const scene::FrameSpec& frame, const scene::
                                     const std::vector<GeoSample>& samples, Diagnostics& diags,
                                     const GridProgressFn& progress = {}, const NetBudget& budget = {});
 
-/// The net as CSV `x,y,z` (metres in the frame, row 0 south first).
-std::string netToCsv(const ControlNet& net);
+/// A net (or the refined surface) as CSV `x,y,z` (metres in the frame, row 0 south first).
+std::string netToCsv(const GeoGrid& net);
 /// The net as an ESRI ASCII grid (cell-centre registration, rows north first).
 /// Needs dx == dy.
-std::string netToAsciiGrid(const ControlNet& net);
+std::string netToAsciiGrid(const GeoGrid& net);
 
 }  // namespace relief::geo

@@ -118,8 +118,10 @@ std::optional<ControlNet> scatteredNet(const NetRequest& request, ScatteredReade
     if (!maxBytes) return std::nullopt;
     const auto samples = read(request.samples, diags, *maxBytes);
     if (diags.hasErrors()) return std::nullopt;
+    // A lattice is resampled as the raster it is, unless the surface is to be fitted to its samples.
     for (const auto& crs : latticeCrsCandidates(request.samples, samples))
-        if (const auto lattice = findLattice(samples, crs)) return resampledLattice(request, *lattice, diags);
+        if (const auto lattice = request.net.gridding == scene::Gridding::Fit ? std::nullopt : findLattice(samples, crs))
+            return resampledLattice(request, *lattice, diags);
     if (!request.samples.crs.empty())
         diags.warning(request.samples.locs.at("samples.crs"),
                       fmt::format("the {} samples are not one per node of a regular lattice in {}: gridded as "

@@ -42,7 +42,8 @@ SourceLoc locOf(const std::string& file, const toml::source_region& r) {
 
 const std::vector<std::string> kCaseKeys{"name",  "scene", "references", "width", "height",
                                          "fail",  "failpercent", "hardfail", "warn",
-                                         "warnpercent", "hardwarn", "allowfailures"};
+                                         "warnpercent", "hardwarn", "allowfailures",
+                                         "profile", "levels", "tolerance_m", "peak_loss_tolerance_m"};
 
 // Reads the threshold and size keys of a [defaults] table or a [[case]].
 void readSettings(const toml::table& t, const std::string& file, TestCase& c, Diagnostics& diags) {
@@ -161,6 +162,7 @@ std::optional<Manifest> readManifest(const fs::path& path, Diagnostics& diags) {
                         fmt::format("scene \"{}\" not found (relative to the manifest){}",
                                     printableExcerpt(*scene, 200), ec ? ": " + ec.message() : ""));
         readSettings(*t, file, c, diags);
+        c.geometry = readGeometryChecks(*t, file, diags);
         m.cases.push_back(std::move(c));
     }
     if (diags.hasErrors()) return std::nullopt;
@@ -244,6 +246,37 @@ void compareCase(const TestCase& c, const RunOptions& o, CaseResult& r) {
     if (d.verdict != compare::Verdict::NotComparable && d.verdict != compare::Verdict::FileError) {
         r.diffImage = images / (c.name + ".diff.png");
         if (!compare::writeDifferenceImage(r.newImage, refCopy, r.diffImage).empty()) r.diffImage.clear();
+    }
+}
+
+// The case's geometry checks, which can fail a case its pixels pass (or leave it new).
+void checkCaseGeometry(const TestCase& c, const RunOptions& o, CaseResult& r) {
+    if (!c.geometry.any() || r.status == CaseStatus::Error) return;
+    r.newGeometry = o.reportDir / "images" / (c.name + ".geometry.json");
+    const auto overrides = caseJob(c, o).overrides;
+    if (const std::string error = checkGeometry(c.scene, overrides, c.geometry, c.referenceDir, r.newGeometry,
+                                                o.reportDir / "images", c.name, r.geometry);
+        !error.empty()) {
+        r.status = CaseStatus::Error;
+        r.message = "geometry: " + error;
+        return;
+    }
+    std::string failing;
+    bool unkept = false;
+    for (const auto& g : r.geometry) {
+        unkept = unkept || !g.kept;
+        if (g.kept && !g.pass)
+            failing += fmt::format("{}{} moved {} > {}", failing.empty() ? "" : "; ", g.name,
+                                   measure::formatDistance(g.distanceM), measure::formatDistance(g.toleranceM));
+    }
+    if (!failing.empty()) {
+        r.status = CaseStatus::Fail;
+        r.message += "; geometry: " + failing;
+    } else if (unkept && r.status != CaseStatus::Fail) {
+        r.status = CaseStatus::New;
+        r.message += fmt::format("; geometry: no kept curves in {}", (c.referenceDir / kGeometryFile).string());
+    } else {
+        r.message += fmt::format("; geometry: {} checks within their tolerances", r.geometry.size());
     }
 }
 
@@ -344,6 +377,7 @@ std::vector<CaseResult> runCases(const Manifest& m, const RunOptions& o, const C
             r.message = errorsOf(diags);
         } else {
             compareCase(m.cases[i], o, r);
+            checkCaseGeometry(m.cases[i], o, r);
         }
         dropPlan(planned[i]);
         finished(i);
@@ -376,6 +410,19 @@ std::vector<CaseResult> runCases(const Manifest& m, const RunOptions& o, const C
             for (const auto& old : referencesOf(*r.testCase))
                 if (old.filename() != "ref.png") fs::remove(old, ec);
             r.message += fmt::format("; blessed as {}", ref.string());
+            if (!r.newGeometry.empty() && fs::exists(r.newGeometry, ec)) {
+                const fs::path kept = r.testCase->referenceDir / kGeometryFile;
+                try {
+                    writeThroughTemporary(kept, [&](const fs::path& staged) {
+                        std::error_code copied;
+                        fs::copy_file(r.newGeometry, staged, copied);
+                        return copied ? copied.message() : std::string();
+                    });
+                    r.message += fmt::format(", its curves as {}", kept.string());
+                } catch (const OutputError& e) {
+                    r.message += "; its curves not kept: " + std::string(e.what());
+                }
+            }
         }
     return results;
 }

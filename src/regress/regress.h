@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "compare/compare_images.h"
+#include "regress/geometry_check.h"
 #include "execute/execute.h"
 #include "core/diagnostics.h"
 #include "core/output_set.h"
@@ -23,6 +24,7 @@ struct TestCase {
     SourceLoc referencesLoc;                        ///< where the manifest names it
     compare::Thresholds thresholds;
     int width = 160, height = 120;                  ///< the test resolution
+    GeometryChecks geometry;                        ///< profiles, levels, peak loss: none when !any()
 };
 
 struct Manifest {
@@ -51,6 +53,8 @@ struct CaseResult {
     std::filesystem::path diffImage;
     std::string referenceName;              ///< its file name in the reference folder
     compare::ImageDifference difference;    ///< against the closest reference
+    std::vector<GeometryResult> geometry;   ///< the case's geometry checks, in order
+    std::filesystem::path newGeometry;      ///< the surface's curves now (what --update keeps)
     double seconds = 0;
 };
 

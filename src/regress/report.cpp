@@ -34,6 +34,25 @@ bool failed(CaseStatus s) { return s == CaseStatus::Fail || s == CaseStatus::Err
 
 std::string number(double v) { return std::isfinite(v) ? fmt::format("{:.6g}", v) : "inf"; }
 
+// A case's geometry checks: each with its distance, its tolerance, where, and a plot of both curves.
+std::string geometryHtml(const CaseResult& r, const fs::path& reportDir) {
+    if (r.geometry.empty()) return "";
+    std::string h = "<table class=\"metrics geometry\"><tr><th>geometry check</th><th>Hausdorff distance</th>"
+                    "<th>tolerance</th><th>verdict</th><th>where</th></tr>\n";
+    for (const auto& g : r.geometry)
+        h += fmt::format("<tr class=\"check\"><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
+                         markupText(g.name), g.kept ? measure::formatDistance(g.distanceM) : "",
+                         measure::formatDistance(g.toleranceM),
+                         !g.kept ? "new: no kept curve" : g.pass ? "pass" : "FAIL", markupText(g.where));
+    h += "</table>\n<div class=\"images\">\n";
+    for (const auto& g : r.geometry)
+        if (!g.plot.empty())
+            h += fmt::format("<figure><img class=\"geometry-plot\" src=\"{}\" alt=\"{}\"><figcaption>{} "
+                             "(grey dashed: kept; blue: new)</figcaption></figure>\n",
+                             relativeUrl(g.plot, reportDir), markupText(g.name), markupText(g.name));
+    return h + "</div>\n";
+}
+
 }  // namespace
 
 namespace {
@@ -57,8 +76,10 @@ bool holdsOnlyAReport(const fs::path& dir) {
     if (!fs::exists(dir / "summary.json", ec) || !fs::exists(dir / "index.html", ec)) return false;
     for (const auto& entry : fs::directory_iterator(dir, ec))
         if (!kEntries.count(entry.path().filename().string())) return false;
-    for (const auto& entry : fs::directory_iterator(dir / "images", ec))
-        if (entry.path().extension() != ".png") return false;
+    for (const auto& entry : fs::directory_iterator(dir / "images", ec)) {
+        const auto extension = entry.path().extension();
+        if (extension != ".png" && extension != ".svg" && extension != ".json") return false;
+    }
     return !ec;
 }
 
@@ -151,6 +172,7 @@ figure { margin: 0; } figcaption { font-size: 0.85em; color: #555; }
 table.metrics { border-collapse: collapse; font-size: 0.9em; margin-top: 0.5em; }
 table.metrics td, table.metrics th { border: 1px solid #ddd; padding: 2px 8px; text-align: right; }
 code { background: #f2f2f2; padding: 2px 4px; }
+img.geometry-plot { max-width: 420px; max-height: 320px; border: 1px solid #eee; }
 </style></head><body>
 )";
     h += fmt::format("<h1>relief test — {}</h1>\n", markupText(m.file.string()));
@@ -199,6 +221,7 @@ code { background: #f2f2f2; padding: 2px 4px; }
                              number(d.psnr), d.failingPixels, d.failingPercent, number(t.fail),
                              number(t.failPercent), number(t.hardFail));
         }
+        h += geometryHtml(*r, o.reportDir);
         h += "</div>\n";
     }
     h += "</body></html>\n";
@@ -220,6 +243,13 @@ code { background: #f2f2f2; padding: 2px 4px; }
                              {"failing_pixels", r.difference.failingPixels},
                              {"failing_percent", r.difference.failingPercent},
                              {"mean_error", r.difference.meanError}};
+        for (const auto& g : r.geometry)
+            cj["geometry"].push_back({{"check", g.name},
+                                      {"kept", g.kept},
+                                      {"distance_m", g.distanceM},
+                                      {"tolerance_m", g.toleranceM},
+                                      {"pass", g.pass},
+                                      {"where", g.where}});
         cases.push_back(cj);
     }
     j["cases"] = cases;

@@ -32,7 +32,8 @@ struct EnumNames<FrameKind> {
 template <>
 struct EnumNames<Gridding> {
     static constexpr NameRow<Gridding> rows[] = {
-        {Gridding::Linear, "linear"}, {Gridding::InverseDistance, "invdist"}, {Gridding::Nearest, "nearest"}};
+        {Gridding::Linear, "linear"}, {Gridding::InverseDistance, "invdist"}, {Gridding::Nearest, "nearest"},
+        {Gridding::Fit, "fit"}};
 };
 template <>
 struct EnumNames<Projection> {

@@ -125,6 +125,14 @@ void readNet(Section& s, const SceneFile& f, SceneSpec& scene) {
             net.extentLonLat = LonLatBox{w[0], w[1], w[2], w[3]};
     }
     if (auto g = s.named<Gridding>("gridding")) net.gridding = *g;
+    if (auto v = s.number("smoothing", 0, 1e6, "(the penalty's weight: 0 fits the samples as closely as the net can)"))
+        net.smoothing = *v;
+    if (net.smoothing && net.gridding != Gridding::Fit)
+        s.error("smoothing", "net.smoothing weighs a fit: it needs net.gridding = \"fit\"");
+    if (auto v = s.boolean("fit")) net.fit = *v;
+    if (net.fit && net.gridding == Gridding::Fit)
+        s.error("fit", "net.fit = true prefilters a net so that the surface passes through it; net.gridding = "
+                       "\"fit\" already fits the surface to the samples: give one of them");
 }
 
 namespace {

@@ -58,7 +58,7 @@ struct KeyLocations {
 /// The frame's projection: a UTM zone, the local tangent plane at the data's
 /// centre, or a raster DEM's own projected CRS in metres (no reprojection).
 enum class FrameKind { Utm, Local, Raster };
-enum class Gridding { Linear, InverseDistance, Nearest };
+enum class Gridding { Linear, InverseDistance, Nearest, Fit };
 enum class Projection { Perspective, Orthographic };
 
 /// A colour of a ramp at an elevation.
@@ -135,6 +135,13 @@ struct NetSpec {
     /// covers the largest box of the frame inside this window
     std::optional<LonLatBox> extentLonLat;
     Gridding gridding = Gridding::Linear;
+    /// gridding = "fit": the weight of the smoothness penalty against the
+    /// samples (dimensionless); unset: chosen by generalized cross-validation.
+    std::optional<double> smoothing;
+    /// The net prefiltered so that the scheme's surface passes through the
+    /// net's own values at its nodes (an approximating scheme keeps the
+    /// data's peaks); gridding = "fit" already fits the surface.
+    bool fit = false;
     KeyLocations locs;
 };
 

@@ -9,7 +9,7 @@ layers=(
   "core relief"          # relief/version.h is generated beside core's basics
   "scene curves"
   "geo subdiv"
-  "compare plot"
+  "compare plot fit"
   "measure"
   "emit"
   "annotate"

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # `relief test` on a manifest with one passing and one failing case, then the
 # HTML report opened from disk in headless Chromium: the DOM must show both
-# cases (the failing one first), four images each and the bless command; a
+# cases (the failing one first), four images each, the passing case's four
+# geometry checks with a plot of each curve, and the bless command; a
 # screenshot is written for a person to look at.
 # Usage: report_browser.sh RELIEF SOURCE_DIR WORK_DIR
 set -u
@@ -28,7 +29,12 @@ echo "cases in the DOM: $cases"
 [ "$cases" = 'class="case fail" class="case pass" ' ] || fail "expected the failing case first, then the passing one"
 images=$(grep -o '<img ' "$work/dom.html" | wc -l)
 echo "images in the DOM: $images"
-[ "$images" = 8 ] || fail "expected 8 images (new, hover reference, reference, difference per case)"
+[ "$images" = 11 ] || fail "expected 11 images (new, hover reference, reference, difference per case; 3 plots)"
+checks=$(grep -o '<tr class="check">' "$work/dom.html" | wc -l)
+[ "$checks" = 4 ] || fail "expected 4 geometry checks in the DOM, found $checks"
+grep -q '<td>profile 174.7618,-36.8760:174.7680,-36.8760</td><td>0.000 m</td><td>0.010 m</td><td>pass</td>' "$work/dom.html" ||
+  fail "the profile's check is not shown with its distance, tolerance and verdict"
+[ "$(grep -o 'class="geometry-plot"' "$work/dom.html" | wc -l)" = 3 ] || fail "expected 3 plots of curves"
 grep -q 'id="bless"' "$work/dom.html" || fail "no bless command line"
 grep -q '1 passed, 1 failed, 2 cases' "$work/dom.html" || fail "summary paragraph"
 for img in $(grep -o 'src="[^"]*"' "$work/dom.html" | cut -d'"' -f2 | sort -u); do

@@ -30,7 +30,7 @@ void expectOneNameEach(E last) {
 
 TEST(EnumNames, EveryValueHasOneName) {
     expectOneNameEach(FrameKind::Raster);
-    expectOneNameEach(Gridding::Nearest);
+    expectOneNameEach(Gridding::Fit);
     expectOneNameEach(Projection::Orthographic);
     expectOneNameEach(Resample::Nearest);
     expectOneNameEach(NodataPolicy::Error);

@@ -1,0 +1,61 @@
+#pragma once
+// net.gridding = "fit": the net whose surface, as the scheme refines it to the
+// depth rendered, passes nearest the samples, smooth where they are sparse.
+// The net z minimises ||A z - s||^2 + lambda z'Pz: a row of A a sample, the
+// refined surface there as weights on the net (fit/basis.h); P the net's
+// discrete thin-plate energy (second differences, which no plane pays);
+// lambda from `smoothing` (dimensionless: lambda = smoothing tr(A'A) / tr(P)),
+// given or chosen by generalized cross-validation. The normal equations are
+// solved by Eigen's sparse Cholesky (SimplicialLLT, AMD ordering): the same
+// bits on every machine.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/diagnostics.h"
+#include "core/types.h"
+#include "geo/normalize.h"
+#include "scene/scene_spec.h"
+#include "subdiv/scheme.h"
+
+namespace relief::fit {
+
+/// One smoothing tried by cross-validation: its GCV score, and the trace of
+/// the influence matrix (the fit's degrees of freedom).
+struct GcvTrial {
+    double smoothing = 0, score = 0, traceH = 0;
+};
+
+struct FitReport {
+    int depth = 0;                     ///< the refinement the surface was fitted at
+    size_t samples = 0;                ///< fitted (inside the net)
+    size_t samplesOutside = 0;         ///< outside the net: not fitted
+    size_t nodes = 0;
+    size_t nodesConstrained = 0;       ///< nodes some sample's surface weighs on; the rest are the penalty's
+    double smoothing = 0;
+    std::string chosenBy;              ///< "generalized cross-validation" or "net.smoothing"
+    std::vector<GcvTrial> gcv;         ///< in the order tried
+    std::string traceMethod;           ///< "exact", or Hutchinson's estimate with its probes
+    double rmseM = 0, maxResidualM = 0;
+    Vec3 worstSample;                  ///< where the largest residual is
+    double dataReachM = 0;             ///< the farthest a node is from its nearest sample
+    int refinementSteps = 0;           ///< of the solution, after the Cholesky solve
+    double relativeResidual = 0;       ///< of the normal equations, at the end
+    double seconds = 0;
+};
+
+/// The largest relative residual of the normal equations a fit accepts.
+inline constexpr double kFitTolerance = 1e-10;
+
+/// Replaces `net`'s heights by the fit of `samples` (frame metres) at `depth`
+/// levels of `scheme`. Nullopt, after an error at net.gridding or
+/// net.smoothing, when no sample lies on the net, when the equations are
+/// singular (smoothing 0 and nodes no sample reaches) or do not converge
+/// (naming the steps and the residual); a warning when there are fewer
+/// samples than a quarter of the nodes. `progress` (may be empty) hears what
+/// it does.
+std::optional<FitReport> fitNet(const subdiv::Scheme& scheme, int depth, const std::vector<Vec3>& samples,
+                                const scene::NetSpec& spec, geo::ControlNet& net, Diagnostics& diags,
+                                const std::function<void(const std::string&)>& progress = {});
+
+}  // namespace relief::fit

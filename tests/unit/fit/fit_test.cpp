@@ -1,0 +1,269 @@
+// The fit of a net to samples through the scheme's own surface: the basis is
+// what the refiner renders; samples of a surface the scheme makes give its
+// net back; the GCV score and trace are those of the textbook formula on a
+// small case computed densely here; the prefilter makes an approximating
+// scheme's surface pass through the net's values; the peak loss on a cone is
+// the B-spline's (4 + sqrt 2) / 9 k h, and none for an interpolating scheme.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+
+#include <cmath>
+#include <random>
+
+#include "fit/basis.h"
+#include "fit/fit_net.h"
+#include "fit/prefilter.h"
+#include "measure/peak_loss.h"
+#include "subdiv/refine.h"
+#include "subdiv/resolve.h"
+
+namespace relief::fit {
+namespace {
+
+subdiv::Scheme schemeNamed(const std::string& family, const std::string& preset = "",
+                           std::map<std::string, double> params = {}) {
+    scene::SchemeSpec spec;
+    spec.name = preset.empty() ? family : "";
+    spec.preset = preset;
+    spec.params = std::move(params);
+    Diagnostics d;
+    auto s = subdiv::resolveScheme(spec, d);
+    EXPECT_TRUE(s) << family << preset;
+    return s->scheme;
+}
+
+// A net rows x cols of 10 m in UTM 60S, heights from f(r, c).
+geo::ControlNet netOf(int rows, int cols, const std::function<double(int, int)>& f) {
+    geo::ControlNet net;
+    net.frame.kind = scene::FrameKind::Utm;
+    net.frame.utmZone = 60;
+    net.frame.northp = false;
+    net.grid.rows = rows, net.grid.cols = cols;
+    net.x0 = 300000, net.y0 = 5916000, net.dx = net.dy = 10;
+    for (int r = 0; r < rows; ++r)
+        for (int c = 0; c < cols; ++c) net.grid.points.push_back({net.x0 + 10.0 * c, net.y0 + 10.0 * r, f(r, c)});
+    return net;
+}
+
+TEST(AxisBasis, TheNetsHeightsTimesTheBasisAreWhatTheRefinerRenders) {
+    for (const auto& scheme : {schemeNamed("dlg4"), schemeNamed("ternary-bspline"), schemeNamed("", "quintic-bspline"),
+                               schemeNamed("", "gentle-mountains")}) {
+        const geo::ControlNet net = netOf(9, 11, [](int r, int c) { return std::sin(r * 1.3) * 40 + c * c * 0.7; });
+        const int depth = 2;
+        const Grid refined = subdiv::refineGrid(scheme, net.grid, depth);
+        const AxisBasis bx = axisBasis(scheme, net.cols(), depth), by = axisBasis(scheme, net.rows(), depth);
+        ASSERT_EQ(int(bx.weights.size()), refined.cols);
+        ASSERT_EQ(int(by.weights.size()), refined.rows);
+        double worst = 0;
+        for (int R = 0; R < refined.rows; ++R)
+            for (int C = 0; C < refined.cols; ++C) {
+                double z = 0;
+                for (const auto& [r, wy] : by.weights[R])
+                    for (const auto& [c, wx] : bx.weights[C]) z += wy * wx * net.grid.at(r, c).z;
+                worst = std::max(worst, std::abs(z - refined.at(R, C).z));
+            }
+        EXPECT_LT(worst, 1e-11) << scheme.name;
+    }
+}
+
+// Samples of the surface a net makes (at random points, more than the nodes):
+// the fit without smoothing gives that net back.
+TEST(FitNet, SamplesOfTheSchemesOwnSurfaceGiveItsNetBack) {
+    for (const auto& scheme : {schemeNamed("dlg4"), schemeNamed("ternary-bspline")}) {
+        const geo::ControlNet truth = netOf(10, 12, [](int r, int c) { return 100 + 20 * std::sin(r * 0.9 + c * 0.4) + r * c * 0.3; });
+        const int depth = 2;
+        const AxisBasis bx = axisBasis(scheme, truth.cols(), depth), by = axisBasis(scheme, truth.rows(), depth);
+        std::mt19937 rng(7);
+        std::uniform_real_distribution<double> ux(truth.x0, truth.xMax()), uy(truth.y0, truth.yMax());
+        std::vector<Vec3> samples;
+        SurfaceRow row;
+        for (int i = 0; i < 600; ++i) {
+            const double x = ux(rng), y = uy(rng);
+            ASSERT_TRUE(surfaceRow(bx, by, truth, x, y, row));
+            double z = 0;
+            for (const auto& [r, wy] : row.y)
+                for (const auto& [c, wx] : row.x) z += wy * wx * truth.grid.at(r, c).z;
+            samples.push_back({x, y, z});
+        }
+        geo::ControlNet net = netOf(10, 12, [](int, int) { return 0.0; });
+        scene::NetSpec spec;
+        spec.smoothing = 0;
+        Diagnostics diags;
+        const auto report = fitNet(scheme, depth, samples, spec, net, diags);
+        ASSERT_TRUE(report) << (diags.all().empty() ? "" : diags.all().front().message);
+        double worst = 0;
+        for (size_t i = 0; i < net.grid.points.size(); ++i)
+            worst = std::max(worst, std::abs(net.grid.points[i].z - truth.grid.points[i].z));
+        EXPECT_LT(worst, 1e-9) << scheme.name;
+        EXPECT_LT(report->rmseM, 1e-9);
+        EXPECT_EQ(report->nodesConstrained, report->nodes);
+    }
+}
+
+// A plane is what the smoothness never pays for: any smoothing gives it back.
+TEST(FitNet, APlaneIsFittedExactlyWhateverTheSmoothing) {
+    const subdiv::Scheme scheme = schemeNamed("four-point-4p");
+    const auto plane = [](double x, double y) { return 50 + 0.02 * (x - 300000) - 0.05 * (y - 5916000); };
+    std::vector<Vec3> samples;
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> ux(300000, 300110), uy(5916000, 5916090);
+    for (int i = 0; i < 40; ++i) {  // fewer samples than nodes: the rest held by the smoothness
+        const double x = ux(rng), y = uy(rng);
+        samples.push_back({x, y, plane(x, y)});
+    }
+    for (double smoothing : {1e-6, 1.0, 1e3}) {
+        geo::ControlNet net = netOf(10, 12, [](int, int) { return 0.0; });
+        scene::NetSpec spec;
+        spec.smoothing = smoothing;
+        Diagnostics diags;
+        ASSERT_TRUE(fitNet(scheme, 2, samples, spec, net, diags));
+        EXPECT_EQ(diags.warningCount(), 0);  // 40 samples for 120 nodes: a third, no warning
+        for (const Vec3& p : net.grid.points) EXPECT_NEAR(p.z, plane(p.x, p.y), 1e-6) << smoothing;  // 2e-8 relative
+    }
+}
+
+// GCV on 12 samples and a 5 x 5 net, against the formula computed densely:
+// A from the surface's rows, P from the thin-plate's second differences,
+// H = A (A'A + lambda P)^-1 A', V = N |(I - H) s|^2 / (N - tr H)^2.
+TEST(FitNet, CrossValidationScoresAreTheFormulas) {
+    const subdiv::Scheme scheme = schemeNamed("dlg4");
+    const int rows = 5, cols = 5, depth = 1, n = rows * cols;
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> ux(300000, 300040), uy(5916000, 5916040), noise(-1, 1);
+    std::vector<Vec3> samples;
+    for (int i = 0; i < 12; ++i) {
+        const double x = ux(rng), y = uy(rng);
+        samples.push_back({x, y, 0.01 * (x - 300000) * (y - 5916000) / 10 + noise(rng)});
+    }
+    geo::ControlNet net = netOf(rows, cols, [](int, int) { return 0.0; });
+    scene::NetSpec spec;
+    Diagnostics diags;
+    const auto report = fitNet(scheme, depth, samples, spec, net, diags);
+    ASSERT_TRUE(report);
+    ASSERT_EQ(report->traceMethod, "exact");
+    ASSERT_GE(report->gcv.size(), 6u);
+    // The same by hand.
+    const AxisBasis bx = axisBasis(scheme, cols, depth), by = axisBasis(scheme, rows, depth);
+    Eigen::MatrixXd a = Eigen::MatrixXd::Zero(12, n);
+    Eigen::VectorXd s(12);
+    SurfaceRow row;
+    for (int i = 0; i < 12; ++i) {
+        ASSERT_TRUE(surfaceRow(bx, by, net, samples[i].x, samples[i].y, row));
+        for (const auto& [r, wy] : row.y)
+            for (const auto& [c, wx] : row.x) a(i, r * cols + c) += wy * wx;
+        s[i] = samples[i].z;
+    }
+    std::vector<Eigen::VectorXd> d;  // the thin plate's rows, each times sqrt of its weight
+    const double h = 10, area = h * h;
+    auto term = [&](std::initializer_list<std::pair<int, double>> t, double weight) {
+        Eigen::VectorXd v = Eigen::VectorXd::Zero(n);
+        for (const auto& [k, c] : t) v[k] = c * std::sqrt(weight);
+        d.push_back(v);
+    };
+    for (int r = 0; r < rows; ++r)
+        for (int c = 0; c < cols; ++c) {
+            const int k = r * cols + c;
+            if (c >= 1 && c + 1 < cols) term({{k - 1, 1}, {k, -2}, {k + 1, 1}}, area / std::pow(h, 4));
+            if (r >= 1 && r + 1 < rows) term({{k - cols, 1}, {k, -2}, {k + cols, 1}}, area / std::pow(h, 4));
+            if (r + 1 < rows && c + 1 < cols) term({{k, 1}, {k + 1, -1}, {k + cols, -1}, {k + cols + 1, 1}}, 2 * area / std::pow(h, 4));
+        }
+    Eigen::MatrixXd p = Eigen::MatrixXd::Zero(n, n);
+    for (const auto& v : d) p += v * v.transpose();
+    const Eigen::MatrixXd m = a.transpose() * a;
+    const double scale = m.trace() / p.trace();
+    for (const GcvTrial& t : report->gcv) {
+        if (t.smoothing < 1e-4) continue;  // below, the equations' condition makes either side's score uncertain
+        const Eigen::MatrixXd c = m + t.smoothing * scale * p;
+        const Eigen::MatrixXd hat = a * c.ldlt().solve(a.transpose());
+        const Eigen::VectorXd residual = s - hat * s;
+        const double trace = hat.trace();
+        const double score = 12 * residual.squaredNorm() / std::pow(12 - trace, 2);
+        EXPECT_NEAR(t.traceH, trace, 1e-7 * std::max(1.0, trace)) << t.smoothing;
+        EXPECT_NEAR(t.score, score, 1e-6 * score) << t.smoothing;
+    }
+    // The smoothing chosen is the least score tried.
+    double least = 1e300;
+    for (const GcvTrial& t : report->gcv) least = std::min(least, t.score);
+    for (const GcvTrial& t : report->gcv)
+        if (t.score == least) {
+            EXPECT_DOUBLE_EQ(report->smoothing, t.smoothing);
+        }
+}
+
+TEST(FitNet, NoSampleOnTheNetAndSingularEquationsAreErrors) {
+    const subdiv::Scheme scheme = schemeNamed("dlg4");
+    geo::ControlNet net = netOf(6, 6, [](int, int) { return 0.0; });
+    scene::NetSpec spec;
+    Diagnostics off;
+    EXPECT_FALSE(fitNet(scheme, 1, {{0, 0, 5}}, spec, net, off));
+    EXPECT_NE(off.all().front().message.find("no sample lies on the net"), std::string::npos);
+    spec.smoothing = 0;  // one sample, no smoothing: 35 free nodes
+    Diagnostics singular;
+    EXPECT_FALSE(fitNet(scheme, 1, {{300021, 5916021, 5}}, spec, net, singular));
+    ASSERT_EQ(singular.errorCount(), 1);
+    EXPECT_NE(singular.all().back().message.find("singular"), std::string::npos) << singular.all().back().message;
+    EXPECT_EQ(singular.warningCount(), 1);  // 1 sample for 36 nodes
+    EXPECT_NE(singular.all().front().message.find("1 samples for a net of 36 nodes"), std::string::npos);
+}
+
+// net.fit = true: after the prefilter, the refined surface at the net's nodes
+// is the net's values, for the approximating schemes.
+TEST(Prefilter, TheSurfacePassesThroughTheNetsValues) {
+    for (const auto& scheme : {schemeNamed("ternary-bspline"), schemeNamed("", "quintic-bspline"),
+                               schemeNamed("", "gentle-mountains"), schemeNamed("", "ternary-bspline-3")}) {
+        const auto f = [](int r, int c) { return 120 + 30 * std::exp(-((r - 6) * (r - 6) + (c - 7) * (c - 7)) / 6.0); };
+        geo::ControlNet net = netOf(13, 15, f);
+        const int depth = 3;
+        scene::NetSpec spec;
+        spec.fit = true;
+        Diagnostics diags;
+        const auto report = prefilterNet(scheme, depth, spec, net, diags);
+        ASSERT_TRUE(report) << scheme.name << ": " << (diags.all().empty() ? "" : diags.all().front().message);
+        EXPECT_GT(report->largestChangeM, 0.1) << scheme.name;  // the peak raised
+        const Grid refined = subdiv::refineGrid(scheme, net.grid, depth);
+        const long long stride = std::llround(std::pow(scheme.arity, depth));
+        double worst = 0;
+        for (int r = 0; r < 13; ++r)
+            for (int c = 0; c < 15; ++c)
+                worst = std::max(worst, std::abs(refined.at(int(r * stride), int(c * stride)).z - f(r, c)));
+        EXPECT_LT(worst, 1e-6) << scheme.name;
+    }
+}
+
+TEST(Prefilter, AnInterpolatingSchemeIsLeftAsItIsAndATooFlatFilterRefused) {
+    geo::ControlNet net = netOf(8, 8, [](int r, int c) { return r * 3.0 + c; });
+    scene::NetSpec spec;
+    spec.fit = true;
+    Diagnostics interpolating;
+    ASSERT_TRUE(prefilterNet(schemeNamed("dlg4"), 2, spec, net, interpolating));
+    EXPECT_EQ(interpolating.warningCount(), 1);
+    EXPECT_EQ(net.grid.at(3, 4).z, 13.0);
+    // eta = 1/9: the end of its C2 range, whose limit filter is zero at the net's own frequency; at
+    // depth 6 the surface is close enough to its limit for undoing it to be refused.
+    Diagnostics flat;
+    EXPECT_FALSE(prefilterNet(schemeNamed("ternary-bspline", "", {{"eta", 1.0 / 9}}), 6, spec, net, flat));
+    EXPECT_NE(flat.all().front().message.find("cannot be made to pass through the net"), std::string::npos)
+        << flat.all().front().message;
+}
+
+// A cone of slope k on spacing h, its apex at a node: the cubic B-spline's
+// surface keeps sum phi(i) phi(j) of its neighbours, (4 + sqrt 2) / 9 k h
+// below the apex (phi = 1/6, 2/3, 1/6); an interpolating scheme keeps the apex.
+TEST(PeakLoss, OnAConeTheCubicBsplineLosesWhatItsWeightsSay) {
+    const double k = 2, h = 10, top = 300;
+    const auto cone = [&](int r, int c) { return top - k * h * std::hypot(r - 8.0, c - 8.0); };
+    for (const auto& [scheme, depth, expected] :
+         {std::tuple{schemeNamed("ternary-bspline"), 4, (4 + std::sqrt(2.0)) / 9 * k * h},
+          std::tuple{schemeNamed("dlg4"), 4, 0.0}}) {
+        const geo::ControlNet net = netOf(17, 17, cone);
+        const Vec3 peak = measure::highestNode(net);
+        EXPECT_DOUBLE_EQ(peak.z, top);
+        geo::GeoGrid refined = net.refined(subdiv::refineGrid(scheme, net.grid, depth), std::pow(scheme.arity, depth));
+        const measure::PeakLoss loss = measure::peakLoss(peak, refined, h);
+        EXPECT_NEAR(loss.lossM, expected, 1e-3 * k * h) << scheme.name;
+    }
+}
+
+}  // namespace
+}  // namespace relief::fit
