@@ -179,7 +179,7 @@ bool planFrame(const AnimateJob& job, const LoadedScene& scene, const SharedTerr
     return true;
 }
 
-// Every frame of one terrain: the terrain compiled (its files in shared-N/), the nights told, a plan a frame.
+// Every frame of one terrain: the terrain compiled (its files in terrain-N/), the nights told, a plan a frame.
 bool planGroup(const AnimateJob& job, std::vector<LoadedScene>& scenes, const std::vector<size_t>& group,
                int groupIndex, std::vector<FilmFrame>& frames, FilmWork& work, Diagnostics& diags,
                const ProgressFn& progress) {
@@ -450,9 +450,16 @@ void declareFilmOutputs(const film::FilmRecord& record, OutputSet& outputs) {
     outputs.addInput(record.scene, "the scene file");
 }
 
+// A whole film's working folder: its record reads back and its first kept frame's plan is there
+// (frames left out at night have none).
 bool isFilmFolder(const fs::path& dir) {
+    Diagnostics unused;
+    const auto record = film::readFilmRecord(dir, unused);
+    if (!record) return false;
     std::error_code ec;
-    return fs::is_regular_file(dir / "film.json", ec) && fs::is_directory(dir / film::framePlanName(1), ec);
+    for (const auto& f : record->frames)
+        if (f.fileNumber) return fs::is_directory(dir / film::framePlanName(f.settings.number), ec);
+    return false;
 }
 
 const WorkingFolderKind kFilmFolder{"the film's working folder", "a film's working folder", "give -o another name",

@@ -286,6 +286,10 @@ bool fitToScheme(const LoadedScene& loaded, int depth, geo::ControlNet& net, Sur
                       -1});
         return true;
     }
+    if (spec.gridding == scene::Gridding::Fit)
+        diags.warning(spec.locs.at("net.gridding"),
+                      "net.gridding = \"fit\" is not used: the samples are a raster or a lattice, whose nodes are "
+                      "the net as they stand; net.fit = true makes an approximating scheme pass through them");
     if (!spec.fit) return true;
     s.prefilter = fit::prefilterNet(scheme, depth, spec, net, diags);
     return s.prefilter.has_value();

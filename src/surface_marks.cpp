@@ -28,25 +28,26 @@ bool surfaceMarksWithinLimits(const SurfaceMarks& m, const scene::SceneSpec& spe
     est.parseSeconds = est.triangles * subdiv::kParseSecondsPerTriangle;
     est.sdlBytes = m.layers.sdlBytes() + (m.graticule ? m.graticule->ribbons.sdlBytes() : 0);
     const std::string over = subdiv::overBudget(est, budgetOf(spec.limits));
-    if (over.empty()) return true;
-    size_t most = 0;
-    for (size_t i = 0; i < m.layers.lines.size(); ++i)
-        if (m.layers.lines[i].faces.size() > m.layers.lines[most].faces.size()) most = i;
-    const bool graticule = m.graticule && (spec.layers.empty() || m.graticule->ribbons.faces.size() >
-                                                                       m.layers.lines[most].faces.size());
-    if (graticule) {
+    // Without marks the surface alone is over: its own check (the budget of the depth) says so.
+    if (over.empty() || (!m.graticule && m.layers.lines.empty())) return true;
+    // The layer drawing the most (its ribbons' triangles and its markers') is named.
+    std::vector<long long> drawn(m.layers.lines.size());
+    for (size_t i = 0; i < drawn.size(); ++i) drawn[i] = static_cast<long long>(m.layers.lines[i].faces.size());
+    for (const auto& p : m.layers.points) drawn.at(static_cast<size_t>(p.layer)) += 3;
+    const size_t most = drawn.empty() ? 0 : std::max_element(drawn.begin(), drawn.end()) - drawn.begin();
+    if (m.graticule && (drawn.empty() || static_cast<long long>(m.graticule->ribbons.faces.size()) > drawn[most])) {
         diags.error(spec.overlay.locs.at("overlay.graticule"),
                     fmt::format("overlay.graticule: {} lines of {} triangles beside the surface's {}: {}; choose a "
                                 "wider step_deg, or raise [limits]",
                                 m.graticule->lines.size(), m.graticule->ribbons.faces.size(), beside, over));
         return false;
     }
-    const scene::LayerSpec& l = spec.layers[most];
+    const scene::LayerSpec& l = spec.layers.at(most);
     diags.error(l.locs.at("layer.path"),
                 fmt::format("layer {} ({}): {} vertices, simplified to the still's resolution, make {} triangles "
                             "beside the surface's {}: {}; simplify the file, draw fewer features, or raise [limits]",
-                            l.number, printableExcerpt(l.pathAsWritten, 200), m.layers.counts[most].vertices,
-                            m.layers.lines[most].faces.size(), beside, over));
+                            l.number, printableExcerpt(l.pathAsWritten, 200), m.layers.counts.at(most).vertices,
+                            drawn[most], beside, over));
     return false;
 }
 

@@ -73,16 +73,18 @@ case "$mode" in
     ./build/relief render scenes/default.toml
     ;;
   test)
+    # --timeout: a test that hangs fails by itself (named) instead of stalling the whole run.
+    timeout=900
     build build -DCMAKE_BUILD_TYPE=Release
-    (cd build && ctest --output-on-failure -j "$jobs")
+    (cd build && ctest --output-on-failure --timeout "$timeout" -j "$jobs")
     echo "== unit and command-line tests under AddressSanitizer + UBSan"
     build build-asan -DCMAKE_BUILD_TYPE=Debug -DRELIEF_SANITIZE=ON -DRELIEF_BUILD_BENCH=OFF
-    (cd build-asan && ctest --output-on-failure -j "$jobs" -L "unit|cli")
+    (cd build-asan && ctest --output-on-failure --timeout "$timeout" -j "$jobs" -L "unit|cli")
     echo "== the readers under libFuzzer (AddressSanitizer + UBSan), ${RELIEF_FUZZ_SECONDS:-30} s each"
     TARGETS="fuzz_scene fuzz_samples fuzz_curve fuzz_manifest fuzz_cpt fuzz_vrt fuzz_plan" \
       build build-fuzz -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRELIEF_FUZZ=ON \
         -DRELIEF_BUILD_TESTS=OFF -DRELIEF_BUILD_BENCH=OFF -DRELIEF_FUZZ_SECONDS="${RELIEF_FUZZ_SECONDS:-30}"
-    (cd build-fuzz && ctest --output-on-failure -j "$jobs" -L fuzz)
+    (cd build-fuzz && ctest --output-on-failure --timeout "$timeout" -j "$jobs" -L fuzz)
     ;;
   bench)
     build build -DCMAKE_BUILD_TYPE=Release

@@ -19,11 +19,6 @@ namespace relief::emit {
 
 inline constexpr int kPaletteSize = 256;
 
-/// Where the terrain sits in POV-Ray's scene, whatever geometry carries it.
-/// POV-Ray's axes: x = east, y = up, z = north (left-handed, so the map is
-/// not mirrored). One scene unit is `metresPerUnit` metres, a power of ten
-/// chosen so the terrain spans 10-100 units: POV-Ray stores vertices as
-/// 32-bit floats and treats bounding boxes over ~2e10 cubic units as infinite.
 /// Tints laid over the surface's colour, node by node: [[layer]] polygons'
 /// fills. fillOf[node] is 0 (none) or k, the fill fills[k - 1].
 struct NodeFills {
@@ -35,6 +30,11 @@ struct NodeFills {
     std::vector<Fill> fills;
 };
 
+/// Where the terrain sits in POV-Ray's scene, whatever geometry carries it.
+/// POV-Ray's axes: x = east, y = up, z = north (left-handed, so the map is
+/// not mirrored). One scene unit is `metresPerUnit` metres, a power of ten
+/// chosen so the terrain spans 10-100 units: POV-Ray stores vertices as
+/// 32-bit floats and treats bounding boxes over ~2e10 cubic units as infinite.
 struct ScenePlacement {
     double metresPerUnit = 1;
     Vec3 originM;                 ///< frame position (metres) of the scene origin (x, y; z = 0)

@@ -36,8 +36,8 @@ long long fillPolygon(const geo::GeoGrid& refined, const std::vector<std::vector
             const curves::Point2 a = ring[i], b = ring[(i + 1) % ring.size()];
             if (a.y == b.y) continue;
             const double lo = std::min(a.y, b.y), hi = std::max(a.y, b.y);
-            const int r0 = std::max(0, static_cast<int>(std::ceil((lo - refined.y0) / refined.dy)));
-            const int r1 = std::min(rows - 1, static_cast<int>(std::ceil((hi - refined.y0) / refined.dy)) - 1);
+            const int r0 = std::max(0, geo::GeoGrid::indexWithin(std::ceil((lo - refined.y0) / refined.dy), rows));
+            const int r1 = std::min(rows - 1, geo::GeoGrid::indexWithin(std::ceil((hi - refined.y0) / refined.dy), rows) - 1);
             for (int r = r0; r <= r1; ++r) {  // rows in [lo, hi): a vertex on a row counts once
                 const double y = refined.y0 + r * refined.dy;
                 crossings[static_cast<size_t>(r)].push_back(a.x + (b.x - a.x) * (y - a.y) / (b.y - a.y));
@@ -48,8 +48,8 @@ long long fillPolygon(const geo::GeoGrid& refined, const std::vector<std::vector
         auto& xs = crossings[static_cast<size_t>(r)];
         std::sort(xs.begin(), xs.end());
         for (size_t k = 0; k + 1 < xs.size(); k += 2) {
-            const int c0 = std::max(0, static_cast<int>(std::ceil((xs[k] - refined.x0) / refined.dx)));
-            const int c1 = std::min(cols - 1, static_cast<int>(std::ceil((xs[k + 1] - refined.x0) / refined.dx)) - 1);
+            const int c0 = std::max(0, geo::GeoGrid::indexWithin(std::ceil((xs[k] - refined.x0) / refined.dx), cols));
+            const int c1 = std::min(cols - 1, geo::GeoGrid::indexWithin(std::ceil((xs[k + 1] - refined.x0) / refined.dx), cols) - 1);
             for (int c = c0; c <= c1; ++c, ++marked) fillOf[static_cast<size_t>(r) * cols + c] = fill;
         }
     }

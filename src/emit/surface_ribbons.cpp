@@ -1,5 +1,6 @@
 #include "emit/surface_ribbons.h"
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 
@@ -12,13 +13,36 @@ namespace relief::emit {
 
 namespace {
 
+// The part of segment a-b inside `box` as parameters t0 <= t1 in [0, 1]
+// (Liang-Barsky); false when it misses the box.
+bool clipToBox(curves::Point2 a, curves::Point2 b, const FrameBox& box, double& t0, double& t1) {
+    t0 = 0, t1 = 1;
+    const double d[2] = {b.x - a.x, b.y - a.y}, lo[2] = {box.west - a.x, box.south - a.y},
+                 hi[2] = {box.east - a.x, box.north - a.y};
+    for (int k = 0; k < 2; ++k) {
+        if (d[k] == 0) {
+            if (lo[k] > 0 || hi[k] < 0) return false;
+            continue;
+        }
+        const double u = lo[k] / d[k], v = hi[k] / d[k];
+        t0 = std::max(t0, std::min(u, v));
+        t1 = std::min(t1, std::max(u, v));
+    }
+    return t0 <= t1;
+}
+
 // The line simplified (GEOS, Douglas-Peucker) to `tolerance`, then cut into
-// pieces at most `longest` long: a traced line's point a pixel costs SDL and
-// POV-Ray's time no pixel shows, and long thin triangles have bounding boxes
-// POV-Ray's rays would meet everywhere.
-std::vector<curves::Point2> simplifiedAndCut(std::span<const curves::Point2> line, double tolerance, double longest) {
+// pieces at most `longest` long where it crosses `box` (a boundary file's
+// thousands of kilometres off the terrain are not cut into metres): a traced
+// line's point a pixel costs SDL and POV-Ray's time no pixel shows, and long
+// thin triangles have bounding boxes POV-Ray's rays would meet everywhere.
+std::vector<curves::Point2> simplifiedAndCut(std::span<const curves::Point2> line, double tolerance, double longest,
+                                             const FrameBox& box) {
     OGRLineString traced;
-    for (const auto& p : line) traced.addPoint(p.x, p.y);
+    // Sized once: addPoint grows the array a point at a time, a copy each where realloc cannot
+    // grow in place (quadratic for a million-vertex track).
+    traced.setNumPoints(static_cast<int>(line.size()), FALSE);
+    for (size_t i = 0; i < line.size(); ++i) traced.setPoint(static_cast<int>(i), line[i].x, line[i].y);
     std::unique_ptr<OGRGeometry> simple(tolerance > 0 ? traced.Simplify(tolerance) : nullptr);
     const auto* simpleLine = simple ? dynamic_cast<const OGRLineString*>(simple.get()) : nullptr;
     const OGRLineString& kept = simpleLine && simpleLine->getNumPoints() >= 2 ? *simpleLine : traced;
@@ -29,9 +53,15 @@ std::vector<curves::Point2> simplifiedAndCut(std::span<const curves::Point2> lin
             const curves::Point2 a = pts.back();
             const double d = std::hypot(p.x - a.x, p.y - a.y);
             if (d <= 1e-9) continue;
-            const int pieces = static_cast<int>(std::ceil(d / longest));
-            for (int k = 1; k < pieces; ++k)
-                pts.push_back({a.x + (p.x - a.x) * k / pieces, a.y + (p.y - a.y) * k / pieces});
+            double t0 = 0, t1 = 1;
+            if (clipToBox(a, p, box, t0, t1)) {
+                const int pieces = std::max(1, static_cast<int>(std::ceil(d * (t1 - t0) / longest)));
+                for (int k = 0; k <= pieces; ++k) {
+                    const double at = t0 * pieces + (t1 - t0) * k;  // t * pieces; exact for a segment inside
+                    if (at > 0 && at < pieces)
+                        pts.push_back({a.x + (p.x - a.x) * at / pieces, a.y + (p.y - a.y) * at / pieces});
+                }
+            }
         }
         pts.push_back(p);
     }
@@ -106,7 +136,10 @@ void addStrip(Ribbons& out, const geo::GeoGrid& refined, const ScenePlacement& w
 
 void addRibbon(Ribbons& out, const geo::GeoGrid& refined, const ScenePlacement& where,
                std::span<const curves::Point2> line, const RibbonStyle& style) {
-    const std::vector<curves::Point2> pts = simplifiedAndCut(line, style.simplifyM, style.longestM);
+    const double margin = style.widthM + style.longestM;
+    const FrameBox box{std::min(refined.x0, refined.xMax()) - margin, std::min(refined.y0, refined.yMax()) - margin,
+                       std::max(refined.x0, refined.xMax()) + margin, std::max(refined.y0, refined.yMax()) + margin};
+    const std::vector<curves::Point2> pts = simplifiedAndCut(line, style.simplifyM, style.longestM, box);
     if (pts.size() < 2) return;
     ++out.lines;
     const double half = 0.5 * style.widthM;

@@ -5,6 +5,7 @@
 
 #include "core/atomic_file.h"
 #include "core/input_file.h"
+#include "film/video.h"
 #include "relief/version.h"
 
 namespace relief::film {
@@ -53,6 +54,21 @@ bool framesInOrder(const std::vector<FilmFrame>& frames) {
         if (frames[i].fileNumber != 0 && frames[i].fileNumber != ++kept) return false;
     }
     return kept > 0;
+}
+
+// The record is untrusted: it may only name the film whose working folder it
+// is in (<film>.film or <film>.film-N beside it, a video relief makes) and that
+// film's sidecar, never any other file to be written over.
+bool namesBelongTo(const FilmRecord& r, const fs::path& dir) {
+    std::error_code ec;
+    const fs::path folder = fs::weakly_canonical(fs::absolute(dir, ec), ec);
+    const fs::path filmParent = fs::weakly_canonical(r.film.parent_path(), ec);
+    const std::string name = folder.filename().string(), own = r.film.stem().string() + ".film";
+    const bool named = name == own || (name.rfind(own + "-", 0) == 0 && name.size() > own.size() + 1 &&
+                                       name.find_first_not_of("0123456789", own.size() + 1) == std::string::npos);
+    VideoFormat format{};
+    return !ec && named && filmParent == folder.parent_path() && videoFormatOf(r.film, format) &&
+           r.sidecar == fs::path(r.film).replace_extension(".json");
 }
 
 }  // namespace
@@ -111,9 +127,14 @@ std::optional<FilmRecord> readFilmRecord(const fs::path& dir, Diagnostics& diags
         diags.error(at, "the film's record is damaged (not the JSON relief writes): make the film again");
         return std::nullopt;
     }
-    if (!framesInOrder(r.frames) || !(r.fps > 0) || !r.film.is_absolute() || !r.sidecar.is_absolute() ||
+    if (!framesInOrder(r.frames) || !(r.fps >= 1 && r.fps <= 120) || r.terrains < 0 || !r.film.is_absolute() || !r.sidecar.is_absolute() ||
         (!r.framesDir.empty() && !r.framesDir.is_absolute())) {
         diags.error(at, "the film's record is damaged (its frames or names are not a film's): make the film again");
+        return std::nullopt;
+    }
+    if (!namesBelongTo(r, dir)) {
+        diags.error(at, "the film's record names a film that is not this folder's (<film>.film beside the film, "
+                        "its sidecar <film>.json): resume it where relief animate left it, or make the film again");
         return std::nullopt;
     }
     return r;

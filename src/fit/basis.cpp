@@ -8,7 +8,7 @@
 namespace relief::fit {
 
 bool AxisBasis::locate(double u, int& k, double& f) const {
-    if (position.empty() || !(u >= position.front() && u <= position.back())) return false;
+    if (position.size() < 2 || !(u >= position.front() && u <= position.back())) return false;
     k = static_cast<int>(std::upper_bound(position.begin(), position.end(), u) - position.begin()) - 1;
     k = std::clamp(k, 0, static_cast<int>(position.size()) - 2);
     const double width = position[k + 1] - position[k];
@@ -32,7 +32,13 @@ AxisBasis axisBasis(const subdiv::Scheme& scheme, int nodes, int depth) {
         for (size_t k = 0; k < impulse.size(); ++k)
             if (impulse[k].z != 0) b.weights[k].emplace_back(j, impulse[k].z);
     }
-    for (const auto& w : b.weights) b.span = std::max(b.span, w.empty() ? 0 : w.back().first - w.front().first + 1);
+    for (size_t k = 0; k + 1 < b.weights.size(); ++k) {  // nodes come in order: first and last bound them
+        const auto &w0 = b.weights[k], &w1 = b.weights[k + 1];
+        if (w0.empty() && w1.empty()) continue;
+        const int first = std::min(w0.empty() ? nodes : w0.front().first, w1.empty() ? nodes : w1.front().first);
+        const int last = std::max(w0.empty() ? -1 : w0.back().first, w1.empty() ? -1 : w1.back().first);
+        b.span = std::max(b.span, last - first + 1);
+    }
     return b;
 }
 

@@ -18,7 +18,7 @@ struct AxisBasis {
     int nodes = 0;
     std::vector<std::vector<std::pair<int, double>>> weights;  ///< [refined index]: (node, weight), no zeros
     std::vector<double> position;  ///< [refined index]: in net spacings from node 0 (the refined nodes' own)
-    int span = 0;                  ///< the most nodes one refined index depends on
+    int span = 0;  ///< the most nodes (first to last) a point between refined indices k and k+1 depends on
     /// The refined interval [k, k+1] holding position `u` (net spacings), and
     /// where in it (0..1); false outside the net.
     bool locate(double u, int& k, double& f) const;

@@ -1,6 +1,7 @@
 #include "fit/normal_equations.h"
 
 #include <cmath>
+#include <stdexcept>
 
 namespace relief::fit {
 
@@ -18,6 +19,11 @@ void NormalEquations::addPair(int p, int q, double v, std::vector<double>& store
 }
 
 void NormalEquations::addSample(const SurfaceRow& row, double z) {
+    // The stencil holds offsets up to half_: a wider row (a basis whose span was not passed) would write
+    // into another offset's slot.
+    for (const auto* axis : {&row.x, &row.y})
+        if (!axis->empty() && axis->back().first - axis->front().first > half_)
+            throw std::logic_error("fit: a sample weighs on nodes further apart than the normal equations hold");
     // w = wy (x) wx: the pairs of nodes, (ry, cx) and (ry', cx'), each once.
     for (const auto& [r1, wy1] : row.y)
         for (const auto& [c1, wx1] : row.x) {

@@ -49,6 +49,9 @@ struct GeoGrid {
         return !masked.empty() && masked[static_cast<size_t>(r) * grid.cols + c] != 0;
     }
     size_t maskedCount() const;
+    /// A whole node index computed in double (e.g. ceil((x - x0) / dx)) as an
+    /// int within [-1, n]: a coordinate far off the grid (or NaN) stays one.
+    static int indexWithin(double v, int n) { return !(v >= -1) ? -1 : v > n ? n : static_cast<int>(v); }
 
     /// Height at (x, y) in the frame by bilinear interpolation between the
     /// four surrounding nodes; nullopt outside the lattice or where one of

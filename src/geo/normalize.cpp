@@ -460,9 +460,13 @@ std::optional<ControlNet> gridSamples(const scene::NetSpec& spec, const std::str
         for (int c = 0; c < cols; ++c)
             net.grid.at(r, c) = {net.x0 + c * net.dx, net.y0 + r * net.dy,
                                  z[static_cast<size_t>(r) * cols + c]};
-    const auto highest = std::max_element(points.begin(), points.end(),
-                                           [](const FramePoint& a, const FramePoint& b) { return a.p.z < b.p.z; });
-    net.highestSample = highest->p;
+    // The highest sample on the net (an extent may leave the highest of all off it); none: the highest node.
+    const double x1 = net.x0 + (cols - 1) * net.dx, y1 = net.y0 + (rows - 1) * net.dy;
+    for (const auto& fp : points)
+        if (fp.p.x >= std::min(net.x0, x1) && fp.p.x <= std::max(net.x0, x1) && fp.p.y >= std::min(net.y0, y1) &&
+            fp.p.y <= std::max(net.y0, y1) &&
+            (!net.highestSample || fp.p.z > net.highestSample->z))
+            net.highestSample = fp.p;
     if (spec.gridding == scene::Gridding::Fit) {
         auto samples = std::make_shared<std::vector<Vec3>>();
         samples->reserve(points.size());

@@ -70,19 +70,24 @@ bool verticesInWgs84(OGRLayerH layer, OGRGeometryH line, std::vector<GeoPoint>& 
 
 }  // namespace
 
+Dataset openVectorFile(const std::filesystem::path& path, const std::string& shown, const SourceLoc& at,
+                       Diagnostics& diags, const char* const* openOptions) {
+    std::string problem;
+    setUpGdal();
+    Dataset ds = openChecked(path, GDAL_OF_VECTOR, problem, nullptr, openOptions);
+    if (!ds)
+        diags.error(at, fmt::format("{}: {}", shown,
+                                    problem.empty() ? "GDAL reads no vector data in it (give a GeoJSON, GPX, KML, "
+                                                      "Shapefile, GeoPackage, FlatGeobuf or CSV file)"
+                                                    : problem));
+    return ds;
+}
+
 std::optional<std::vector<GeoPoint>> firstLineOf(const std::filesystem::path& path, const std::string& layerName,
                                                  const SourceLoc& at, Diagnostics& diags) {
     const std::string shown = printableExcerpt(path.string(), 200);
-    std::string problem;
-    setUpGdal();
-    const Dataset ds = openChecked(path, GDAL_OF_VECTOR, problem);
-    if (!ds) {
-        diags.error(at, fmt::format("{}: {}", shown,
-                                    problem.empty() ? "GDAL reads no vector data in it (give a GPX, GeoJSON, KML, "
-                                                      "Shapefile, GeoPackage, FlatGeobuf or CSV file)"
-                                                    : problem));
-        return std::nullopt;
-    }
+    const Dataset ds = openVectorFile(path, shown, at, diags);
+    if (!ds) return std::nullopt;
     Feature holder;
     for (int i = 0; i < GDALDatasetGetLayerCount(ds.get()); ++i) {
         OGRLayerH layer = GDALDatasetGetLayer(ds.get(), i);

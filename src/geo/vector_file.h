@@ -9,8 +9,15 @@
 
 #include "core/diagnostics.h"
 #include "core/types.h"
+#include "geo/raster_source.h"
 
 namespace relief::geo {
+
+/// `path` opened as a vector dataset (`openOptions`: a null-ended list of
+/// NAME=VALUE for the driver); null, after an error at `at` that begins with
+/// `shown` and says why (or which formats relief reads), when it cannot be.
+Dataset openVectorFile(const std::filesystem::path& path, const std::string& shown, const SourceLoc& at,
+                       Diagnostics& diags, const char* const* openOptions = nullptr);
 
 /// The vertices of the first line in `path` (a LineString, or a
 /// MultiLineString's first part) of the layer named `layer`, or of the first

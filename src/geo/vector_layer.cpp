@@ -16,6 +16,7 @@
 #include "geo/gdal_crs.h"
 #include "geo/gdal_setup.h"
 #include "geo/raster_source.h"
+#include "geo/vector_file.h"
 
 namespace relief::geo {
 
@@ -124,7 +125,6 @@ private:
         const auto type = wkbFlatten(OGR_G_GetGeometryType(g));
         f.kind = type == wkbPoint ? FeatureKind::Point : type == wkbLineString ? FeatureKind::Line : FeatureKind::Polygon;
         if (f.kind != FeatureKind::Polygon) return ring(g, f, out, problem);
-        f.polygonStarts.push_back(0);
         for (int i = 0; i < OGR_G_GetGeometryCount(g); ++i)
             if (!ring(OGR_G_GetGeometryRef(g, i), f, out, problem)) return false;
         return true;
@@ -185,16 +185,8 @@ std::optional<int> labelFieldOf(OGRLayerH layer, const scene::LayerSpec& spec, D
 std::optional<VectorLayer> readVectorLayer(const scene::LayerSpec& spec, long long maxVertices, Diagnostics& diags) {
     const std::string shown = printableExcerpt(spec.pathAsWritten, 200);
     const SourceLoc at = spec.locs.at("layer.path");
-    std::string problem;
-    setUpGdal();
-    const Dataset ds = openChecked(spec.path, GDAL_OF_VECTOR, problem, nullptr, kOpenOptions);
-    if (!ds) {
-        diags.error(at, fmt::format("layer.path: {}: {}", shown,
-                                    problem.empty() ? "GDAL reads no vector data in it (give a GeoJSON, GPX, KML, "
-                                                      "Shapefile, GeoPackage, FlatGeobuf or CSV file)"
-                                                    : problem));
-        return std::nullopt;
-    }
+    const Dataset ds = openVectorFile(spec.path, "layer.path: " + shown, at, diags, kOpenOptions);
+    if (!ds) return std::nullopt;
     OGRLayerH layer = findLayer(ds.get(), spec.layer);
     if (!layer) {
         diags.error(spec.locs.at(spec.layer.empty() ? "layer.path" : "layer.layer"),
@@ -205,6 +197,7 @@ std::optional<VectorLayer> readVectorLayer(const scene::LayerSpec& spec, long lo
     }
     const auto labelField = labelFieldOf(layer, spec, diags);
     if (!labelField) return std::nullopt;
+    std::string problem;
     const Transform toWgs84 = toWgs84Of(layer, spec, diags, problem);
     if (!problem.empty()) {
         diags.error(spec.locs.at("layer.crs"), fmt::format("{}: {}", shown, problem));

@@ -21,10 +21,8 @@ struct VectorFeature {
     FeatureKind kind = FeatureKind::Point;
     long long fid = 0;  ///< the file's feature id
     /// Point: one part, one vertex. Line: a part a line. Polygon: its rings,
-    /// each polygon's exterior first, then its holes (polygonStarts says where
-    /// each polygon of a multipolygon begins).
+    /// the exterior first, then its holes (a multipolygon is a feature a polygon).
     std::vector<std::vector<GeoPoint>> parts;
-    std::vector<size_t> polygonStarts;
     std::string label;
 };
 

@@ -219,6 +219,23 @@ bool writePlan(RenderPlan& plan, Diagnostics& diags) {
     return true;
 }
 
+namespace {
+
+// The sizes the overlay draws at, as a scene can give them (a plan is untrusted: a huge dpi or font
+// would overflow the PNG's resolution or ask Pango for a page of one glyph).
+bool overlaySizesSane(const RenderPlan& p) {
+    const auto within = [](double v, double lo, double hi) { return v >= lo && v <= hi; };  // false for NaN
+    bool ok = p.dpi == 0 || within(p.dpi, 1, 4800);
+    for (const auto& l : p.overlayFacts.labels)
+        ok = ok && within(l.sizePx, 1, 1000) && within(l.markerPx, 0, 1000) && within(l.x, -1e7, 1e7) &&
+             within(l.y, -1e7, 1e7) && within(l.groundY, -1e7, 1e7);
+    for (const auto& e : p.overlayFacts.layerLegend)
+        ok = ok && within(e.widthPx, 0, 1000) && within(e.fillOpacity, 0, 1);
+    return ok;
+}
+
+}  // namespace
+
 std::optional<RenderPlan> readPlan(const fs::path& dir, Diagnostics& diags) {
     const fs::path file = dir / "plan.json";
     const SourceLoc at{file.string(), 0, 0};
@@ -268,7 +285,7 @@ std::optional<RenderPlan> readPlan(const fs::path& dir, Diagnostics& diags) {
     bool names = plainName(p.pov.name);
     for (const auto& f : p.reads) names = names && plainName(f.name);
     for (const auto& f : p.extras) names = names && plainName(f.name);
-    if (!names || p.width < 1 || p.height < 1 || p.tiles < 1 || p.tiles > p.height) {
+    if (!names || p.width < 1 || p.height < 1 || p.tiles < 1 || p.tiles > p.height || !overlaySizesSane(p)) {
         diags.error(at, "the render plan is damaged (its files or sizes are not a plan's): make it again");
         return std::nullopt;
     }

@@ -1,7 +1,9 @@
 #include "regress/geometry_check.h"
 
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -13,7 +15,6 @@
 #include "measure/surface_curves.h"
 #include "pipeline.h"
 #include "plot/svg.h"
-#include "scene/section.h"
 
 namespace relief::regress {
 
@@ -28,16 +29,18 @@ constexpr int kGeometryFormat = 1;
 // "LON,LAT:LON,LAT": a geodesic's two ends.
 std::optional<measure::ProfileLine> profileOf(const std::string& text) {
     double v[4];
-    char* end = nullptr;
-    const char* p = text.c_str();
-    for (int i = 0; i < 4; ++i) {
-        v[i] = std::strtod(p, &end);
-        if (end == p) return std::nullopt;
-        p = end;
-        if (i < 3 && *p != (i == 1 ? ':' : ',')) return std::nullopt;
-        if (i < 3) ++p;
+    const char* p = text.data();
+    const char* const end = text.data() + text.size();
+    for (int i = 0; i < 4; ++i) {  // from_chars: the C locale's digits, and no "nan" or "inf"
+        while (p != end && *p == ' ') ++p;
+        const auto [next, ec] = std::from_chars(p, end, v[i]);
+        if (ec != std::errc() || !std::isfinite(v[i])) return std::nullopt;
+        p = next;
+        if (i == 3) break;
+        if (p == end || *p != (i == 1 ? ':' : ',')) return std::nullopt;
+        ++p;
     }
-    if (*p != '\0' || std::fabs(v[0]) > 180 || std::fabs(v[2]) > 180 || std::fabs(v[1]) > 90 || std::fabs(v[3]) > 90)
+    if (p != end || std::fabs(v[0]) > 180 || std::fabs(v[2]) > 180 || std::fabs(v[1]) > 90 || std::fabs(v[3]) > 90)
         return std::nullopt;
     return measure::ProfileLine{text, {v[0], v[1], 0}, {v[2], v[3], 0}};
 }
@@ -82,7 +85,7 @@ std::optional<std::pair<measure::SurfaceCurves, double>> keptCurves(const fs::pa
         }
         return std::pair{c, j.at("peak_loss_m").get<double>()};
     } catch (const std::exception&) {
-        problem = "not the geometry file relief test writes (bless the case again with --update)";
+        problem = "not the geometry file relief test writes (--update keeps the new curves)";
         return std::nullopt;
     }
 }
@@ -112,6 +115,12 @@ void checkCurves(const measure::SurfaceCurves& now, const measure::SurfaceCurves
         GeometryResult r{name, b != nullptr, 0, checks.toleranceM, false, "", {}};
         if (b && kept && kept->frame != now.frame && !profile) {
             r.where = fmt::format("the kept lines are in {}, the surface in {}: bless again", kept->frame, now.frame);
+        } else if (b && !profile && (a.empty() || b->empty())) {
+            // A level's lines appeared or vanished: no distance to measure, nothing to plot.
+            r.pass = a.empty() && b->empty();
+            r.distanceM = r.pass ? 0 : std::numeric_limits<double>::infinity();
+            r.where = r.pass ? "no lines at this level, now or kept"
+                             : fmt::format("{} lines now, {} kept", a.size(), b->size());
         } else if (b) {
             const measure::CurveMove m = profile ? measure::profileMove(a.front(), b->front()) : measure::levelMove(a, *b);
             r.distanceM = m.distanceM;
@@ -144,7 +153,7 @@ void checkCurves(const measure::SurfaceCurves& now, const measure::SurfaceCurves
 
 GeometryChecks readGeometryChecks(const toml::table& t, const std::string& file, Diagnostics& diags) {
     GeometryChecks g;
-    const auto at = [&](const char* key) { return scene::locOf(file, t.get(key)->source()); };
+    const auto at = [&](const char* key) { return locOf(file, t.get(key)->source()); };
     if (const toml::node* p = t.get("profile")) {
         std::vector<std::string> texts;
         if (auto s = p->value_exact<std::string>()) texts.push_back(*s);
@@ -198,9 +207,9 @@ std::string checkGeometry(const fs::path& scenePath, const std::vector<std::pair
         return "the surface cannot be measured";
     }
     writeFileAtomically(newCurves, curvesJson(*now, surface->peakLoss.lossM).dump(1) + "\n");
+    // Kept curves that cannot be read are none: the case is New, and --update keeps these.
     std::string problem;
     const auto kept = keptCurves(referenceDir / kGeometryFile, problem);
-    if (!kept && problem != "no such file") return fmt::format("{}: {}", (referenceDir / kGeometryFile).string(), problem);
     checkCurves(*now, kept ? &kept->first : nullptr, checks, plotDir, caseName, results);
     if (checks.peakLossToleranceM) {
         GeometryResult r{"peak loss", kept.has_value(), 0, *checks.peakLossToleranceM, false, "", {}};
@@ -211,6 +220,8 @@ std::string checkGeometry(const fs::path& scenePath, const std::vector<std::pair
         }
         results.push_back(r);
     }
+    if (!kept && problem != "no such file")
+        for (auto& r : results) r.where = fmt::format("{}: {}", (referenceDir / kGeometryFile).string(), problem);
     return "";
 }
 

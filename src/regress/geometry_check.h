@@ -39,6 +39,9 @@ struct GeometryResult {
 /// The file beside a case's references that keeps its curves.
 inline constexpr const char* kGeometryFile = "geometry.json";
 
+/// Where a manifest's key or table `r` begins in `file`.
+SourceLoc locOf(const std::string& file, const toml::source_region& r);
+
 /// Reads a case's `profile` (a string or strings "LON,LAT:LON,LAT"), `levels`,
 /// `tolerance_m` and `peak_loss_tolerance_m`; errors at their keys.
 GeometryChecks readGeometryChecks(const toml::table& t, const std::string& file, Diagnostics& diags);

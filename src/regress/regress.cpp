@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cctype>
 #include <chrono>
+#include <cmath>
 #include <mutex>
 #include <set>
 #include <thread>
@@ -34,11 +35,11 @@ const char* statusName(CaseStatus s) {
     return "?";
 }
 
-namespace {
-
 SourceLoc locOf(const std::string& file, const toml::source_region& r) {
     return {file, static_cast<int>(r.begin.line), static_cast<int>(r.begin.column)};
 }
+
+namespace {
 
 const std::vector<std::string> kCaseKeys{"name",  "scene", "references", "width", "height",
                                          "fail",  "failpercent", "hardfail", "warn",
@@ -265,9 +266,12 @@ void checkCaseGeometry(const TestCase& c, const RunOptions& o, CaseResult& r) {
     bool unkept = false;
     for (const auto& g : r.geometry) {
         unkept = unkept || !g.kept;
-        if (g.kept && !g.pass)
-            failing += fmt::format("{}{} moved {} > {}", failing.empty() ? "" : "; ", g.name,
-                                   measure::formatDistance(g.distanceM), measure::formatDistance(g.toleranceM));
+        if (g.kept && !g.pass)  // moved beyond its tolerance, or not measurable (`where` says why)
+            failing += (failing.empty() ? "" : "; ") +
+                       (std::isfinite(g.distanceM) && g.distanceM > g.toleranceM
+                            ? fmt::format("{} moved {} > {}", g.name, measure::formatDistance(g.distanceM),
+                                          measure::formatDistance(g.toleranceM))
+                            : fmt::format("{}: {}", g.name, g.where));
     }
     if (!failing.empty()) {
         r.status = CaseStatus::Fail;

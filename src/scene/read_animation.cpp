@@ -64,15 +64,21 @@ std::vector<AnimationSpec::Varied> variedKeysOf(Section& s, SceneSpec& scene) {
         const std::string key(k.str());
         const auto dot = key.find('.');
         const std::string section = key.substr(0, dot == std::string::npos ? 0 : dot);
-        bool known = false, wholeNumber = false;
+        bool known = false, wholeNumber = false, many = false;
         for (const auto& reader : sectionReaders())
             if (section == reader.name && section != "animation") {
+                many = reader.many;  // its locations() would add a table to the scene: never asked
+                if (many) continue;
                 known = reader.locations(scene).knows(key);
                 wholeNumber = reader.locations(scene).wholeNumbers.count(key) > 0;
             }
         const toml::array* a = v.as_array();
         const auto end = [&](size_t i) { return a && a->size() == 2 ? (*a)[i].value<double>() : std::nullopt; };
-        if (!known) {
+        if (many) {
+            s.error("vary", fmt::format("animation.vary: [[{}]] keys cannot be varied: there may be many [[{}]] "
+                                        "tables; vary a key of another section",
+                                        section, section));
+        } else if (!known) {
             s.error("vary", fmt::format("animation.vary: \"{}\" is not a key of the scene's sections (write "
                                         "\"section.key\", e.g. \"camera.elevation_deg\")",
                                         printableExcerpt(key)));
@@ -163,17 +169,8 @@ void readWaypoints(Section& s, AnimationSpec::Flyover& fly) {
 
 // track = "walk.gpx": a vector file beside the scene; its line is read by geo when the film is made.
 void readTrack(Section& s, const SceneFile& f, AnimationSpec::Flyover& fly) {
-    const auto track = s.string("track");
     if (auto layer = s.string("track_layer")) fly.trackLayer = *layer;
-    if (!track) return;
-    fly.trackAsWritten = *track;
-    fly.track = f.path.parent_path() / *track;
-    if (const std::string problem = inputFileProblem(fly.track); problem == "no such file")
-        s.error("track", fmt::format("animation.track: file \"{}\" not found (looked for {}; the path is relative "
-                                     "to the scene file)",
-                                     printableExcerpt(*track, 200), printableExcerpt(fly.track.string(), 200)));
-    else if (!problem.empty())
-        s.error("track", fmt::format("animation.track = \"{}\": {}", printableExcerpt(*track, 200), problem));
+    if (auto track = s.fileBesideScene("track", f.path, fly.trackAsWritten)) fly.track = *track;
 }
 
 constexpr const char* kFlyoverKeys[] = {"waypoints", "track",       "track_layer", "height_above_terrain_m",

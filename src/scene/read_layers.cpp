@@ -17,16 +17,7 @@ constexpr const char* kLayerColours[] = {"#c0392b", "#6c3483", "#d35400", "#1b26
 // path = "summits.geojson": a vector file beside the scene; geo/ reads it when the scene is compiled.
 void readLayerPath(Section& s, const SceneFile& f, LayerSpec& layer) {
     s.require("path", "the vector file, e.g. path = \"summits.geojson\"");
-    const auto path = s.string("path");
-    if (!path) return;
-    layer.pathAsWritten = *path;
-    layer.path = f.path.parent_path() / *path;
-    if (const std::string problem = inputFileProblem(layer.path); problem == "no such file")
-        s.error("path", fmt::format("layer.path: file \"{}\" not found (looked for {}; the path is relative to the "
-                                    "scene file)",
-                                    printableExcerpt(*path, 200), printableExcerpt(layer.path.string(), 200)));
-    else if (!problem.empty())
-        s.error("path", fmt::format("layer.path = \"{}\": {}", printableExcerpt(*path, 200), problem));
+    if (auto path = s.fileBesideScene("path", f.path, layer.pathAsWritten)) layer.path = *path;
 }
 
 std::optional<LinearRgb> colourAt(Section& s, const std::string& key) {

@@ -408,7 +408,6 @@ struct AnimationSpec {
     KeyLocations locs;
 };
 
-/// The whole scene file: one spec per stage, and where it came from.
 /// [[layer]]: one layer of a vector file, drawn on the terrain: points as
 /// markers standing on the surface with labels beside them, lines as ribbons
 /// lying on it, polygons as their outlines and an optional tint.
@@ -436,6 +435,7 @@ struct LayerSpec {
     KeyLocations locs;
 };
 
+/// The whole scene file: one spec per stage, and where it came from.
 struct SceneSpec {
     std::filesystem::path sceneFile;  ///< as given
     std::string sceneSha1;            ///< hash of the scene file's bytes

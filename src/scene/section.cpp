@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "core/input_file.h"
 #include "core/number_format.h"
 #include "core/text_distance.h"
 #include "core/text_escape.h"
@@ -169,6 +170,23 @@ void Section::finish() {
         if (known_.count(key)) continue;
         diags_.error(locOf(file_, k.source()), fmt::format("unknown key {}{}", qualified(key), didYouMean(key, knownList)));
     }
+}
+
+std::optional<std::filesystem::path> Section::fileBesideScene(const std::string& key,
+                                                              const std::filesystem::path& sceneFile,
+                                                              std::string& asWritten) {
+    const auto text = string(key);
+    if (!text) return std::nullopt;
+    asWritten = *text;
+    const std::filesystem::path path = sceneFile.parent_path() / *text;
+    if (const std::string problem = inputFileProblem(path); problem == "no such file")
+        error(key, fmt::format("{}: file \"{}\" not found (looked for {}; the path is relative to the scene file)",
+                               qualified(key), printableExcerpt(*text, 200), printableExcerpt(path.string(), 200)));
+    else if (!problem.empty())
+        error(key, fmt::format("{} = \"{}\": {}", qualified(key), printableExcerpt(*text, 200), problem));
+    else
+        return path;
+    return std::nullopt;
 }
 
 }  // namespace relief::scene

@@ -4,6 +4,7 @@
 // reports with the key's location; finish() reports the keys no getter asked
 // for. Internal to scene/: the stage's front door is read_scene.h.
 #include <array>
+#include <filesystem>
 #include <optional>
 #include <set>
 #include <span>
@@ -61,6 +62,11 @@ public:
     std::optional<std::array<double, N>> numbers(const std::string& key, std::string_view what);
     /// Four numbers, e.g. an extent; `what` says which in the error.
     std::optional<std::array<double, 4>> box(const std::string& key, std::string_view what);
+    /// A file named relative to the scene file's folder (a track, a layer's
+    /// file): the path resolved, its text as written in `asWritten`; nullopt
+    /// (and an error at the key) when it is missing or not a file relief reads.
+    std::optional<std::filesystem::path> fileBesideScene(const std::string& key, const std::filesystem::path& sceneFile,
+                                                         std::string& asWritten);
     /// [lon, lat, height_m]: degrees within the globe, a height within
     /// -11,100 m and 1e7 m (a camera may be far out, not inside the Earth).
     std::optional<GeoPoint> lonLatHeight(const std::string& key);

@@ -90,7 +90,6 @@ TEST(PlaceLayers, APolygonWithAHoleTintsWhatIsInsideAndNotTheHole) {
     };
     geo::VectorFeature square;
     square.kind = geo::FeatureKind::Polygon;
-    square.polygonStarts = {0};
     square.parts = {{lonLat(-40, -40), lonLat(40, -40), lonLat(40, 40), lonLat(-40, 40), lonLat(-40, -40)},
                     {lonLat(-10, -10), lonLat(10, -10), lonLat(10, 10), lonLat(-10, 10), lonLat(-10, -10)}};
     geo::VectorFeature far;

@@ -10,14 +10,15 @@
 namespace relief::film {
 namespace {
 
-FilmRecord aRecord(const std::filesystem::path& dir) {
+// The record of out/orbit.mp4, whose working folder is out/orbit.film.
+FilmRecord aRecord(const std::filesystem::path& out) {
     FilmRecord r;
     r.scene = "films/orbit.toml";
     r.sceneSha1 = "A34811D94C15800AA4F48C37E064E9FBCC2E7D74";
     r.fps = 24;
-    r.film = dir / "orbit.mp4";
-    r.sidecar = dir / "orbit.json";
-    r.framesDir = dir / "frames";
+    r.film = out / "orbit.mp4";
+    r.sidecar = out / "orbit.json";
+    r.framesDir = out / "frames";
     r.filmGiven = true;
     r.terrains = 2;
     r.compileSeconds = 1.25;
@@ -39,8 +40,10 @@ void writeText(const std::filesystem::path& file, const std::string& text) {
 }
 
 TEST(FilmRecord, ReadsBackWhatWasWritten) {
-    const auto dir = testing::freshTestDir("film-record");
-    const FilmRecord written = aRecord(dir);
+    const auto out = testing::freshTestDir("film-record");
+    const auto dir = out / "orbit.film";
+    std::filesystem::create_directory(dir);
+    const FilmRecord written = aRecord(out);
     writeFilmRecord(written, dir);
     Diagnostics diags;
     const auto read = readFilmRecord(dir, diags);
@@ -68,9 +71,12 @@ TEST(FilmRecord, ReadsBackWhatWasWritten) {
 }
 
 // A record is an input like any other: a damaged one, one of another film's
-// order, or one naming its outputs by relative paths is refused, naming it.
+// order, one naming its outputs by relative paths, or one naming another
+// film (an output to be written over) is refused, naming it.
 TEST(FilmRecord, RefusesWhatIsNotAWholeRecord) {
-    const auto dir = testing::freshTestDir("film-record-bad");
+    const auto out = testing::freshTestDir("film-record-bad");
+    const auto dir = out / "orbit.film-2";
+    std::filesystem::create_directory(dir);
     Diagnostics missing;
     EXPECT_FALSE(readFilmRecord(dir, missing));
     ASSERT_EQ(missing.errorCount(), 1);
@@ -82,19 +88,42 @@ TEST(FilmRecord, RefusesWhatIsNotAWholeRecord) {
     EXPECT_FALSE(readFilmRecord(dir, damaged));
     EXPECT_NE(damaged.all().front().message.find("damaged"), std::string::npos);
 
-    FilmRecord outOfOrder = aRecord(dir);
+    FilmRecord outOfOrder = aRecord(out);
     std::swap(outOfOrder.frames[0].fileNumber, outOfOrder.frames[2].fileNumber);
     writeFilmRecord(outOfOrder, dir);
     Diagnostics order;
     EXPECT_FALSE(readFilmRecord(dir, order));
     EXPECT_NE(order.all().front().message.find("its frames or names are not a film's"), std::string::npos);
 
-    FilmRecord relative = aRecord(dir);
+    FilmRecord relative = aRecord(out);
     relative.film = "orbit.mp4";
     writeFilmRecord(relative, dir);
     Diagnostics names;
     EXPECT_FALSE(readFilmRecord(dir, names));
     EXPECT_EQ(names.errorCount(), 1);
+
+    // It names only its own film and sidecar: never a file elsewhere to be written over.
+    FilmRecord elsewhere = aRecord(out);
+    elsewhere.film = out.parent_path() / "orbit.mp4";
+    elsewhere.sidecar = out.parent_path() / "orbit.json";
+    FilmRecord otherFilm = aRecord(out);
+    otherFilm.film = out / "other.mp4";
+    otherFilm.sidecar = out / "other.json";
+    FilmRecord notVideo = aRecord(out);
+    notVideo.film = out / "orbit.toml";
+    notVideo.sidecar = out / "orbit.json";
+    FilmRecord sidecar = aRecord(out);
+    sidecar.sidecar = out / "scene.toml";
+    for (const FilmRecord& r : {elsewhere, otherFilm, notVideo, sidecar}) {
+        writeFilmRecord(r, dir);
+        Diagnostics foreign;
+        EXPECT_FALSE(readFilmRecord(dir, foreign)) << r.film << " " << r.sidecar;
+        ASSERT_EQ(foreign.errorCount(), 1);
+        EXPECT_NE(foreign.all().front().message.find("not this folder's"), std::string::npos);
+    }
+    writeFilmRecord(aRecord(out), dir);
+    Diagnostics own;
+    EXPECT_TRUE(readFilmRecord(dir, own));
 }
 
 }  // namespace

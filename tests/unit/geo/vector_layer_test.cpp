@@ -52,7 +52,7 @@ void writeGeoPackage(const fs::path& path, int epsg, double x, double y, double 
         OGRFeatureH f = OGR_F_Create(OGR_L_GetLayerDefn(layer));
         OGR_F_SetFieldString(f, 0, name);
         OGR_F_SetGeometryDirectly(f, g);
-        OGR_L_CreateFeature(layer, f);
+        EXPECT_EQ(OGR_L_CreateFeature(layer, f), OGRERR_NONE);
         OGR_F_Destroy(f);
     };
     // x east, y north, as a GeoPackage stores them whatever the CRS's authority says of its axes.

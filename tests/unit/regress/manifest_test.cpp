@@ -55,6 +55,34 @@ TEST(Manifest, CaseNamesAreFileNames) {
     fs::remove_all(dir);
 }
 
+// A profile is "LON,LAT:LON,LAT" in degrees, read the same in any locale:
+// spaces after the separators are allowed; nan, inf, a far latitude or text
+// after the fourth number are errors at the line.
+TEST(Manifest, ProfilesAreFourFiniteDegrees) {
+    const fs::path dir = relief::testing::freshTestDir("relief-manifest-profiles");
+    std::ofstream(dir / "s.toml") << "[samples]\npath = \"x.csv\"\n";
+    auto read = [&](const std::string& profile, Diagnostics& diags) {
+        std::ofstream(dir / "m.toml") << "[[case]]\nname = \"a\"\nscene = \"s.toml\"\nreferences = \"ref\"\n"
+                                      << "profile = \"" << profile << "\"\n";
+        return readManifest(dir / "m.toml", diags);
+    };
+    Diagnostics good;
+    const auto m = read("-3.17, 55.94: -3.15,55.95", good);
+    ASSERT_TRUE(m) << (good.all().empty() ? "" : formatDiagnostic(good.all()[0]));
+    ASSERT_EQ(m->cases.front().geometry.profiles.size(), 1u);
+    EXPECT_DOUBLE_EQ(m->cases.front().geometry.profiles[0].from.latDeg, 55.94);
+    EXPECT_DOUBLE_EQ(m->cases.front().geometry.profiles[0].to.lonDeg, -3.15);
+    for (const std::string bad : {"nan,55:-3,55", "-3,inf:-3,55", "-3,95:-3,55", "-3,55:-3,55x", "-3,55,-3,55",
+                                  "-3,55:-3", ""}) {
+        Diagnostics diags;
+        EXPECT_FALSE(read(bad, diags)) << bad;
+        ASSERT_EQ(diags.errorCount(), 1) << bad;
+        EXPECT_EQ(diags.all()[0].loc.line, 5) << bad;
+        EXPECT_NE(diags.all()[0].message.find("is not \"LON,LAT:LON,LAT\""), std::string::npos) << bad;
+    }
+    fs::remove_all(dir);
+}
+
 // Found by fuzz_manifest: a scene path the system refuses (here too long for
 // it) made std::filesystem throw out of the reader; it is a missing scene.
 TEST(Manifest, AScenePathTheSystemRefusesIsAnError) {

@@ -255,6 +255,17 @@ TEST(ReadScene, LayerTablesAreReadInOrderWithTheirOwnLocations) {
     EXPECT_NE(errorsOf("[[layer]]\npath = \"a.geojson\"\n", {{"layer.color", "\"#ffffff\""}})
                   .find("[[layer]] keys cannot be set with --set"),
               std::string::npos);
+    // Nor varied in a film; asking must not add a layer.
+    std::ofstream(dir / "v.toml") << "[samples]\npath = \"s.csv\"\n[[layer]]\npath = \"a.geojson\"\n"
+                                     "[animation]\nframes = 2\npath = \"orbit\"\nvary = { \"layer.width_px\" = [1, 3] }\n";
+    Diagnostics varied;
+    const auto v = readScene(dir / "v.toml", varied);
+    ASSERT_EQ(varied.errorCount(), 1);
+    EXPECT_NE(varied.all().front().message.find("[[layer]] keys cannot be varied"), std::string::npos)
+        << varied.all().front().message;
+    if (v) {
+        EXPECT_EQ(v->layers.size(), 1u);
+    }
 }
 
 }  // namespace relief::scene
