@@ -4,6 +4,7 @@
 #include <poll.h>
 #include <signal.h>
 #include <sys/prctl.h>
+#include <sys/syscall.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -156,7 +157,11 @@ int spawnChild(char* const* argv, char* const* envp, int outFd, pid_t& pid) {
     int status[2];
     if (::pipe2(status, O_CLOEXEC) != 0) return errno;
     const pid_t parent = ::getpid();
-    pid = ::fork();
+    // A bare clone, not fork(): fork runs the libraries' atfork handlers in the child (PROJ's
+    // frees memory), whose allocator lock another of relief's threads may hold at that moment
+    // (tiles render on several threads): under AddressSanitizer the child then spins forever.
+    // The child below makes only system calls before exec.
+    pid = static_cast<pid_t>(::syscall(SYS_clone, SIGCHLD, nullptr, nullptr, nullptr, nullptr));
     if (pid < 0) {
         const int err = errno;
         ::close(status[0]), ::close(status[1]);
