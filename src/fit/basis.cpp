@@ -49,7 +49,7 @@ void blend(const AxisBasis& b, int k, double f, std::vector<std::pair<int, doubl
     out.clear();
     for (const auto& [node, w] : b.weights[static_cast<size_t>(k)]) out.emplace_back(node, (1 - f) * w);
     for (const auto& [node, w] : b.weights[static_cast<size_t>(k) + 1]) {
-        auto at = std::find_if(out.begin(), out.end(), [&](const auto& e) { return e.first == node; });
+        auto at = std::find_if(out.begin(), out.end(), [n = node](const auto& e) { return e.first == n; });
         if (at != out.end()) at->second += f * w;
         else out.emplace_back(node, f * w);
     }
