@@ -461,10 +461,10 @@ std::optional<ControlNet> gridSamples(const scene::NetSpec& spec, const std::str
             net.grid.at(r, c) = {net.x0 + c * net.dx, net.y0 + r * net.dy,
                                  z[static_cast<size_t>(r) * cols + c]};
     // The highest sample on the net (an extent may leave the highest of all off it); none: the highest node.
-    const double x1 = net.x0 + (cols - 1) * net.dx, y1 = net.y0 + (rows - 1) * net.dy;
+    const double west = std::min(net.x0, net.xMax()), east = std::max(net.x0, net.xMax());
+    const double south = std::min(net.y0, net.yMax()), north = std::max(net.y0, net.yMax());
     for (const auto& fp : points)
-        if (fp.p.x >= std::min(net.x0, x1) && fp.p.x <= std::max(net.x0, x1) && fp.p.y >= std::min(net.y0, y1) &&
-            fp.p.y <= std::max(net.y0, y1) &&
+        if (fp.p.x >= west && fp.p.x <= east && fp.p.y >= south && fp.p.y <= north &&
             (!net.highestSample || fp.p.z > net.highestSample->z))
             net.highestSample = fp.p;
     if (spec.gridding == scene::Gridding::Fit) {
