@@ -26,7 +26,8 @@ esac
 # bubblewrap: POV-Ray's sandbox. libpng-dev: PNGs outside the image commands; libssl-dev: SHA-1.
 # libcairo2-dev, libpango1.0-dev: the still's overlays (text through fontconfig: fonts-dejavu-core).
 # libnova-dev: the sun's position from a date ([lighting] datetime).
-# libeigen3-dev: the sparse Cholesky that fits a net to scattered samples (net.gridding = "fit").
+# libeigen3-dev, libsuitesparse-dev: the sparse matrices and the Cholesky (CHOLMOD) that fit a net
+# to scattered samples (net.gridding = "fit").
 # slurm-wlm, munge: the tests' private Slurm cluster (tests/slurm/cluster.sh; relief --executor slurm).
 # gdal-bin: gdal_translate and gdalwarp, which the tests cut DEM tiles with and the benchmarks make
 # rasters of every size with (relief itself links libgdal).
@@ -34,7 +35,7 @@ esac
 # poppler-utils: pdftotext, pdffonts, pdfimages, pdfinfo, which the tests read PDF stills back with.
 packages=(cmake make g++ pkg-config
           libgeographiclib-dev libgdal-dev libopenimageio-dev openimageio-tools libtomlplusplus-dev
-          libcli11-dev libfmt-dev nlohmann-json3-dev libnanoflann-dev libeigen3-dev libpng-dev libssl-dev libcairo2-dev libpango1.0-dev libnova-dev libgtest-dev libbenchmark-dev
+          libcli11-dev libfmt-dev nlohmann-json3-dev libnanoflann-dev libeigen3-dev libsuitesparse-dev libpng-dev libssl-dev libcairo2-dev libpango1.0-dev libnova-dev libgtest-dev libbenchmark-dev
           povray bubblewrap chromium fonts-dejavu-core locales clang libfuzzer-14-dev libclang-rt-14-dev libomp-14-dev
           slurm-wlm munge gdal-bin ffmpeg poppler-utils)
 missing=()

@@ -1,6 +1,10 @@
 #include "fit/fit_net.h"
 
-#include <Eigen/SparseCholesky>
+#include <Eigen/CholmodSupport>
+
+#include <array>
+#include <limits>
+#include <mutex>
 
 #include <algorithm>
 #include <chrono>
@@ -18,11 +22,14 @@ namespace relief::fit {
 namespace {
 
 using Sparse = Eigen::SparseMatrix<double>;
-using Cholesky = Eigen::SimplicialLLT<Sparse, Eigen::Lower, Eigen::AMDOrdering<int>>;
+// CHOLMOD's simplicial LL' (its own loops, no BLAS: the same bits whatever BLAS a machine has) in
+// nested-dissection order, which fills a net's 2-D stencil by a third less than minimum degree.
+using Cholesky = Eigen::CholmodSimplicialLLT<Sparse, Eigen::Lower>;
 
 constexpr int kProbes = 64;            // Hutchinson's probes of the influence matrix's trace
 constexpr int kExactTraceNodes = 400;  // up to this many nodes the trace is exact
 constexpr int kRefinementSteps = 3;
+constexpr int kWorkers = 2;            // smoothings tried at once, each with its own factorization
 
 // A symmetric matrix stored as its lower triangle, times a vector.
 Eigen::VectorXd timesSymmetric(const Sparse& lower, const Eigen::VectorXd& v) {
@@ -49,74 +56,86 @@ Eigen::MatrixXd probes(Eigen::Index n) {
 
 // The system (A'A + lambda P) z = A's for one smoothing: solved, its GCV score.
 struct Solved {
+    double smoothing = 0;
     Eigen::VectorXd z;
     bool ok = false;
     int steps = 0;
-    double relativeResidual = 0, traceH = 0, score = 0;
+    double relativeResidual = 0, traceH = 0, score = std::numeric_limits<double>::infinity();
 };
 
 class FitSystem {
 public:
-    FitSystem(const NormalEquations& eq) : eq_(eq) {
+    explicit FitSystem(const NormalEquations& eq) : eq_(eq) {
         eq.toSparse(m_, p_);
         double tm = 0, tp = 0;
         for (Eigen::Index i = 0; i < m_.cols(); ++i) tm += m_.coeff(i, i), tp += p_.coeff(i, i);
         scale_ = tp > 0 ? tm / tp : 1;
-        cholesky_.analyzePattern(m_ + p_);
-        if (m_.cols() > kExactTraceNodes) {
-            probes_ = probes(m_.cols());
-            mProbes_ = m_.selfadjointView<Eigen::Lower>() * probes_;  // A'A v, the same for every smoothing
-        }
     }
 
-    Solved solve(double smoothing, bool withTrace) {
+    /// Before solving with the trace: the probes, shared by every smoothing.
+    void prepareTrace() {
+        if (m_.cols() <= kExactTraceNodes || probes_.size() != 0) return;
+        probes_ = probes(m_.cols());
+        mProbes_ = m_.selfadjointView<Eigen::Lower>() * probes_;  // A'A v, the same for every smoothing
+    }
+
+    /// Solved by the factorization of `worker` (0 .. kWorkers - 1), which one
+    /// thread at a time may use: the same bits whichever.
+    Solved solve(double smoothing, bool withTrace, int worker) {
+        Cholesky& cholesky = choleskies_[static_cast<size_t>(worker)];
+        if (!analysed_[static_cast<size_t>(worker)]) {  // the ordering, once a worker: m_ and p_ share their pattern
+            // METIS, which orders the net, keeps its random state in globals: two orderings at once
+            // in a process would draw from one sequence and differ from run to run.
+            static std::mutex ordering;
+            const std::lock_guard<std::mutex> lock(ordering);
+            cholmod_common& common = cholesky.cholmod();
+            common.nmethods = 1;
+            common.method[0].ordering = CHOLMOD_NESDIS;
+            common.postorder = 1;
+            cholesky.analyzePattern(m_);
+            analysed_[static_cast<size_t>(worker)] = true;
+        }
         Solved s;
+        s.smoothing = smoothing;
         const Sparse c = m_ + (smoothing * scale_) * p_;
-        cholesky_.factorize(c);
-        if (cholesky_.info() != Eigen::Success) return s;
+        cholesky.factorize(c);
+        if (cholesky.info() != Eigen::Success) return s;
         const Eigen::VectorXd& b = eq_.rhs();
-        s.z = cholesky_.solve(b);
+        s.z = cholesky.solve(b);
         // Iterative refinement: the residual of the equations, solved again, until it is at rounding's level.
         for (; s.steps < kRefinementSteps; ++s.steps) {
             const Eigen::VectorXd r = b - timesSymmetric(c, s.z);
             s.relativeResidual = r.norm() / std::max(b.norm(), 1e-300);
             if (s.relativeResidual <= kFitTolerance * 1e-3) break;
-            s.z += cholesky_.solve(r);
+            s.z += cholesky.solve(r);
         }
         const Eigen::VectorXd r = b - timesSymmetric(c, s.z);
         s.relativeResidual = r.norm() / std::max(b.norm(), 1e-300);
         s.ok = s.relativeResidual <= kFitTolerance;
-        if (withTrace) score(s);
+        if (withTrace && s.ok) score(cholesky, s);  // prepareTrace() first
         return s;
     }
 
     std::string traceMethod() const {
-        return probes_.size() == 0 ? "exact" : fmt::format("Hutchinson's estimate, {} fixed probes", kProbes);
+        return m_.cols() <= kExactTraceNodes ? "exact" : fmt::format("Hutchinson's estimate, {} fixed probes", kProbes);
     }
 
 private:
     // GCV: N ||s - Az||^2 / (N - tr H)^2, with ||s - Az||^2 = s's - 2 z'A's + z'A'Az
     // and tr H = tr((A'A + lambda P)^-1 A'A).
-    void score(Solved& s) {
+    void score(Cholesky& cholesky, Solved& s) const {
         const double n = static_cast<double>(eq_.samples());
         const double rss = std::max(0.0, eq_.samplesSquared() - 2 * s.z.dot(eq_.rhs()) + s.z.dot(timesSymmetric(m_, s.z)));
         double trace = 0;
-        if (probes_.size() == 0) {
+        if (m_.cols() <= kExactTraceNodes) {
             Eigen::VectorXd e = Eigen::VectorXd::Zero(m_.cols());
             for (Eigen::Index i = 0; i < m_.cols(); ++i) {
                 e[i] = 1;
-                trace += cholesky_.solve(timesSymmetric(m_, e))[i];
+                trace += cholesky.solve(timesSymmetric(m_, e))[i];
                 e[i] = 0;
             }
         } else {
-            // The probes in blocks, one solve of many right-hand sides each, the blocks on all
-            // cores: each column's solution is the same whichever thread made it.
-            constexpr int kBlock = 8;
-            static_assert(kProbes % kBlock == 0);
-            Eigen::MatrixXd solved(mProbes_.rows(), kProbes);
-#pragma omp parallel for schedule(static)
-            for (int block = 0; block < kProbes / kBlock; ++block)
-                solved.middleCols(block * kBlock, kBlock) = cholesky_.solve(mProbes_.middleCols(block * kBlock, kBlock));
+            const Eigen::MatrixXd solved = cholesky.solve(mProbes_);
             trace = probes_.cwiseProduct(solved).sum() / kProbes;
         }
         s.traceH = trace;
@@ -126,37 +145,43 @@ private:
     const NormalEquations& eq_;
     Sparse m_, p_;
     double scale_ = 1;
-    Cholesky cholesky_;
+    std::array<Cholesky, kWorkers> choleskies_;
+    std::array<bool, kWorkers> analysed_{};
     Eigen::MatrixXd probes_, mProbes_;  ///< Hutchinson's probes v, and A'A v; empty: the exact trace
 };
 
-// The smoothing of the least GCV score, log-spaced over [1e-6, 1e2] (below,
-// the equations' condition makes the score itself uncertain): a coarse sweep,
-// then golden sections around its best. Every trial is recorded.
-double chooseSmoothing(FitSystem& system, std::vector<GcvTrial>& trials) {
-    auto trial = [&](double log10s) {
-        const double s = std::pow(10.0, log10s);
-        const Solved solved = system.solve(s, true);
-        const double score = solved.ok ? solved.score : std::numeric_limits<double>::infinity();
-        trials.push_back({s, score, solved.traceH});
-        return score;
+// The smoothing of the least GCV score over log10 smoothing in [-6, 2] (below,
+// the equations' condition makes the score itself uncertain): four points a
+// third of the range apart, then rounds that try the points half a step
+// either side of the best so far, the step halved each round, down to a third
+// of a decade (a GCV minimum is that flat). A round's two trials run at once,
+// one on each worker; the points tried do not depend on how many cores there
+// are, so neither does the choice. Every trial is recorded; the best one's
+// solution is kept.
+Solved chooseSmoothing(FitSystem& system, std::vector<GcvTrial>& trials) {
+    system.prepareTrace();
+    Solved best;
+    double bestLog = 0;  // of the best trial's smoothing
+    auto round = [&](const std::vector<double>& logs) {
+        std::vector<Solved> solved(logs.size());
+#pragma omp parallel for num_threads(kWorkers) schedule(static, 1)
+        for (int i = 0; i < static_cast<int>(logs.size()); ++i)
+            solved[static_cast<size_t>(i)] = system.solve(std::pow(10.0, logs[static_cast<size_t>(i)]), true, i % kWorkers);
+        for (size_t i = 0; i < logs.size(); ++i) {
+            trials.push_back({std::pow(10.0, logs[i]), solved[i].score, solved[i].traceH});
+            if (solved[i].score < best.score) best = std::move(solved[i]), bestLog = logs[i];
+        }
     };
-    double best = -6, bestScore = std::numeric_limits<double>::infinity();
-    for (double l : {-6.0, -4.0, -2.0, 0.0, 2.0}) {
-        const double v = trial(l);
-        if (v < bestScore) best = l, bestScore = v;
+    constexpr double kLow = -6, kHigh = 2, kStep = (kHigh - kLow) / 3;
+    round({kLow, kLow + kStep});
+    round({kLow + 2 * kStep, kHigh});
+    for (double half = kStep / 2; half > 0.3; half /= 2) {
+        std::vector<double> logs;
+        for (double l : {bestLog - half, bestLog + half})
+            if (l >= kLow - 1e-9 && l <= kHigh + 1e-9) logs.push_back(l);
+        round(logs);
     }
-    double lo = std::max(-6.0, best - 2), hi = std::min(2.0, best + 2);
-    const double g = (std::sqrt(5.0) - 1) / 2;
-    double a = hi - g * (hi - lo), b = lo + g * (hi - lo);
-    double fa = trial(a), fb = trial(b);
-    for (int i = 0; i < 3; ++i) {
-        if (fa < fb) hi = b, b = a, fb = fa, a = hi - g * (hi - lo), fa = trial(a);
-        else lo = a, a = b, fa = fb, b = lo + g * (hi - lo), fb = trial(b);
-    }
-    for (const auto& t : trials)
-        if (t.score < bestScore) bestScore = t.score, best = std::log10(t.smoothing);
-    return std::pow(10.0, best);
+    return best;
 }
 
 // The farthest any node is from its nearest sample, metres (a k-d tree of the samples).
@@ -214,16 +239,20 @@ std::optional<FitReport> fitNet(const subdiv::Scheme& scheme, int depth, const s
     eq.addThinPlate(net.dx, net.dy);
     FitSystem system(eq);
     report.traceMethod = system.traceMethod();
+    Solved solved;
     if (spec.smoothing) {
         report.smoothing = *spec.smoothing;
         report.chosenBy = "net.smoothing";
+        if (progress) progress(fmt::format("fitting {} samples (smoothing {:.3g})", report.samples, report.smoothing));
+        solved = system.solve(report.smoothing, false, 0);
     } else {
         if (progress) progress(fmt::format("fitting {} samples: choosing the smoothing by cross-validation", report.samples));
-        report.smoothing = chooseSmoothing(system, report.gcv);
+        solved = chooseSmoothing(system, report.gcv);
+        // No smoothing gave a solution: the largest tried, the best conditioned, fails below saying why.
+        if (solved.z.size() == 0) solved = system.solve(1e2, false, 0);
+        report.smoothing = solved.smoothing;
         report.chosenBy = "generalized cross-validation";
     }
-    if (progress) progress(fmt::format("fitting {} samples (smoothing {:.3g})", report.samples, report.smoothing));
-    const Solved solved = system.solve(report.smoothing, false);
     const SourceLoc key = spec.smoothing ? spec.locs.at("net.smoothing") : at;
     if (solved.z.size() == 0) {
         diags.error(key, fmt::format("net.gridding = \"fit\": the equations are singular at smoothing {:.3g}: "

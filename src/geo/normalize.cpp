@@ -428,7 +428,6 @@ std::optional<ControlNet> gridSamples(const scene::NetSpec& spec, const std::str
     std::vector<double> z(static_cast<size_t>(rows) * cols, kNoData);
     std::string error;
     switch (spec.gridding) {
-        case scene::Gridding::Fit:  // the linear gridding first: where the fit starts from, and its fallback
         case scene::Gridding::Linear: {
             const GridLayout layout{net.x0 - 0.5 * net.dx, net.x0 + (cols - 0.5) * net.dx,
                                     net.y0 - 0.5 * net.dy, net.y0 + (rows - 0.5) * net.dy, cols, rows};
@@ -440,7 +439,11 @@ std::optional<ControlNet> gridSamples(const scene::NetSpec& spec, const std::str
             gdalGrid(algorithm.c_str(), xs, ys, zs, net, z, error, progress);
             break;
         }
-        case scene::Gridding::Nearest: break;  // every node from the k-d tree below
+        // Every node from the k-d tree below. The fit replaces every height; until then the net
+        // serves only to choose the depth, for which the nearest sample is enough, and a k-d tree
+        // of 770,000 samples takes a fraction of a second where their triangulation takes ten.
+        case scene::Gridding::Nearest:
+        case scene::Gridding::Fit: break;
     }
     if (!error.empty()) {
         diags.error({csv, 0, 0}, fmt::format("GDAL gridding failed: {}", error));
@@ -453,7 +456,8 @@ std::optional<ControlNet> gridSamples(const scene::NetSpec& spec, const std::str
         if (z[i] <= kNoData * 0.5) empty.push_back(i);
     fillFromNearestSample(xs, ys, zs, net, empty, z);
     if (progress) progress(1.0);
-    if (spec.gridding != scene::Gridding::Nearest) net.filledOutsideHull = empty.size();
+    if (spec.gridding == scene::Gridding::Linear || spec.gridding == scene::Gridding::InverseDistance)
+        net.filledOutsideHull = empty.size();
 
     net.grid.points.resize(z.size());
     for (int r = 0; r < rows; ++r)

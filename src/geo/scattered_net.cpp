@@ -77,8 +77,9 @@ std::optional<ControlNet> resampledLattice(const NetRequest& request, const Samp
 std::optional<ControlNet> griddedSamples(const NetRequest& request, const std::vector<GeoSample>& samples,
                                          Diagnostics& diags) {
     const double budgetMB = request.limits.memoryMB;
+    // The triangulation's memory; a fit triangulates nothing (its own need is checked by the net's size).
     const double griddingMB = samples.size() * kGriddingBytesPerSample / 1e6;
-    if (griddingMB > budgetMB) {
+    if (request.net.gridding != scene::Gridding::Fit && griddingMB > budgetMB) {
         diags.error(memoryLoc(request),
                     fmt::format("gridding {} samples needs about {:.0f} MB of memory (2.2 kB each), more than "
                                 "limits.max_memory_mb = {:.0f}: thin the samples, or give them as a raster",

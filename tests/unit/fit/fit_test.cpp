@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <random>
+#include <thread>
 
 #include "fit/basis.h"
 #include "fit/fit_net.h"
@@ -189,6 +190,41 @@ TEST(FitNet, CrossValidationScoresAreTheFormulas) {
         if (t.score == least) {
             EXPECT_DOUBLE_EQ(report->smoothing, t.smoothing);
         }
+}
+
+// The smoothing chosen by GCV with Hutchinson's probes (over 400 nodes), two
+// trials at a time: the same bits in every run, and when two fits run at once
+// in one process (METIS, which orders the equations, keeps its random state in
+// globals; two orderings at once drew from one sequence).
+TEST(FitNet, TheSameBitsWhenFitsRunAtOnce) {
+    const subdiv::Scheme scheme = schemeNamed("dlg4");
+    std::vector<Vec3> samples;
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> ux(300000, 300390), uy(5916000, 5916390);
+    for (int i = 0; i < 900; ++i) {
+        const double x = ux(rng), y = uy(rng);
+        samples.push_back({x, y, 30 * std::sin((x - 300000) / 60) * std::cos((y - 5916000) / 80)});
+    }
+    const auto fitted = [&] {
+        geo::ControlNet net = netOf(40, 40, [](int, int) { return 0.0; });
+        Diagnostics diags;
+        const auto report = fitNet(scheme, 1, samples, scene::NetSpec{}, net, diags);
+        EXPECT_TRUE(report && report->traceMethod != "exact");
+        std::vector<double> z;
+        for (const Vec3& p : net.grid.points) z.push_back(p.z);
+        return z;
+    };
+    const std::vector<double> alone = fitted();
+    for (int run = 0; run < 3; ++run) {
+        std::vector<double> first, second;
+        std::thread a([&] { first = fitted(); }), b([&] { second = fitted(); });
+        a.join(), b.join();
+        ASSERT_EQ(first.size(), alone.size());
+        for (size_t i = 0; i < alone.size(); ++i) {
+            ASSERT_EQ(first[i], alone[i]) << "node " << i << ", run " << run;
+            ASSERT_EQ(second[i], alone[i]) << "node " << i << ", run " << run;
+        }
+    }
 }
 
 TEST(FitNet, NoSampleOnTheNetAndSingularEquationsAreErrors) {
