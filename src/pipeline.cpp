@@ -319,7 +319,9 @@ std::optional<Surface> planSurface(const LoadedScene& loaded, Diagnostics& diags
         netProgress = [&](const std::string& task, int percent) {
             progress({ProgressEvent::Stage::Compiling, task, percent});
         };
-    auto net = geo::controlNet(spec.samples, spec.frame, spec.net, netLimitsOf(loaded), diags, netProgress);
+    scene::NetSpec netSpec = spec.net;
+    netSpec.linearBeforeFit = sub.depthAuto;
+    auto net = geo::controlNet(spec.samples, spec.frame, netSpec, netLimitsOf(loaded), diags, netProgress);
     if (!net) return std::nullopt;
     Surface s;
     s.normalizeSeconds = secondsSince(t0);

@@ -5,6 +5,7 @@
 #include <array>
 #include <limits>
 #include <mutex>
+#include <new>
 
 #include <algorithm>
 #include <chrono>
@@ -57,6 +58,7 @@ Eigen::MatrixXd probes(Eigen::Index n) {
 // The system (A'A + lambda P) z = A's for one smoothing: solved, its GCV score.
 struct Solved {
     double smoothing = 0;
+    int cholmodStatus = 0;  ///< CHOLMOD's, when it failed otherwise than on a matrix not positive definite
     Eigen::VectorXd z;
     bool ok = false;
     int steps = 0;
@@ -70,6 +72,7 @@ public:
         double tm = 0, tp = 0;
         for (Eigen::Index i = 0; i < m_.cols(); ++i) tm += m_.coeff(i, i), tp += p_.coeff(i, i);
         scale_ = tp > 0 ? tm / tp : 1;
+        for (Cholesky& cholesky : choleskies_) cholesky.cholmod().print = 0;  // its warnings went to stdout
     }
 
     /// Before solving with the trace: the probes, shared by every smoothing.
@@ -93,21 +96,36 @@ public:
             common.method[0].ordering = CHOLMOD_NESDIS;
             common.postorder = 1;
             cholesky.analyzePattern(m_);
-            analysed_[static_cast<size_t>(worker)] = true;
+            analysed_[static_cast<size_t>(worker)] = common.status >= CHOLMOD_OK;
         }
         Solved s;
         s.smoothing = smoothing;
+        // Out of memory, or too large for CHOLMOD's indices: failures of their own, not of the equations.
+        const auto failed = [&] {
+            if (cholesky.cholmod().status >= CHOLMOD_OK && cholesky.info() == Eigen::Success) return false;
+            s.cholmodStatus = std::min(cholesky.cholmod().status, -1);
+            s.z.resize(0);
+            return true;
+        };
+        if (!analysed_[static_cast<size_t>(worker)]) {
+            failed();
+            return s;
+        }
         const Sparse c = m_ + (smoothing * scale_) * p_;
         cholesky.factorize(c);
-        if (cholesky.info() != Eigen::Success) return s;
+        if (cholesky.info() != Eigen::Success && cholesky.cholmod().status >= CHOLMOD_OK) return s;  // not positive definite
+        if (failed()) return s;
         const Eigen::VectorXd& b = eq_.rhs();
         s.z = cholesky.solve(b);
+        if (failed()) return s;
         // Iterative refinement: the residual of the equations, solved again, until it is at rounding's level.
         for (; s.steps < kRefinementSteps; ++s.steps) {
             const Eigen::VectorXd r = b - timesSymmetric(c, s.z);
             s.relativeResidual = r.norm() / std::max(b.norm(), 1e-300);
             if (s.relativeResidual <= kFitTolerance * 1e-3) break;
-            s.z += cholesky.solve(r);
+            const Eigen::VectorXd dz = cholesky.solve(r);
+            if (failed()) return s;
+            s.z += dz;
         }
         const Eigen::VectorXd r = b - timesSymmetric(c, s.z);
         s.relativeResidual = r.norm() / std::max(b.norm(), 1e-300);
@@ -138,6 +156,7 @@ private:
             const Eigen::MatrixXd solved = cholesky.solve(mProbes_);
             trace = probes_.cwiseProduct(solved).sum() / kProbes;
         }
+        if (cholesky.info() != Eigen::Success) return;  // no score: this smoothing is not chosen
         s.traceH = trace;
         s.score = n * rss / std::pow(std::max(n - trace, 1e-9), 2);
     }
@@ -165,8 +184,15 @@ Solved chooseSmoothing(FitSystem& system, std::vector<GcvTrial>& trials) {
     auto round = [&](const std::vector<double>& logs) {
         std::vector<Solved> solved(logs.size());
 #pragma omp parallel for num_threads(kWorkers) schedule(static, 1)
-        for (int i = 0; i < static_cast<int>(logs.size()); ++i)
-            solved[static_cast<size_t>(i)] = system.solve(std::pow(10.0, logs[static_cast<size_t>(i)]), true, i % kWorkers);
+        for (int i = 0; i < static_cast<int>(logs.size()); ++i) {
+            Solved& trial = solved[static_cast<size_t>(i)];
+            try {  // an exception may not leave a parallel region
+                trial = system.solve(std::pow(10.0, logs[static_cast<size_t>(i)]), true, i % kWorkers);
+            } catch (const std::bad_alloc&) {
+                trial = Solved{};
+                trial.cholmodStatus = CHOLMOD_OUT_OF_MEMORY;
+            }
+        }
         for (size_t i = 0; i < logs.size(); ++i) {
             trials.push_back({std::pow(10.0, logs[i]), solved[i].score, solved[i].traceH});
             if (solved[i].score < best.score) best = std::move(solved[i]), bestLog = logs[i];
@@ -254,6 +280,15 @@ std::optional<FitReport> fitNet(const subdiv::Scheme& scheme, int depth, const s
         report.chosenBy = "generalized cross-validation";
     }
     const SourceLoc key = spec.smoothing ? spec.locs.at("net.smoothing") : at;
+    if (solved.cholmodStatus != 0) {
+        diags.error(key, fmt::format("net.gridding = \"fit\": the sparse Cholesky (CHOLMOD) failed: {}; a coarser "
+                                     "net (net.spacing_m) needs less",
+                                     solved.cholmodStatus == CHOLMOD_OUT_OF_MEMORY ? std::string("out of memory")
+                                     : solved.cholmodStatus == CHOLMOD_TOO_LARGE
+                                         ? std::string("the net is too large for its indices")
+                                         : fmt::format("status {}", solved.cholmodStatus)));
+        return std::nullopt;
+    }
     if (solved.z.size() == 0) {
         diags.error(key, fmt::format("net.gridding = \"fit\": the equations are singular at smoothing {:.3g}: "
                                      "nodes no sample reaches are free without smoothing; give net.smoothing > 0, "

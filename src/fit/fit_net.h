@@ -7,7 +7,7 @@
 // lambda from `smoothing` (dimensionless: lambda = smoothing tr(A'A) / tr(P)),
 // given or chosen by generalized cross-validation. The normal equations are
 // solved by CHOLMOD's simplicial Cholesky in nested-dissection order (no BLAS:
-// the same bits on every machine).
+// the same bits on every machine with the same SuiteSparse and METIS).
 #include <optional>
 #include <string>
 #include <vector>

@@ -427,7 +427,9 @@ std::optional<ControlNet> gridSamples(const scene::NetSpec& spec, const std::str
     }
     std::vector<double> z(static_cast<size_t>(rows) * cols, kNoData);
     std::string error;
-    switch (spec.gridding) {
+    const scene::Gridding gridding =
+        spec.gridding == scene::Gridding::Fit && spec.linearBeforeFit ? scene::Gridding::Linear : spec.gridding;
+    switch (gridding) {
         case scene::Gridding::Linear: {
             const GridLayout layout{net.x0 - 0.5 * net.dx, net.x0 + (cols - 0.5) * net.dx,
                                     net.y0 - 0.5 * net.dy, net.y0 + (rows - 0.5) * net.dy, cols, rows};
@@ -440,8 +442,9 @@ std::optional<ControlNet> gridSamples(const scene::NetSpec& spec, const std::str
             break;
         }
         // Every node from the k-d tree below. The fit replaces every height; until then the net
-        // serves only to choose the depth, for which the nearest sample is enough, and a k-d tree
-        // of 770,000 samples takes a fraction of a second where their triangulation takes ten.
+        // serves only to choose the depth for the still, for which the nearest sample is enough,
+        // and a k-d tree of 770,000 samples takes a fraction of a second where their triangulation
+        // takes ten.
         case scene::Gridding::Nearest:
         case scene::Gridding::Fit: break;
     }

@@ -79,7 +79,8 @@ std::optional<ControlNet> griddedSamples(const NetRequest& request, const std::v
     const double budgetMB = request.limits.memoryMB;
     // The triangulation's memory; a fit triangulates nothing (its own need is checked by the net's size).
     const double griddingMB = samples.size() * kGriddingBytesPerSample / 1e6;
-    if (request.net.gridding != scene::Gridding::Fit && griddingMB > budgetMB) {
+    const bool triangulated = request.net.gridding != scene::Gridding::Fit || request.net.linearBeforeFit;
+    if (triangulated && griddingMB > budgetMB) {
         diags.error(memoryLoc(request),
                     fmt::format("gridding {} samples needs about {:.0f} MB of memory (2.2 kB each), more than "
                                 "limits.max_memory_mb = {:.0f}: thin the samples, or give them as a raster",

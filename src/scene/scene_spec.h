@@ -142,6 +142,11 @@ struct NetSpec {
     /// net's own values at its nodes (an approximating scheme keeps the
     /// data's peaks); gridding = "fit" already fits the surface.
     bool fit = false;
+    /// Not a key: set by the pipeline when subdivision.depth = "auto", which
+    /// measures the net's own curves before the fit, so a net to be fitted is
+    /// gridded linearly first (else each node's nearest sample: a staircase,
+    /// but all the depth chosen for the still needs, and no triangulation).
+    bool linearBeforeFit = false;
     KeyLocations locs;
 };
 

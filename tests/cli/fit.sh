@@ -2,8 +2,9 @@
 # net.gridding = "fit" from the command line: the surface rendered passes through the scattered
 # samples (to a centimetre) where linear gridding, refined by the same approximating scheme, misses
 # them by decimetres; the header and sidecar say how it was fitted. The peak loss is the highest
-# sample on the net when an extent leaves the highest of all off it. A raster is not gridded: a
-# fit asked of one is a warning saying what to use.
+# sample on the net when an extent leaves the highest of all off it. depth = "auto" is chosen on a
+# linear gridding, not on the nearest-sample net a fit otherwise starts from. A raster is not
+# gridded: a fit asked of one is a warning saying what to use.
 # Usage: fit.sh RELIEF SOURCE_DIR WORK_DIR
 . "$(dirname "$0")/lib.sh" "$@"
 enter_fresh_work
@@ -57,6 +58,15 @@ scene east fit $'extent_lonlat = [174.7660, -36.8796, 174.7690, -36.8760]\nspaci
   fail "the peak loss east of the summit: $(json east.json "j['peak_loss']")"
 grep -q '^// peak_loss_m: -\?[0-9.]* (the data.s highest point 168.00 m, the surface.s near it 1[67][0-9].[0-9][0-9] m)$' east.pov ||
   fail "the header's peak loss: $(grep peak_loss east.pov)"
+
+# depth = "auto" measures the net's own curves, so a net to be fitted is gridded linearly before the
+# fit: the depth is linear gridding's (2 here), not that of the nearest-sample staircase (4).
+for g in fit linear nearest; do
+  scene auto-$g $g $'[subdivision]\ndepth = "auto"\ntolerance_m = 0.5'
+  "$relief" compile -q auto-$g.toml -o auto-$g.pov 2> auto-$g.txt || { fail "compile auto-$g"; cat auto-$g.txt; }
+done
+depths=$(for g in fit linear nearest; do grep -o '^// subdivision.depth: [0-9]*' auto-$g.pov | grep -o '[0-9]*$'; done | tr '\n' ' ')
+[ "$depths" = "2 2 4 " ] || fail "depth = \"auto\" (fit, linear, nearest): $depths, expected 2 2 4"
 
 # A raster's nodes are the net: a fit asked of one is not done, and the warning says so.
 cp "$src/scenes/data/rasters/volcano2.tif" .
