@@ -272,12 +272,11 @@ bool fitToScheme(const LoadedScene& loaded, int depth, geo::ControlNet& net, Sur
     const scene::NetSpec& spec = loaded.scene.net;
     const subdiv::Scheme& scheme = loaded.resolved.scheme;
     if (net.fitSamples) {
+        const geo::NetLimits limits = netLimitsOf(loaded);
         const double neededMB = static_cast<double>(net.grid.points.size()) * fit::kFitBytesPerNode / 1e6;
-        const double budgetMB = budgetOf(loaded.scene.limits).maxMemoryMB;
+        const double budgetMB = limits.memoryMB;
         if (neededMB > budgetMB) {
-            const scene::LimitsSpec& limits = loaded.scene.limits;
-            diags.error(limits.locs.has("limits.max_memory_mb") ? limits.locs.at("limits.max_memory_mb")
-                                                                 : spec.locs.at("net.gridding"),
+            diags.error(limits.memoryKey.value_or(spec.locs.at("net.gridding")),
                         fmt::format("net.gridding = \"fit\" on a net of {} nodes needs about {:.0f} MB ({:.0f} kB "
                                     "a node), more than the {:.0f} MB relief may use (limits.max_memory_mb): a "
                                     "coarser net (net.spacing_m), or raise the limit",

@@ -86,18 +86,6 @@ public:
     /// thread at a time may use: the same bits whichever.
     Solved solve(double smoothing, bool withTrace, int worker) {
         Cholesky& cholesky = choleskies_[static_cast<size_t>(worker)];
-        if (!analysed_[static_cast<size_t>(worker)]) {  // the ordering, once a worker: m_ and p_ share their pattern
-            // METIS, which orders the net, keeps its random state in globals: two orderings at once
-            // in a process would draw from one sequence and differ from run to run.
-            static std::mutex ordering;
-            const std::lock_guard<std::mutex> lock(ordering);
-            cholmod_common& common = cholesky.cholmod();
-            common.nmethods = 1;
-            common.method[0].ordering = CHOLMOD_NESDIS;
-            common.postorder = 1;
-            cholesky.analyzePattern(m_);
-            analysed_[static_cast<size_t>(worker)] = common.status >= CHOLMOD_OK;
-        }
         Solved s;
         s.smoothing = smoothing;
         // Out of memory, or too large for CHOLMOD's indices: failures of their own, not of the equations.
@@ -107,7 +95,7 @@ public:
             s.z.resize(0);
             return true;
         };
-        if (!analysed_[static_cast<size_t>(worker)]) {
+        if (!analysed(worker)) {
             failed();
             return s;
         }
@@ -139,6 +127,23 @@ public:
     }
 
 private:
+    // The ordering, once a worker (m_ and p_ share their pattern). METIS, which orders the net,
+    // keeps its random state in globals: two orderings at once in a process would draw from one
+    // sequence and differ from run to run.
+    bool analysed(int worker) {
+        const auto w = static_cast<size_t>(worker);
+        if (analysed_[w]) return true;
+        static std::mutex ordering;
+        const std::lock_guard<std::mutex> lock(ordering);
+        cholmod_common& common = choleskies_[w].cholmod();
+        common.nmethods = 1;
+        common.method[0].ordering = CHOLMOD_NESDIS;
+        common.postorder = 1;
+        choleskies_[w].analyzePattern(m_);
+        analysed_[w] = common.status >= CHOLMOD_OK;
+        return analysed_[w];
+    }
+
     // GCV: N ||s - Az||^2 / (N - tr H)^2, with ||s - Az||^2 = s's - 2 z'A's + z'A'Az
     // and tr H = tr((A'A + lambda P)^-1 A'A).
     void score(Cholesky& cholesky, Solved& s) const {
