@@ -291,9 +291,9 @@ bool fitToScheme(const LoadedScene& loaded, int depth, geo::ControlNet& net, Sur
         if (progress)
             progress({ProgressEvent::Stage::Compiling,
                       fmt::format("fitted {} samples: RMSE {:.3g} m, largest residual {:.3g} m, smoothing {:.3g} ({}), "
-                                  "{:.1f} s",
+                                  "tension {:.3g}, {:.1f} s",
                                   s.fit->samples, s.fit->rmseM, s.fit->maxResidualM, s.fit->smoothing,
-                                  s.fit->chosenBy, s.fit->seconds),
+                                  s.fit->chosenBy, s.fit->tension, s.fit->seconds),
                       -1});
         return true;
     }

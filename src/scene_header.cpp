@@ -54,10 +54,11 @@ void addData(Header& h, const scene::SceneSpec& s, const geo::ControlNet& net) {
 void addFit(Header& h, const CompileResult& c) {
     if (c.fit)
         h.add("net.fit", fmt::format("{} samples fitted at depth {}: RMSE {:.3g} m, largest residual {:.3g} m, "
-                                     "smoothing {:.3g} ({}), {} of {} nodes constrained, data within {:.3g} m "
-                                     "of every node",
+                                     "smoothing {:.3g} ({}), tension {:.3g} ({}), {} of {} nodes constrained, data "
+                                     "within {:.3g} m of every node",
                                      c.fit->samples, c.fit->depth, c.fit->rmseM, c.fit->maxResidualM,
-                                     c.fit->smoothing, c.fit->chosenBy, c.fit->nodesConstrained, c.fit->nodes,
+                                     c.fit->smoothing, c.fit->chosenBy, c.fit->tension, c.fit->tensionChosenBy,
+                                     c.fit->nodesConstrained, c.fit->nodes,
                                      c.fit->dataReachM));
     if (c.prefilter)
         h.add("net.fit", fmt::format("prefiltered at depth {}: the surface through the net's values, the largest "

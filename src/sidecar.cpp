@@ -31,7 +31,7 @@ void addFitToSidecar(ordered_json& j, const CompileResult& c) {
     if (!c.fit) return;
     const fit::FitReport& f = *c.fit;
     ordered_json gcv = ordered_json::array();
-    for (const auto& t : f.gcv) gcv.push_back({{"smoothing", t.smoothing}, {"score", t.score}, {"trace_h", t.traceH}});
+    for (const auto& t : f.gcv) gcv.push_back({{"smoothing", t.smoothing}, {"tension", t.tension}, {"score", t.score}, {"trace_h", t.traceH}});
     j["net"]["fit"] = {{"kind", "least squares of the scheme's surface"},
                        {"depth", f.depth},
                        {"samples", f.samples},
@@ -41,6 +41,8 @@ void addFitToSidecar(ordered_json& j, const CompileResult& c) {
                        {"max_residual_at_m", point(f.worstSample)},
                        {"smoothing", f.smoothing},
                        {"smoothing_chosen_by", f.chosenBy},
+                       {"tension", f.tension},
+                       {"tension_chosen_by", f.tensionChosenBy},
                        {"gcv", gcv},
                        {"trace_method", f.traceMethod},
                        {"nodes", f.nodes},

@@ -6,11 +6,13 @@
 #include <limits>
 #include <mutex>
 #include <new>
+#include <stdexcept>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 
 #include <fmt/format.h>
 #include <nanoflann.hpp>
@@ -27,10 +29,10 @@ using Sparse = Eigen::SparseMatrix<double>;
 // nested-dissection order, which fills a net's 2-D stencil by a third less than minimum degree.
 using Cholesky = Eigen::CholmodSimplicialLLT<Sparse, Eigen::Lower>;
 
-constexpr int kProbes = 64;            // Hutchinson's probes of the influence matrix's trace
 constexpr int kExactTraceNodes = 400;  // up to this many nodes the trace is exact
 constexpr int kRefinementSteps = 3;
-constexpr int kWorkers = 2;            // smoothings tried at once, each with its own factorization
+constexpr int kWorkers = 2;            // penalties tried at once, each with its own factorization
+constexpr double kTriedTension = 1;    // tried beside none, when the scene gives no tension
 
 // A symmetric matrix stored as its lower triangle, times a vector.
 Eigen::VectorXd timesSymmetric(const Sparse& lower, const Eigen::VectorXd& v) {
@@ -38,26 +40,13 @@ Eigen::VectorXd timesSymmetric(const Sparse& lower, const Eigen::VectorXd& v) {
     return out;
 }
 
-// The fixed probes: +-1 from splitmix64 with a fixed seed (the same on every
-// standard library), one set for every smoothing tried, so that the score is
-// a smooth function of it and the same on every run.
-Eigen::MatrixXd probes(Eigen::Index n) {
-    std::uint64_t state = 0x5EED5EEDu;
-    auto next = [&] {
-        std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
-        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-        return z ^ (z >> 31);
-    };
-    Eigen::MatrixXd out(n, kProbes);
-    for (Eigen::Index k = 0; k < kProbes; ++k)
-        for (Eigen::Index i = 0; i < n; ++i) out(i, k) = (next() >> 63) ? 1.0 : -1.0;
-    return out;
-}
+struct Penalty {
+    double smoothing = 0, tension = 0;
+};
 
-// The system (A'A + lambda P) z = A's for one smoothing: solved, its GCV score.
+// The system (A'A + lambda P) z = A's for one penalty: solved, its GCV score.
 struct Solved {
-    double smoothing = 0;
+    Penalty penalty;
     int cholmodStatus = 0;  ///< CHOLMOD's, when it failed otherwise than on a matrix not positive definite
     Eigen::VectorXd z;
     bool ok = false;
@@ -65,29 +54,29 @@ struct Solved {
     double relativeResidual = 0, traceH = 0, score = std::numeric_limits<double>::infinity();
 };
 
+// ||s - Az||^2, for the net's heights z, from the samples themselves: from A'A
+// and A's it would be a difference of sums as large as s's, and lose the
+// residuals of a close fit to cancellation.
+using SquaredResiduals = std::function<double(const Eigen::VectorXd& z)>;
+
 class FitSystem {
 public:
-    explicit FitSystem(const NormalEquations& eq) : eq_(eq) {
-        eq.toSparse(m_, p_);
-        double tm = 0, tp = 0;
-        for (Eigen::Index i = 0; i < m_.cols(); ++i) tm += m_.coeff(i, i), tp += p_.coeff(i, i);
-        scale_ = tp > 0 ? tm / tp : 1;
+    /// `spacing`: the samples' mean spacing, metres, the tension's unit.
+    FitSystem(const NormalEquations& eq, double spacing, SquaredResiduals squaredResiduals)
+        : eq_(eq), squaredResiduals_(std::move(squaredResiduals)), membranePerTension_(1 / (spacing * spacing)) {
+        eq.toSparse(m_, thinPlate_, membrane_);
+        traceM_ = m_.diagonal().sum(), traceThinPlate_ = thinPlate_.diagonal().sum();
+        traceMembrane_ = membrane_.diagonal().sum();
+        if (m_.cols() > kExactTraceNodes && eq.probes() > 0) probeSums_ = eq.probeSums();
         for (Cholesky& cholesky : choleskies_) cholesky.cholmod().print = 0;  // its warnings went to stdout
-    }
-
-    /// Before solving with the trace: the probes, shared by every smoothing.
-    void prepareTrace() {
-        if (m_.cols() <= kExactTraceNodes || probes_.size() != 0) return;
-        probes_ = probes(m_.cols());
-        mProbes_ = m_.selfadjointView<Eigen::Lower>() * probes_;  // A'A v, the same for every smoothing
     }
 
     /// Solved by the factorization of `worker` (0 .. kWorkers - 1), which one
     /// thread at a time may use: the same bits whichever.
-    Solved solve(double smoothing, bool withTrace, int worker) {
+    Solved solve(Penalty penalty, bool withTrace, int worker) {
         Cholesky& cholesky = choleskies_[static_cast<size_t>(worker)];
         Solved s;
-        s.smoothing = smoothing;
+        s.penalty = penalty;
         // Out of memory, or too large for CHOLMOD's indices: failures of their own, not of the equations.
         const auto failed = [&] {
             if (cholesky.cholmod().status >= CHOLMOD_OK && cholesky.info() == Eigen::Success) return false;
@@ -99,7 +88,13 @@ public:
             failed();
             return s;
         }
-        const Sparse c = m_ + (smoothing * scale_) * p_;
+        // P = thin plate + (tension / spacing)^2 membrane; lambda = smoothing tr(A'A) / tr(P). One
+        // expression, no P held beside the system.
+        const double membraneWeight = penalty.tension * penalty.tension * membranePerTension_;
+        const double tracePenalty = traceThinPlate_ + membraneWeight * traceMembrane_;
+        const double lambda = penalty.smoothing * (tracePenalty > 0 ? traceM_ / tracePenalty : 1);
+        const Sparse c = membraneWeight == 0 ? Sparse(m_ + lambda * thinPlate_)
+                                             : Sparse(m_ + lambda * thinPlate_ + (lambda * membraneWeight) * membrane_);
         cholesky.factorize(c);
         if (cholesky.info() != Eigen::Success && cholesky.cholmod().status >= CHOLMOD_OK) return s;  // not positive definite
         if (failed()) return s;
@@ -118,7 +113,7 @@ public:
         const Eigen::VectorXd r = b - timesSymmetric(c, s.z);
         s.relativeResidual = r.norm() / std::max(b.norm(), 1e-300);
         s.ok = s.relativeResidual <= kFitTolerance;
-        if (withTrace && s.ok) score(cholesky, s);  // prepareTrace() first
+        if (withTrace && s.ok) score(cholesky, s);
         return s;
     }
 
@@ -127,7 +122,7 @@ public:
     }
 
 private:
-    // The ordering, once a worker (m_ and p_ share their pattern). METIS, which orders the net,
+    // The ordering, once a worker (A'A and both energies share one pattern). METIS, which orders the net,
     // keeps its random state in globals: two orderings at once in a process would draw from one
     // sequence and differ from run to run.
     bool analysed(int worker) {
@@ -144,11 +139,14 @@ private:
         return analysed_[w];
     }
 
-    // GCV: N ||s - Az||^2 / (N - tr H)^2, with ||s - Az||^2 = s's - 2 z'A's + z'A'Az
-    // and tr H = tr((A'A + lambda P)^-1 A'A).
+    // GCV: N ||s - Az||^2 / (N - tr H)^2, H = A (A'A + lambda P)^-1 A' the influence matrix. Its
+    // trace is estimated from probes u over the samples (u'Hu = (A'u)' (A'A + lambda P)^-1 A'u), not
+    // over the nodes: with u'u = N, N - u'Hu = u'(I - H)u, whose error vanishes with I - H as the
+    // fit closes on the samples, where an estimate over the nodes keeps its error and N - tr H, the
+    // score's denominator, is lost in it (a close fit then scored near zero and won).
     void score(Cholesky& cholesky, Solved& s) const {
         const double n = static_cast<double>(eq_.samples());
-        const double rss = std::max(0.0, eq_.samplesSquared() - 2 * s.z.dot(eq_.rhs()) + s.z.dot(timesSymmetric(m_, s.z)));
+        const double rss = squaredResiduals_(s.z);
         double trace = 0;
         if (m_.cols() <= kExactTraceNodes) {
             Eigen::VectorXd e = Eigen::VectorXd::Zero(m_.cols());
@@ -158,60 +156,72 @@ private:
                 e[i] = 0;
             }
         } else {
-            const Eigen::MatrixXd solved = cholesky.solve(mProbes_);
-            trace = probes_.cwiseProduct(solved).sum() / kProbes;
+            if (probeSums_.cols() != kProbes) throw std::logic_error("fit: the trace is estimated, but no probes were summed");
+            const Eigen::MatrixXd solved = cholesky.solve(probeSums_);
+            trace = probeSums_.cwiseProduct(solved).sum() / probeSums_.cols();
         }
-        if (cholesky.info() != Eigen::Success) return;  // no score: this smoothing is not chosen
+        if (cholesky.info() != Eigen::Success) return;  // no score: this penalty is not chosen
         s.traceH = trace;
         s.score = n * rss / std::pow(std::max(n - trace, 1e-9), 2);
     }
 
     const NormalEquations& eq_;
-    Sparse m_, p_;
-    double scale_ = 1;
+    SquaredResiduals squaredResiduals_;
+    double membranePerTension_;
+    Sparse m_, thinPlate_, membrane_;
+    double traceM_ = 0, traceThinPlate_ = 0, traceMembrane_ = 0;
     std::array<Cholesky, kWorkers> choleskies_;
     std::array<bool, kWorkers> analysed_{};
-    Eigen::MatrixXd probes_, mProbes_;  ///< Hutchinson's probes v, and A'A v; empty: the exact trace
+    Eigen::MatrixXd probeSums_;  ///< A'U, U Hutchinson's probes over the samples; empty: the exact trace
 };
 
-// The smoothing of the least GCV score over log10 smoothing in [-6, 2] (below,
-// the equations' condition makes the score itself uncertain): four points a
-// third of the range apart, then rounds that try the points half a step
-// either side of the best so far, the step halved each round, down to a third
-// of a decade (a GCV minimum is that flat). A round's two trials run at once,
-// one on each worker; the points tried do not depend on how many cores there
-// are, so neither does the choice. Every trial is recorded; the best one's
-// solution is kept.
-Solved chooseSmoothing(FitSystem& system, std::vector<GcvTrial>& trials) {
-    system.prepareTrace();
+// The penalty of the least GCV score. The smoothing over log10 [-6, 2]
+// (below, the equations' condition makes the score itself uncertain): four
+// points a third of the range apart, then rounds that try the points half a
+// step either side of the best so far, the step halved each round, down to a
+// third of a decade (a GCV minimum is that flat). Then, unless the scene gives
+// the tension, tension 1 at the best smoothing and a third of a decade below
+// (a membrane's pull lowers the best smoothing, if anything), and if it wins,
+// a third of a decade either side of its best: on rough terrain it does, where
+// between samples the thin plate alone overshoots. A round's two trials run at
+// once, one on each worker; the points tried do not depend on how many cores
+// there are, so neither does the choice. Every trial is recorded; the best
+// one's solution is kept.
+Solved choosePenalty(FitSystem& system, std::optional<double> givenTension, std::vector<GcvTrial>& trials) {
     Solved best;
     double bestLog = 0;  // of the best trial's smoothing
-    auto round = [&](const std::vector<double>& logs) {
+    // No point tried before (a point is log10 smoothing and tension).
+    auto round = [&](std::vector<double> logs, double tension) {
+        constexpr double kLow = -6, kHigh = 2;
+        std::erase_if(logs, [&](double l) {
+            return l < kLow - 1e-9 || l > kHigh + 1e-9 || std::any_of(trials.begin(), trials.end(), [&](const GcvTrial& t) {
+                       return t.tension == tension && std::abs(std::log10(t.smoothing) - l) < 1e-9;
+                   });
+        });
         std::vector<Solved> solved(logs.size());
 #pragma omp parallel for num_threads(kWorkers) schedule(static, 1)
         for (int i = 0; i < static_cast<int>(logs.size()); ++i) {
             Solved& trial = solved[static_cast<size_t>(i)];
             try {  // an exception may not leave a parallel region
-                trial = system.solve(std::pow(10.0, logs[static_cast<size_t>(i)]), true, i % kWorkers);
+                trial = system.solve({std::pow(10.0, logs[static_cast<size_t>(i)]), tension}, true, i % kWorkers);
             } catch (const std::bad_alloc&) {
                 trial = Solved{};
                 trial.cholmodStatus = CHOLMOD_OUT_OF_MEMORY;
             }
         }
         for (size_t i = 0; i < logs.size(); ++i) {
-            trials.push_back({std::pow(10.0, logs[i]), solved[i].score, solved[i].traceH});
+            trials.push_back({std::pow(10.0, logs[i]), tension, solved[i].score, solved[i].traceH});
             if (solved[i].score < best.score) best = std::move(solved[i]), bestLog = logs[i];
         }
     };
-    constexpr double kLow = -6, kHigh = 2, kStep = (kHigh - kLow) / 3;
-    round({kLow, kLow + kStep});
-    round({kLow + 2 * kStep, kHigh});
-    for (double half = kStep / 2; half > 0.3; half /= 2) {
-        std::vector<double> logs;
-        for (double l : {bestLog - half, bestLog + half})
-            if (l >= kLow - 1e-9 && l <= kHigh + 1e-9) logs.push_back(l);
-        round(logs);
-    }
+    const double tension = givenTension.value_or(0);
+    constexpr double kStep = 8.0 / 3, kFinest = 1.0 / 3;
+    round({-6, -6 + kStep}, tension);
+    round({-6 + 2 * kStep, 2}, tension);
+    for (double half = kStep / 2; half > kFinest - 1e-9; half /= 2) round({bestLog - half, bestLog + half}, tension);
+    if (givenTension || best.z.size() == 0) return best;
+    round({bestLog, bestLog - kFinest}, kTriedTension);
+    if (best.penalty.tension == kTriedTension) round({bestLog - kFinest, bestLog + kFinest}, kTriedTension);
     return best;
 }
 
@@ -240,6 +250,31 @@ double dataReach(const std::vector<Vec3>& samples, const geo::GeoGrid& net) {
     return reach;
 }
 
+// The samples' residuals from the surface of the net heights z (row-major).
+struct Residuals {
+    double squares = 0, largest = 0;
+    Vec3 worst;
+};
+
+Residuals residualsOf(const AxisBasis& bx, const AxisBasis& by, const geo::GeoGrid& net,
+                      const std::vector<Vec3>& samples, const Eigen::VectorXd& z) {
+    Residuals out;
+    SurfaceRow row;
+    for (const Vec3& s : samples) {
+        if (!surfaceRow(bx, by, net, s.x, s.y, row)) continue;
+        double at = 0;
+        for (const auto& [r, wy] : row.y) {
+            double along = 0;
+            for (const auto& [c, wx] : row.x) along += wx * z[static_cast<Eigen::Index>(r) * net.cols() + c];
+            at += wy * along;
+        }
+        const double e = std::abs(at - s.z);
+        out.squares += e * e;
+        if (e > out.largest) out.largest = e, out.worst = s;
+    }
+    return out;
+}
+
 }  // namespace
 
 std::optional<FitReport> fitNet(const subdiv::Scheme& scheme, int depth, const std::vector<Vec3>& samples,
@@ -251,10 +286,11 @@ std::optional<FitReport> fitNet(const subdiv::Scheme& scheme, int depth, const s
     report.nodes = net.grid.points.size();
     const SourceLoc at = spec.locs.at("net.gridding");
     const AxisBasis bx = axisBasis(scheme, net.cols(), depth), by = axisBasis(scheme, net.rows(), depth);
-    NormalEquations eq(net.rows(), net.cols(), std::max(bx.span, by.span) - 1);
+    const bool probed = !spec.smoothing && report.nodes > static_cast<size_t>(kExactTraceNodes);
+    NormalEquations eq(net.rows(), net.cols(), std::max(bx.span, by.span) - 1, probed ? kProbes : 0);
     SurfaceRow row;
     for (const Vec3& s : samples) {
-        if (surfaceRow(bx, by, net, s.x, s.y, row)) eq.addSample(row, s.z);
+        if (surfaceRow(bx, by, net, s.x, s.y, row)) eq.addSample(row, s);
         else ++report.samplesOutside;
     }
     report.samples = eq.samples();
@@ -268,22 +304,27 @@ std::optional<FitReport> fitNet(const subdiv::Scheme& scheme, int depth, const s
                                       "(net.spacing_m) follows the data more closely",
                                       report.samples, report.nodes));
     eq.addThinPlate(net.dx, net.dy);
-    FitSystem system(eq);
+    eq.addMembrane(net.dx, net.dy);
+    // The tension's unit: the samples' mean spacing, sqrt(the net's area / samples).
+    const double spacing = std::sqrt(net.dx * (net.cols() - 1) * net.dy * (net.rows() - 1) /
+                                     static_cast<double>(report.samples));
+    FitSystem system(eq, spacing, [&](const Eigen::VectorXd& z) { return residualsOf(bx, by, net, samples, z).squares; });
     report.traceMethod = system.traceMethod();
     Solved solved;
     if (spec.smoothing) {
-        report.smoothing = *spec.smoothing;
+        if (progress) progress(fmt::format("fitting {} samples (smoothing {:.3g})", report.samples, *spec.smoothing));
+        solved = system.solve({*spec.smoothing, spec.tension.value_or(0)}, false, 0);
         report.chosenBy = "net.smoothing";
-        if (progress) progress(fmt::format("fitting {} samples (smoothing {:.3g})", report.samples, report.smoothing));
-        solved = system.solve(report.smoothing, false, 0);
     } else {
-        if (progress) progress(fmt::format("fitting {} samples: choosing the smoothing by cross-validation", report.samples));
-        solved = chooseSmoothing(system, report.gcv);
+        if (progress) progress(fmt::format("fitting {} samples: choosing the penalty by cross-validation", report.samples));
+        solved = choosePenalty(system, spec.tension, report.gcv);
         // No smoothing gave a solution: the largest tried, the best conditioned, fails below saying why.
-        if (solved.z.size() == 0) solved = system.solve(1e2, false, 0);
-        report.smoothing = solved.smoothing;
+        if (solved.z.size() == 0) solved = system.solve({1e2, spec.tension.value_or(0)}, false, 0);
         report.chosenBy = "generalized cross-validation";
     }
+    report.smoothing = solved.penalty.smoothing;
+    report.tension = solved.penalty.tension;
+    report.tensionChosenBy = spec.tension ? "net.tension" : spec.smoothing ? "none: net.smoothing given" : report.chosenBy;
     const SourceLoc key = spec.smoothing ? spec.locs.at("net.smoothing") : at;
     if (solved.cholmodStatus != 0) {
         diags.error(key, fmt::format("net.gridding = \"fit\": the sparse Cholesky (CHOLMOD) failed: {}; a coarser "
@@ -317,17 +358,10 @@ std::optional<FitReport> fitNet(const subdiv::Scheme& scheme, int depth, const s
         return m;
     }();
     for (int i = 0; i < static_cast<int>(report.nodes); ++i) report.nodesConstrained += eq.diagonal(i) > 1e-12 * maxDiagonal;
-    double squares = 0;
-    for (const Vec3& s : samples) {
-        if (!surfaceRow(bx, by, net, s.x, s.y, row)) continue;
-        double z = 0;
-        for (const auto& [r, wy] : row.y)
-            for (const auto& [c, wx] : row.x) z += wy * wx * net.grid.at(r, c).z;
-        const double e = std::abs(z - s.z);
-        squares += e * e;
-        if (e > report.maxResidualM) report.maxResidualM = e, report.worstSample = s;
-    }
-    report.rmseM = std::sqrt(squares / static_cast<double>(report.samples));
+    const Residuals residuals = residualsOf(bx, by, net, samples, solved.z);
+    report.rmseM = std::sqrt(residuals.squares / static_cast<double>(report.samples));
+    report.maxResidualM = residuals.largest;
+    report.worstSample = residuals.worst;
     report.dataReachM = dataReach(samples, net);
     report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return report;

@@ -3,9 +3,13 @@
 // depth rendered, passes nearest the samples, smooth where they are sparse.
 // The net z minimises ||A z - s||^2 + lambda z'Pz: a row of A a sample, the
 // refined surface there as weights on the net (fit/basis.h); P the net's
-// discrete thin-plate energy (second differences, which no plane pays);
-// lambda from `smoothing` (dimensionless: lambda = smoothing tr(A'A) / tr(P)),
-// given or chosen by generalized cross-validation. The normal equations are
+// discrete thin-plate energy (second differences, which no plane pays) plus,
+// with a tension t, (t / d)^2 times its membrane energy (first differences),
+// d the samples' mean spacing: between samples further apart than about 2 pi
+// d / t the surface is pulled flat rather than carried on by its slope;
+// lambda from `smoothing` (dimensionless: lambda = smoothing tr(A'A) / tr(P)).
+// The smoothing given (the tension then 0 unless given too) or chosen by
+// generalized cross-validation, with the tension (given, or 0 or 1). The normal equations are
 // solved by CHOLMOD's simplicial Cholesky in nested-dissection order (no BLAS:
 // the same bits on every machine with the same SuiteSparse and METIS).
 #include <optional>
@@ -20,10 +24,10 @@
 
 namespace relief::fit {
 
-/// One smoothing tried by cross-validation: its GCV score, and the trace of
+/// One penalty tried by cross-validation: its GCV score, and the trace of
 /// the influence matrix (the fit's degrees of freedom).
 struct GcvTrial {
-    double smoothing = 0, score = 0, traceH = 0;
+    double smoothing = 0, tension = 0, score = 0, traceH = 0;
 };
 
 struct FitReport {
@@ -32,8 +36,9 @@ struct FitReport {
     size_t samplesOutside = 0;         ///< outside the net: not fitted
     size_t nodes = 0;
     size_t nodesConstrained = 0;       ///< nodes some sample's surface weighs on; the rest are the penalty's
-    double smoothing = 0;
+    double smoothing = 0, tension = 0;
     std::string chosenBy;              ///< "generalized cross-validation" or "net.smoothing"
+    std::string tensionChosenBy;       ///< that, "net.tension", or "none: net.smoothing given"
     std::vector<GcvTrial> gcv;         ///< in the order tried
     std::string traceMethod;           ///< "exact", or Hutchinson's estimate with its probes
     double rmseM = 0, maxResidualM = 0;
@@ -47,7 +52,9 @@ struct FitReport {
 /// The memory a fit takes for each node of the net: the normal equations, two
 /// factorizations (smoothings are tried two at a time) and the trace's probes.
 /// Measured 6.5-13 kB a node on 65 x 65 to 257 x 257 nets, dlg4 to the gentle
-/// preset's wide stencil; nested dissection's fill grows slowly with the net.
+/// preset's wide stencil; with the tension's membrane term, the whole process
+/// 8.7 kB a node (gentle, 257 x 257) to 13.5 (dlg4, 129 x 129, its fixed
+/// 100 MB included). Nested dissection's fill grows slowly with the net.
 inline constexpr double kFitBytesPerNode = 16e3;
 
 /// The largest relative residual of the normal equations a fit accepts.

@@ -1,15 +1,36 @@
 #include "fit/normal_equations.h"
 
+#include <array>
+#include <bit>
 #include <cmath>
 #include <stdexcept>
 
 namespace relief::fit {
 
-NormalEquations::NormalEquations(int rows, int cols, int half)
-    : rows_(rows), cols_(cols), half_(std::max(half, 2)), width_(2 * std::max(half, 2) + 1) {
+namespace {
+
+std::uint64_t splitmix64(std::uint64_t x) {
+    std::uint64_t z = x + 0x9E3779B97F4A7C15ull;
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+}
+
+// A sample's 64 probe signs, from its position's bits.
+std::uint64_t probeBits(const Vec3& sample) {
+    return splitmix64(splitmix64(std::bit_cast<std::uint64_t>(sample.x)) ^ std::bit_cast<std::uint64_t>(sample.y));
+}
+
+}  // namespace
+
+NormalEquations::NormalEquations(int rows, int cols, int half, int probes)
+    : rows_(rows), cols_(cols), half_(std::max(half, 2)), width_(2 * std::max(half, 2) + 1), probes_(probes) {
+    if (probes < 0 || probes > kProbes) throw std::logic_error("fit: at most 64 probes, one word of signs a sample");
     const size_t n = static_cast<size_t>(rows) * cols;
     m_.assign(n * width_ * width_, 0.0);
     p_.assign(n * width_ * width_, 0.0);
+    membrane_.assign(n * width_ * width_, 0.0);
+    probeSums_.assign(n * static_cast<size_t>(probes), 0.0);
     rhs_ = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(n));
 }
 
@@ -18,48 +39,69 @@ void NormalEquations::addPair(int p, int q, double v, std::vector<double>& store
     store[slot(p, dr, dc)] += v;
 }
 
-void NormalEquations::addSample(const SurfaceRow& row, double z) {
+void NormalEquations::addSample(const SurfaceRow& row, const Vec3& sample) {
+    const double z = sample.z;
     // The stencil holds offsets up to half_: a wider row (a basis whose span was not passed) would write
     // into another offset's slot.
     for (const auto* axis : {&row.x, &row.y})
         if (!axis->empty() && axis->back().first - axis->front().first > half_)
             throw std::logic_error("fit: a sample weighs on nodes further apart than the normal equations hold");
+    std::array<double, kProbes> signs{};
+    const std::uint64_t bits = probeBits(sample);
+    for (int k = 0; k < probes_; ++k) signs[static_cast<size_t>(k)] = (bits >> k) & 1 ? 1.0 : -1.0;
     // w = wy (x) wx: the pairs of nodes, (ry, cx) and (ry', cx'), each once.
     for (const auto& [r1, wy1] : row.y)
         for (const auto& [c1, wx1] : row.x) {
             const int p = r1 * cols_ + c1;
             const double wp = wy1 * wx1;
             rhs_[p] += wp * z;
+            double* sums = probeSums_.data() + static_cast<size_t>(p) * probes_;
+            for (int k = 0; k < probes_; ++k) sums[k] += wp * signs[static_cast<size_t>(k)];
             for (const auto& [r2, wy2] : row.y) {
                 const double wpy = wp * wy2;
                 const size_t base = slot(p, r2 - r1, 0);
                 for (const auto& [c2, wx2] : row.x) m_[base + static_cast<size_t>(c2 - c1)] += wpy * wx2;
             }
         }
-    zz_ += z * z;
     ++samples_;
+}
+
+void NormalEquations::addOuter(std::initializer_list<std::pair<int, double>> d, double scale, std::vector<double>& store) {
+    for (const auto& [p, a] : d)
+        for (const auto& [q, b] : d) addPair(p, q, scale * a * b, store);
 }
 
 void NormalEquations::addThinPlate(double dx, double dy) {
     const double area = dx * dy;
-    // One row of D at a time: its nodes and coefficients; P += d d'.
-    auto add = [&](std::initializer_list<std::pair<int, double>> terms, double scale) {
-        for (const auto& [p, a] : terms)
-            for (const auto& [q, b] : terms) addPair(p, q, scale * a * b, p_);
-    };
     for (int r = 0; r < rows_; ++r)
         for (int c = 0; c < cols_; ++c) {
             const int n = r * cols_ + c;
-            if (c >= 1 && c + 1 < cols_) add({{n - 1, 1}, {n, -2}, {n + 1, 1}}, area / std::pow(dx, 4));
-            if (r >= 1 && r + 1 < rows_) add({{n - cols_, 1}, {n, -2}, {n + cols_, 1}}, area / std::pow(dy, 4));
+            if (c >= 1 && c + 1 < cols_) addOuter({{n - 1, 1}, {n, -2}, {n + 1, 1}}, area / std::pow(dx, 4), p_);
+            if (r >= 1 && r + 1 < rows_) addOuter({{n - cols_, 1}, {n, -2}, {n + cols_, 1}}, area / std::pow(dy, 4), p_);
             if (r + 1 < rows_ && c + 1 < cols_)
-                add({{n, 1}, {n + 1, -1}, {n + cols_, -1}, {n + cols_ + 1, 1}}, 2 * area / (dx * dx * dy * dy));
+                addOuter({{n, 1}, {n + 1, -1}, {n + cols_, -1}, {n + cols_ + 1, 1}}, 2 * area / (dx * dx * dy * dy), p_);
         }
 }
 
-void NormalEquations::toSparse(Eigen::SparseMatrix<double>& m, Eigen::SparseMatrix<double>& p) const {
+void NormalEquations::addMembrane(double dx, double dy) {
+    const double area = dx * dy;
+    for (int r = 0; r < rows_; ++r)
+        for (int c = 0; c < cols_; ++c) {
+            const int n = r * cols_ + c;
+            if (c + 1 < cols_) addOuter({{n, -1}, {n + 1, 1}}, area / (dx * dx), membrane_);
+            if (r + 1 < rows_) addOuter({{n, -1}, {n + cols_, 1}}, area / (dy * dy), membrane_);
+        }
+}
+
+Eigen::MatrixXd NormalEquations::probeSums() const {
+    const Eigen::Index n = static_cast<Eigen::Index>(rows_) * cols_;
+    return Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(probeSums_.data(), n, probes_);
+}
+
+void NormalEquations::toSparse(Eigen::SparseMatrix<double>& m, Eigen::SparseMatrix<double>& thinPlate,
+                               Eigen::SparseMatrix<double>& membrane) const {
     using Triplet = Eigen::Triplet<double>;
-    std::vector<Triplet> mt, pt;
+    std::vector<Triplet> mt, pt, qt;
     const int n = rows_ * cols_;
     for (int node = 0; node < n; ++node) {
         const int r = node / cols_, c = node % cols_;
@@ -69,16 +111,19 @@ void NormalEquations::toSparse(Eigen::SparseMatrix<double>& m, Eigen::SparseMatr
                 if (r2 < 0 || r2 >= rows_ || c2 < 0 || c2 >= cols_) continue;
                 const int q = r2 * cols_ + c2;
                 if (q < node) continue;  // the lower triangle: row q >= column node
-                const double a = m_[slot(node, dr, dc)], b = p_[slot(node, dr, dc)];
-                if (a == 0 && b == 0) continue;
-                mt.emplace_back(q, node, a);  // both patterns alike, zeros kept
-                pt.emplace_back(q, node, b);
+                const size_t at = slot(node, dr, dc);
+                if (m_[at] == 0 && p_[at] == 0 && membrane_[at] == 0) continue;
+                mt.emplace_back(q, node, m_[at]);  // the three patterns alike, zeros kept
+                pt.emplace_back(q, node, p_[at]);
+                qt.emplace_back(q, node, membrane_[at]);
             }
     }
     m.resize(n, n);
-    p.resize(n, n);
+    thinPlate.resize(n, n);
+    membrane.resize(n, n);
     m.setFromTriplets(mt.begin(), mt.end());
-    p.setFromTriplets(pt.begin(), pt.end());
+    thinPlate.setFromTriplets(pt.begin(), pt.end());
+    membrane.setFromTriplets(qt.begin(), qt.end());
 }
 
 }  // namespace relief::fit

@@ -4,29 +4,47 @@
 // to Eigen as one sparse pattern for every lambda tried. Internal to fit/.
 #include <Eigen/SparseCore>
 
+#include <cstdint>
+#include <initializer_list>
+#include <utility>
 #include <vector>
 
 #include "fit/basis.h"
 
 namespace relief::fit {
 
+/// Hutchinson's probes of the influence matrix's trace: one 64-bit word of
+/// signs a sample.
+inline constexpr int kProbes = 64;
+
 class NormalEquations {
 public:
     /// A net rows x cols; `half`: the largest offset, in nodes along an axis,
-    /// between two nodes one sample (or the penalty) weighs on.
-    NormalEquations(int rows, int cols, int half);
+    /// between two nodes one sample (or the penalty) weighs on. `probes`
+    /// (0 or kProbes): also sum A'u for that many fixed +-1 probes u over the
+    /// samples, for Hutchinson's estimate of the influence matrix's trace.
+    NormalEquations(int rows, int cols, int half, int probes = 0);
 
-    /// One sample of height z, its surface `row`: A'A += w w', A's += w z.
-    void addSample(const SurfaceRow& row, double z);
+    /// One sample, its surface `row`: A'A += w w', A's += w z.
+    void addSample(const SurfaceRow& row, const Vec3& sample);
     /// The net's thin-plate energy: z_xx^2 + 2 z_xy^2 + z_yy^2 in second
     /// differences, each over its cell's area (dx, dy the spacing).
     void addThinPlate(double dx, double dy);
+    /// The net's membrane energy, kept apart: z_x^2 + z_y^2 in first
+    /// differences, each over its cell's area (the tension's term).
+    void addMembrane(double dx, double dy);
 
 
-    /// A'A's and P's lower triangles, one pattern for both.
-    void toSparse(Eigen::SparseMatrix<double>& m, Eigen::SparseMatrix<double>& p) const;
+    /// The lower triangles of A'A, the thin plate's and the membrane's
+    /// energies, one pattern for all three.
+    void toSparse(Eigen::SparseMatrix<double>& m, Eigen::SparseMatrix<double>& thinPlate,
+                  Eigen::SparseMatrix<double>& membrane) const;
     const Eigen::VectorXd& rhs() const { return rhs_; }
-    double samplesSquared() const { return zz_; }  ///< s's
+    /// A'U, nodes x probes: a sample's probe k is bit k of a hash of its x and
+    /// y as +-1 (the same on every run and standard library, and whatever the
+    /// samples' order: duplicates are merged before a fit).
+    Eigen::MatrixXd probeSums() const;
+    int probes() const { return probes_; }
     size_t samples() const { return samples_; }
     double diagonal(int node) const { return m_[slot(node, 0, 0)]; }
 
@@ -35,10 +53,11 @@ private:
         return static_cast<size_t>(node) * width_ * width_ + static_cast<size_t>((dr + half_) * width_ + dc + half_);
     }
     void addPair(int p, int q, double v, std::vector<double>& store);
-    int rows_, cols_, half_, width_;
-    std::vector<double> m_, p_;
+    /// store += scale d d', d one row of a difference operator (its nodes and coefficients).
+    void addOuter(std::initializer_list<std::pair<int, double>> d, double scale, std::vector<double>& store);
+    int rows_, cols_, half_, width_, probes_;
+    std::vector<double> m_, p_, membrane_, probeSums_;  ///< probeSums_: node-major, probes_ a node
     Eigen::VectorXd rhs_;
-    double zz_ = 0;
     size_t samples_ = 0;
 };
 

@@ -129,6 +129,10 @@ void readNet(Section& s, const SceneFile& f, SceneSpec& scene) {
         net.smoothing = *v;
     if (net.smoothing && net.gridding != Gridding::Fit)
         s.error("smoothing", "net.smoothing weighs a fit: it needs net.gridding = \"fit\"");
+    if (auto v = s.number("tension", 0, 100, "(the membrane's pull against the thin plate, per mean sample spacing: 0 none)"))
+        net.tension = *v;
+    if (net.tension && net.gridding != Gridding::Fit)
+        s.error("tension", "net.tension pulls a fit: it needs net.gridding = \"fit\"");
     if (auto v = s.boolean("fit")) net.fit = *v;
     if (net.fit && net.gridding == Gridding::Fit)
         s.error("fit", "net.fit = true prefilters a net so that the surface passes through it; net.gridding = "

@@ -138,6 +138,10 @@ struct NetSpec {
     /// gridding = "fit": the weight of the smoothness penalty against the
     /// samples (dimensionless); unset: chosen by generalized cross-validation.
     std::optional<double> smoothing;
+    /// gridding = "fit": the membrane's pull against the thin plate, in the
+    /// samples' mean spacing (dimensionless, 0: none); unset: 0 or 1, whichever
+    /// generalized cross-validation scores lower (0 when smoothing is given).
+    std::optional<double> tension;
     /// The net prefiltered so that the scheme's surface passes through the
     /// net's own values at its nodes (an approximating scheme keeps the
     /// data's peaks); gridding = "fit" already fits the surface.
