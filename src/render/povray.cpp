@@ -17,6 +17,7 @@
 #include <fstream>
 #include <optional>
 #include <regex>
+#include <thread>
 
 #include <fmt/format.h>
 
@@ -400,6 +401,35 @@ std::string deliver(const std::filesystem::path& raw, const RenderRequest& req) 
     return "";
 }
 
+// POV-Ray's front end gives up when its worker thread is slow to start
+// (vfeInitializeTimedOut, seen on a loaded machine). That is no fault of the
+// scene's, so such a run is tried again, up to kStartAttempts in all.
+constexpr int kStartAttempts = 3;
+
+bool workerStartTimedOut(const Watched& w) {
+    const bool exitedNonZero = WIFEXITED(w.status) && WEXITSTATUS(w.status) != 0;
+    return !w.cancelled && !w.timedOut && exitedNonZero &&
+           w.log.find("Timed out waiting for worker thread startup") != std::string::npos;
+}
+
+// One run of POV-Ray (argv, envp: made by the caller), watched to its end
+// into `w`. "" or why it could not start.
+std::string runPovray(std::vector<char*>& argv, std::vector<char*>& envp, const RenderRequest& req,
+                      std::chrono::steady_clock::time_point t0, const ProgressFn& progress, Watched& w) {
+    int pipeFd[2];
+    if (::pipe2(pipeFd, O_CLOEXEC) != 0) return "cannot create a pipe";
+    pid_t pid = 0;
+    const int spawnErr = spawnChild(argv.data(), envp.data(), pipeFd[1], pid);
+    ::close(pipeFd[1]);
+    if (spawnErr != 0) {
+        ::close(pipeFd[0]);
+        return fmt::format("cannot run {}: {}", argv[0], std::strerror(spawnErr));
+    }
+    w = watch(pid, pipeFd[0], req, t0, progress);
+    ::close(pipeFd[0]);
+    return "";
+}
+
 }  // namespace
 
 RenderResult renderPov(const RenderRequest& req, const ProgressFn& progress) {
@@ -442,21 +472,17 @@ RenderResult renderPov(const RenderRequest& req, const ProgressFn& progress) {
     for (auto& a : args) argv.push_back(a.data());
     argv.push_back(nullptr);
 
-    int pipeFd[2];
-    if (::pipe2(pipeFd, O_CLOEXEC) != 0) {
-        result.error = "cannot create a pipe";
-        return result;
+    Watched w;
+    for (int attempt = 1;; ++attempt) {
+        if (std::string cannotRun = runPovray(argv, envp, req, t0, progress, w); !cannotRun.empty()) {
+            result.error = cannotRun;
+            return result;
+        }
+        if (attempt == kStartAttempts || !workerStartTimedOut(w)) break;
+        result.startRetries = attempt;
+        if (progress) progress({RenderProgress::Phase::Parsing, "POV-Ray's worker thread was slow to start: again", -1});
+        std::this_thread::sleep_for(std::chrono::milliseconds(500));
     }
-    pid_t pid = 0;
-    const int spawnErr = spawnChild(argv.data(), envp.data(), pipeFd[1], pid);
-    ::close(pipeFd[1]);
-    if (spawnErr != 0) {
-        ::close(pipeFd[0]);
-        result.error = fmt::format("cannot run {}: {}", args[0], std::strerror(spawnErr));
-        return result;
-    }
-    const Watched w = watch(pid, pipeFd[0], req, t0, progress);
-    ::close(pipeFd[0]);
     if (w.cancelled) {
         result.cancelled = true;
         result.error = "stopped";
