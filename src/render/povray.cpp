@@ -479,7 +479,6 @@ RenderResult renderPov(const RenderRequest& req, const ProgressFn& progress) {
             return result;
         }
         if (attempt == kStartAttempts || !workerStartTimedOut(w)) break;
-        result.startRetries = attempt;
         if (progress) progress({RenderProgress::Phase::Parsing, "POV-Ray's worker thread was slow to start: again", -1});
         std::this_thread::sleep_for(std::chrono::milliseconds(500));
     }

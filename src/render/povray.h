@@ -60,7 +60,6 @@ struct RenderResult {
     double traceSeconds = 0;
     double wallSeconds = 0;
     double peakMemoryBytes = 0;  ///< POV-Ray's largest resident size (the system's accounting)
-    int startRetries = 0;        ///< runs tried again because POV-Ray's worker thread was slow to start
     std::vector<std::string> command;  ///< the povray command line, for the record
 };
 
