@@ -1,7 +1,5 @@
 #include "fit/fit_net.h"
 
-#include <Eigen/CholmodSupport>
-
 #include <array>
 #include <limits>
 #include <mutex>
@@ -19,15 +17,13 @@
 
 #include "fit/basis.h"
 #include "fit/normal_equations.h"
+#include "fit/sparse_cholesky.h"
 
 namespace relief::fit {
 
 namespace {
 
 using Sparse = Eigen::SparseMatrix<double>;
-// CHOLMOD's simplicial LL' (its own loops, no BLAS: the same bits whatever BLAS a machine has) in
-// nested-dissection order, which fills a net's 2-D stencil by a third less than minimum degree.
-using Cholesky = Eigen::CholmodSimplicialLLT<Sparse, Eigen::Lower>;
 
 constexpr int kExactTraceNodes = 400;  // up to this many nodes the trace is exact
 constexpr int kRefinementSteps = 3;
@@ -68,26 +64,22 @@ public:
         traceM_ = m_.diagonal().sum(), traceThinPlate_ = thinPlate_.diagonal().sum();
         traceMembrane_ = membrane_.diagonal().sum();
         if (m_.cols() > kExactTraceNodes && eq.probes() > 0) probeSums_ = eq.probeSums();
-        for (Cholesky& cholesky : choleskies_) cholesky.cholmod().print = 0;  // its warnings went to stdout
+        analyse();
     }
 
     /// Solved by the factorization of `worker` (0 .. kWorkers - 1), which one
     /// thread at a time may use: the same bits whichever.
     Solved solve(Penalty penalty, bool withTrace, int worker) {
-        Cholesky& cholesky = choleskies_[static_cast<size_t>(worker)];
+        SparseCholesky& cholesky = choleskies_[static_cast<size_t>(worker)];
         Solved s;
         s.penalty = penalty;
         // Out of memory, or too large for CHOLMOD's indices: failures of their own, not of the equations.
         const auto failed = [&] {
-            if (cholesky.cholmod().status >= CHOLMOD_OK && cholesky.info() == Eigen::Success) return false;
-            s.cholmodStatus = std::min(cholesky.cholmod().status, -1);
+            s.cholmodStatus = std::min(cholesky.status(), -1);
             s.z.resize(0);
-            return true;
-        };
-        if (!analysed(worker)) {
-            failed();
             return s;
-        }
+        };
+        if (!analysed_) return failed();
         // P = thin plate + (tension / spacing)^2 membrane; lambda = smoothing tr(A'A) / tr(P). One
         // expression, no P held beside the system.
         const double membraneWeight = penalty.tension * penalty.tension * membranePerTension_;
@@ -95,19 +87,19 @@ public:
         const double lambda = penalty.smoothing * (tracePenalty > 0 ? traceM_ / tracePenalty : 1);
         const Sparse c = membraneWeight == 0 ? Sparse(m_ + lambda * thinPlate_)
                                              : Sparse(m_ + lambda * thinPlate_ + (lambda * membraneWeight) * membrane_);
-        cholesky.factorize(c);
-        if (cholesky.info() != Eigen::Success && cholesky.cholmod().status >= CHOLMOD_OK) return s;  // not positive definite
-        if (failed()) return s;
+        const SparseCholesky::Factorized factorized = cholesky.factorize(c);
+        if (factorized == SparseCholesky::Factorized::notPositiveDefinite) return s;
+        if (factorized == SparseCholesky::Factorized::failed) return failed();
         const Eigen::VectorXd& b = eq_.rhs();
         s.z = cholesky.solve(b);
-        if (failed()) return s;
+        if (s.z.size() == 0) return failed();
         // Iterative refinement: the residual of the equations, solved again, until it is at rounding's level.
         for (; s.steps < kRefinementSteps; ++s.steps) {
             const Eigen::VectorXd r = b - timesSymmetric(c, s.z);
             s.relativeResidual = r.norm() / std::max(b.norm(), 1e-300);
             if (s.relativeResidual <= kFitTolerance * 1e-3) break;
             const Eigen::VectorXd dz = cholesky.solve(r);
-            if (failed()) return s;
+            if (dz.size() == 0) return failed();
             s.z += dz;
         }
         const Eigen::VectorXd r = b - timesSymmetric(c, s.z);
@@ -122,21 +114,14 @@ public:
     }
 
 private:
-    // The ordering, once a worker (A'A and both energies share one pattern). METIS, which orders the net,
-    // keeps its random state in globals: two orderings at once in a process would draw from one
-    // sequence and differ from run to run.
-    bool analysed(int worker) {
-        const auto w = static_cast<size_t>(worker);
-        if (analysed_[w]) return true;
+    // The ordering, once (A'A and both energies share one pattern), copied to the other workers. METIS,
+    // which orders the net, keeps its random state in globals: two orderings at once in a process
+    // would draw from one sequence and differ from run to run.
+    void analyse() {
         static std::mutex ordering;
         const std::lock_guard<std::mutex> lock(ordering);
-        cholmod_common& common = choleskies_[w].cholmod();
-        common.nmethods = 1;
-        common.method[0].ordering = CHOLMOD_NESDIS;
-        common.postorder = 1;
-        choleskies_[w].analyzePattern(m_);
-        analysed_[w] = common.status >= CHOLMOD_OK;
-        return analysed_[w];
+        analysed_ = choleskies_[0].analyse(m_);
+        for (size_t w = 1; w < choleskies_.size() && analysed_; ++w) analysed_ = choleskies_[w].analyseAs(choleskies_[0]);
     }
 
     // GCV: N ||s - Az||^2 / (N - tr H)^2, H = A (A'A + lambda P)^-1 A' the influence matrix. Its
@@ -144,7 +129,7 @@ private:
     // over the nodes: with u'u = N, N - u'Hu = u'(I - H)u, whose error vanishes with I - H as the
     // fit closes on the samples, where an estimate over the nodes keeps its error and N - tr H, the
     // score's denominator, is lost in it (a close fit then scored near zero and won).
-    void score(Cholesky& cholesky, Solved& s) const {
+    void score(SparseCholesky& cholesky, Solved& s) const {
         const double n = static_cast<double>(eq_.samples());
         const double rss = squaredResiduals_(s.z);
         double trace = 0;
@@ -152,15 +137,16 @@ private:
             Eigen::VectorXd e = Eigen::VectorXd::Zero(m_.cols());
             for (Eigen::Index i = 0; i < m_.cols(); ++i) {
                 e[i] = 1;
-                trace += cholesky.solve(timesSymmetric(m_, e))[i];
+                const Eigen::VectorXd column = cholesky.solve(timesSymmetric(m_, e));
+                if (column.size() == 0) return;  // no score: this penalty is not chosen
+                trace += column[i];
                 e[i] = 0;
             }
         } else {
             if (probeSums_.cols() != kProbes) throw std::logic_error("fit: the trace is estimated, but no probes were summed");
-            const Eigen::MatrixXd solved = cholesky.solve(probeSums_);
-            trace = probeSums_.cwiseProduct(solved).sum() / probeSums_.cols();
+            trace = cholesky.sumOfInverseForms(probeSums_) / static_cast<double>(probeSums_.cols());
+            if (std::isnan(trace)) return;
         }
-        if (cholesky.info() != Eigen::Success) return;  // no score: this penalty is not chosen
         s.traceH = trace;
         s.score = n * rss / std::pow(std::max(n - trace, 1e-9), 2);
     }
@@ -170,8 +156,8 @@ private:
     double membranePerTension_;
     Sparse m_, thinPlate_, membrane_;
     double traceM_ = 0, traceThinPlate_ = 0, traceMembrane_ = 0;
-    std::array<Cholesky, kWorkers> choleskies_;
-    std::array<bool, kWorkers> analysed_{};
+    std::array<SparseCholesky, kWorkers> choleskies_;
+    bool analysed_ = false;
     Eigen::MatrixXd probeSums_;  ///< A'U, U Hutchinson's probes over the samples; empty: the exact trace
 };
 
@@ -206,7 +192,7 @@ Solved choosePenalty(FitSystem& system, std::optional<double> givenTension, std:
                 trial = system.solve({std::pow(10.0, logs[static_cast<size_t>(i)]), tension}, true, i % kWorkers);
             } catch (const std::bad_alloc&) {
                 trial = Solved{};
-                trial.cholmodStatus = CHOLMOD_OUT_OF_MEMORY;
+                trial.cholmodStatus = SparseCholesky::kOutOfMemory;
             }
         }
         for (size_t i = 0; i < logs.size(); ++i) {
@@ -329,10 +315,7 @@ std::optional<FitReport> fitNet(const subdiv::Scheme& scheme, int depth, const s
     if (solved.cholmodStatus != 0) {
         diags.error(key, fmt::format("net.gridding = \"fit\": the sparse Cholesky (CHOLMOD) failed: {}; a coarser "
                                      "net (net.spacing_m) needs less",
-                                     solved.cholmodStatus == CHOLMOD_OUT_OF_MEMORY ? std::string("out of memory")
-                                     : solved.cholmodStatus == CHOLMOD_TOO_LARGE
-                                         ? std::string("the net is too large for its indices")
-                                         : fmt::format("status {}", solved.cholmodStatus)));
+                                     SparseCholesky::describe(solved.cholmodStatus)));
         return std::nullopt;
     }
     if (solved.z.size() == 0) {

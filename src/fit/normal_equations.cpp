@@ -100,30 +100,28 @@ Eigen::MatrixXd NormalEquations::probeSums() const {
 
 void NormalEquations::toSparse(Eigen::SparseMatrix<double>& m, Eigen::SparseMatrix<double>& thinPlate,
                                Eigen::SparseMatrix<double>& membrane) const {
-    using Triplet = Eigen::Triplet<double>;
-    std::vector<Triplet> mt, pt, qt;
     const int n = rows_ * cols_;
+    std::array<Eigen::SparseMatrix<double>*, 3> out = {&m, &thinPlate, &membrane};
+    const std::array<const std::vector<double>*, 3> stores = {&m_, &p_, &membrane_};
+    for (auto* matrix : out) {
+        matrix->resize(n, n);
+        matrix->reserve(static_cast<Eigen::Index>(n) * (width_ * width_ / 2 + 1));
+    }
+    // Column by column, rows ascending (dr, then dc): CSC's own order, filled in place.
     for (int node = 0; node < n; ++node) {
+        for (auto* matrix : out) matrix->startVec(node);
         const int r = node / cols_, c = node % cols_;
-        for (int dr = -half_; dr <= half_; ++dr)
+        for (int dr = 0; dr <= half_; ++dr)
             for (int dc = -half_; dc <= half_; ++dc) {
                 const int r2 = r + dr, c2 = c + dc;
-                if (r2 < 0 || r2 >= rows_ || c2 < 0 || c2 >= cols_) continue;
-                const int q = r2 * cols_ + c2;
-                if (q < node) continue;  // the lower triangle: row q >= column node
+                if (r2 >= rows_ || c2 < 0 || c2 >= cols_ || (dr == 0 && dc < 0)) continue;  // the lower triangle
                 const size_t at = slot(node, dr, dc);
                 if (m_[at] == 0 && p_[at] == 0 && membrane_[at] == 0) continue;
-                mt.emplace_back(q, node, m_[at]);  // the three patterns alike, zeros kept
-                pt.emplace_back(q, node, p_[at]);
-                qt.emplace_back(q, node, membrane_[at]);
+                // The three patterns alike, zeros kept.
+                for (size_t k = 0; k < out.size(); ++k) out[k]->insertBack(r2 * cols_ + c2, node) = (*stores[k])[at];
             }
     }
-    m.resize(n, n);
-    thinPlate.resize(n, n);
-    membrane.resize(n, n);
-    m.setFromTriplets(mt.begin(), mt.end());
-    thinPlate.setFromTriplets(pt.begin(), pt.end());
-    membrane.setFromTriplets(qt.begin(), qt.end());
+    for (auto* matrix : out) matrix->finalize();
 }
 
 }  // namespace relief::fit
