@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <exception>
 #include <functional>
 
 #include <fmt/format.h>
@@ -74,12 +75,12 @@ public:
         Solved s;
         s.penalty = penalty;
         // Out of memory, or too large for CHOLMOD's indices: failures of their own, not of the equations.
-        const auto failed = [&] {
-            s.cholmodStatus = std::min(cholesky.status(), -1);
+        const auto failed = [&](int status) {
+            s.cholmodStatus = std::min(status, -1);
             s.z.resize(0);
             return s;
         };
-        if (!analysed_) return failed();
+        if (analysisStatus_ != 0) return failed(analysisStatus_);
         // P = thin plate + (tension / spacing)^2 membrane; lambda = smoothing tr(A'A) / tr(P). One
         // expression, no P held beside the system.
         const double membraneWeight = penalty.tension * penalty.tension * membranePerTension_;
@@ -89,17 +90,17 @@ public:
                                              : Sparse(m_ + lambda * thinPlate_ + (lambda * membraneWeight) * membrane_);
         const SparseCholesky::Factorized factorized = cholesky.factorize(c);
         if (factorized == SparseCholesky::Factorized::notPositiveDefinite) return s;
-        if (factorized == SparseCholesky::Factorized::failed) return failed();
+        if (factorized == SparseCholesky::Factorized::failed) return failed(cholesky.status());
         const Eigen::VectorXd& b = eq_.rhs();
         s.z = cholesky.solve(b);
-        if (s.z.size() == 0) return failed();
+        if (s.z.size() == 0) return failed(cholesky.status());
         // Iterative refinement: the residual of the equations, solved again, until it is at rounding's level.
         for (; s.steps < kRefinementSteps; ++s.steps) {
             const Eigen::VectorXd r = b - timesSymmetric(c, s.z);
             s.relativeResidual = r.norm() / std::max(b.norm(), 1e-300);
             if (s.relativeResidual <= kFitTolerance * 1e-3) break;
             const Eigen::VectorXd dz = cholesky.solve(r);
-            if (dz.size() == 0) return failed();
+            if (dz.size() == 0) return failed(cholesky.status());
             s.z += dz;
         }
         const Eigen::VectorXd r = b - timesSymmetric(c, s.z);
@@ -120,8 +121,15 @@ private:
     void analyse() {
         static std::mutex ordering;
         const std::lock_guard<std::mutex> lock(ordering);
-        analysed_ = choleskies_[0].analyse(m_);
-        for (size_t w = 1; w < choleskies_.size() && analysed_; ++w) analysed_ = choleskies_[w].analyseAs(choleskies_[0]);
+        if (!choleskies_[0].analyse(m_)) {
+            analysisStatus_ = std::min(choleskies_[0].status(), -1);
+            return;
+        }
+        for (size_t w = 1; w < choleskies_.size(); ++w)
+            if (!choleskies_[w].analyseAs(choleskies_[0])) {
+                analysisStatus_ = std::min(choleskies_[w].status(), -1);
+                return;
+            }
     }
 
     // GCV: N ||s - Az||^2 / (N - tr H)^2, H = A (A'A + lambda P)^-1 A' the influence matrix. Its
@@ -157,7 +165,7 @@ private:
     Sparse m_, thinPlate_, membrane_;
     double traceM_ = 0, traceThinPlate_ = 0, traceMembrane_ = 0;
     std::array<SparseCholesky, kWorkers> choleskies_;
-    bool analysed_ = false;
+    int analysisStatus_ = 0;  ///< CHOLMOD's, when the analysis failed
     Eigen::MatrixXd probeSums_;  ///< A'U, U Hutchinson's probes over the samples; empty: the exact trace
 };
 
@@ -185,16 +193,21 @@ Solved choosePenalty(FitSystem& system, std::optional<double> givenTension, std:
                    });
         });
         std::vector<Solved> solved(logs.size());
+        std::vector<std::exception_ptr> thrown(logs.size());  // an exception may not leave a parallel region
 #pragma omp parallel for num_threads(kWorkers) schedule(static, 1)
         for (int i = 0; i < static_cast<int>(logs.size()); ++i) {
             Solved& trial = solved[static_cast<size_t>(i)];
-            try {  // an exception may not leave a parallel region
+            try {
                 trial = system.solve({std::pow(10.0, logs[static_cast<size_t>(i)]), tension}, true, i % kWorkers);
             } catch (const std::bad_alloc&) {
                 trial = Solved{};
                 trial.cholmodStatus = SparseCholesky::kOutOfMemory;
+            } catch (...) {
+                thrown[static_cast<size_t>(i)] = std::current_exception();
             }
         }
+        for (const std::exception_ptr& e : thrown)
+            if (e) std::rethrow_exception(e);
         for (size_t i = 0; i < logs.size(); ++i) {
             trials.push_back({std::pow(10.0, logs[i]), tension, solved[i].score, solved[i].traceH});
             if (solved[i].score < best.score) best = std::move(solved[i]), bestLog = logs[i];

@@ -12,24 +12,30 @@ namespace relief::fit {
 static_assert(SparseCholesky::kOutOfMemory == CHOLMOD_OUT_OF_MEMORY);
 
 struct SparseCholesky::Cholmod {
+    /// A solve's solution and workspace, which CHOLMOD reuses while their shape stays: each solve
+    /// of its own, as a fresh 8 MB block (a 129 x 129 net's 64 probes) is paged in anew by the kernel.
+    struct Buffers {
+        cholmod_dense *x = nullptr, *y = nullptr, *e = nullptr;
+    };
+    enum Use { kSolve, kPermuted, kForward, kUses };
+
     cholmod_common common;
     cholmod_factor* factor = nullptr;
-    // Solutions and workspace kept from one solve to the next: a fresh one each time (8 MB for a
-    // 129 x 129 net's probes) was paged in anew, a tenth of a fit's time.
-    std::array<cholmod_dense*, 2> solutions{};
-    cholmod_dense *workY = nullptr, *workE = nullptr;
+    std::array<Buffers, kUses> buffers;
 
-    /// The solution of `system` for b, held in solutions[slot] until that slot solves again; null
+    /// The solution of `system` for b, held in `use`'s buffers until that use solves again; null
     /// when CHOLMOD failed.
-    const cholmod_dense* solve(int system, const cholmod_dense& b, size_t slot) {
+    const cholmod_dense* solve(int system, const cholmod_dense& b, Use use) {
         cholmod_dense in = b;
-        const int done = cholmod_solve2(system, factor, &in, nullptr, &solutions[slot], nullptr, &workY, &workE, &common);
-        return done && common.status >= CHOLMOD_OK ? solutions[slot] : nullptr;
+        Buffers& at = buffers[use];
+        const int done = cholmod_solve2(system, factor, &in, nullptr, &at.x, nullptr, &at.y, &at.e, &common);
+        return done && common.status >= CHOLMOD_OK ? at.x : nullptr;
     }
     void release() {
         if (factor) cholmod_free_factor(&factor, &common);
-        for (cholmod_dense** d : {&solutions[0], &solutions[1], &workY, &workE})
-            if (*d) cholmod_free_dense(d, &common);
+        for (Buffers& b : buffers)
+            for (cholmod_dense** d : {&b.x, &b.y, &b.e})
+                if (*d) cholmod_free_dense(d, &common);
     }
 };
 
@@ -58,7 +64,7 @@ cholmod_sparse lowerView(const Eigen::SparseMatrix<double>& lower) {
 SparseCholesky::SparseCholesky() : cholmod_(std::make_unique<Cholmod>()) {
     cholmod_common& common = cholmod_->common;
     cholmod_start(&common);
-    common.print = 0;  // its warnings went to stdout
+    common.print = 0;  // its warnings would go to stdout
     common.supernodal = CHOLMOD_SIMPLICIAL;
     common.final_asis = 0;
     common.final_ll = 1;  // LL', so that L^-1 alone halves a quadratic form's solve
@@ -89,7 +95,7 @@ bool SparseCholesky::analyse(const Eigen::SparseMatrix<double>& lower) {
 
 bool SparseCholesky::analyseAs(const SparseCholesky& other) {
     if (cholmod_->factor) cholmod_free_factor(&cholmod_->factor, &cholmod_->common);
-    if (!other.cholmod_->factor) return false;
+    if (!other.cholmod_->factor) throw std::logic_error("fit: an analysis copied from none");
     cholmod_->factor = cholmod_copy_factor(other.cholmod_->factor, &cholmod_->common);
     return cholmod_->factor && cholmod_->common.status >= CHOLMOD_OK;
 }
@@ -107,15 +113,15 @@ SparseCholesky::Factorized SparseCholesky::factorize(const Eigen::SparseMatrix<d
 }
 
 Eigen::VectorXd SparseCholesky::solve(const Eigen::VectorXd& b) {
-    const cholmod_dense* x = cholmod_->solve(CHOLMOD_A, denseView(b), 0);
+    const cholmod_dense* x = cholmod_->solve(CHOLMOD_A, denseView(b), Cholmod::kSolve);
     if (!x) return {};
     return Eigen::Map<const Eigen::VectorXd>(static_cast<const double*>(x->x), b.size());
 }
 
 double SparseCholesky::sumOfInverseForms(const Eigen::MatrixXd& b) {
     // b' C^-1 b = b' P' L^-T L^-1 P b = ||L^-1 P b||^2
-    const cholmod_dense* permuted = cholmod_->solve(CHOLMOD_P, denseView(b), 0);
-    const cholmod_dense* y = permuted ? cholmod_->solve(CHOLMOD_L, *permuted, 1) : nullptr;
+    const cholmod_dense* permuted = cholmod_->solve(CHOLMOD_P, denseView(b), Cholmod::kPermuted);
+    const cholmod_dense* y = permuted ? cholmod_->solve(CHOLMOD_L, *permuted, Cholmod::kForward) : nullptr;
     if (!y) return std::numeric_limits<double>::quiet_NaN();
     return Eigen::Map<const Eigen::MatrixXd>(static_cast<const double*>(y->x), b.rows(), b.cols()).squaredNorm();
 }

@@ -189,12 +189,14 @@ struct DenseFit {
     }
 };
 
-// The sparse Cholesky against Eigen's dense one, on a 12 x 12 grid's
-// Laplacian plus a diagonal (lower triangle): its solve; b' C^-1 b summed over
-// columns from L^-1 alone; a second factorization analysed as the first gives
-// the same bits; an indefinite matrix is reported so.
+// The sparse Cholesky against Eigen's dense one, on a 20 x 20 grid's
+// Laplacian plus a diagonal (lower triangle; over CHOLMOD's 200 nodes, so that
+// METIS orders it): its solve; b' C^-1 b summed over columns from L^-1 alone;
+// a second factorization analysed as the first gives the same bits; solves of
+// one and of five columns in turn; an indefinite matrix is reported so, and
+// the next matrix factorizes again.
 TEST(SparseCholesky, SolvesAndQuadraticFormsAreTheDenseOnes) {
-    const int side = 12, n = side * side;
+    const int side = 20, n = side * side;
     std::vector<Eigen::Triplet<double>> t;
     for (int i = 0; i < n; ++i) {
         t.emplace_back(i, i, 4.5 + 0.01 * i);
@@ -216,15 +218,19 @@ TEST(SparseCholesky, SolvesAndQuadraticFormsAreTheDenseOnes) {
     ASSERT_EQ(first.factorize(lower), SparseCholesky::Factorized::ok);
     ASSERT_EQ(second.factorize(lower), SparseCholesky::Factorized::ok);
     const Eigen::VectorXd x = first.solve(b.col(0));
+    ASSERT_EQ(x.size(), n);
     EXPECT_LT((x - reference.solve(Eigen::VectorXd(b.col(0)))).norm(), 1e-12 * x.norm());
     EXPECT_EQ(second.solve(b.col(0)), x);
     const double forms = (b.transpose() * reference.solve(b)).trace();
     EXPECT_NEAR(first.sumOfInverseForms(b), forms, 1e-12 * std::abs(forms));
     EXPECT_EQ(second.sumOfInverseForms(b), first.sumOfInverseForms(b));
+    EXPECT_EQ(first.solve(b.col(0)), x);  // after a solve of five columns
 
     Eigen::SparseMatrix<double> indefinite = lower;
     indefinite.coeffRef(n / 2, n / 2) = -1;
     EXPECT_EQ(first.factorize(indefinite), SparseCholesky::Factorized::notPositiveDefinite);
+    ASSERT_EQ(first.factorize(lower), SparseCholesky::Factorized::ok);
+    EXPECT_EQ(first.solve(b.col(0)), x);
 }
 
 // GCV on 12 samples and a 5 x 5 net, against the formula computed densely.
