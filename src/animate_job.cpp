@@ -139,6 +139,7 @@ struct FilmWork {
     fs::path dir;
     std::vector<plan::RenderPlan> plans;  ///< of the frames kept, in order
     std::vector<size_t> planFrame;        ///< the frame each plan renders
+    bool resumed = false;                 ///< by --resume: the folder is the user's to keep, refused or not
 };
 
 // A compiled terrain's files, hard-linked into a frame's plan (no copy of a 100 MB mesh).
@@ -466,12 +467,12 @@ const WorkingFolderKind kFilmFolder{"the film's working folder", "a film's worki
                                     isFilmFolder};
 
 // The working folder's frames rendered (one alone first: how long it took
-// tells how long the rest will, and [limits] may refuse that), finished,
-// encoded; the film, its sidecar and --frames moved into place, the folder
-// removed. A film not made keeps the folder (outcome.workDir) to resume.
+// tells how long the rest will, and the record's [limits] may refuse that),
+// finished, encoded; the film, its sidecar and --frames moved into place, the
+// folder removed. A film not made keeps the folder (outcome.workDir) to
+// resume; one refused keeps it only when resumed, with the frames rendered.
 void makeFilm(const film::FilmRecord& record, FilmWork& work, const execute::Options& execution,
-              const scene::LimitsSpec* limits, OutputSet& outputs, AnimateOutcome& outcome, Diagnostics& diags,
-              const ProgressFn& progress) {
+              OutputSet& outputs, AnimateOutcome& outcome, Diagnostics& diags, const ProgressFn& progress) {
     outcome.workDir = work.dir;
     const auto r0 = Clock::now();
     size_t probe = 0;
@@ -486,8 +487,9 @@ void makeFilm(const film::FilmRecord& record, FilmWork& work, const execute::Opt
         estimate = estimateFilm(work.plans, probe, outcome.probeSeconds, execution);
         if (progress && estimate.framesLeft > 0)
             progress({ProgressEvent::Stage::Rendering, estimateText(estimate, outcome.probeSeconds, execution), -1});
-        if (limits && !withinFilmLimits(estimate, outcome.probeSeconds, *limits, execution, diags)) {
+        if (!withinFilmLimits(estimate, outcome.probeSeconds, record.limits, execution, diags)) {
             outcome.status = JobStatus::BadInput;
+            if (work.resumed) return;  // to resume again, e.g. with fewer --jobs
             outcome.workDir.clear();  // refused: nothing is kept
             std::error_code ec;
             fs::remove_all(work.dir, ec);
@@ -539,6 +541,7 @@ film::FilmRecord filmRecordOf(const AnimateJob& job, const LoadedScene& base, co
     r.sidecar = fs::absolute(fs::path(film).replace_extension(".json"));
     r.framesDir = job.framesDir.empty() ? fs::path() : fs::absolute(job.framesDir);
     r.filmGiven = !job.output.empty();
+    r.limits = base.scene.limits;
     for (auto& settings : film::frameSettings(base.scene)) r.frames.push_back({std::move(settings)});
     return r;
 }
@@ -614,7 +617,7 @@ AnimateOutcome runAnimateJob(const AnimateJob& job, Diagnostics& diags, const Pr
         if (!named) return outcome;
         work.dir = *named;
         for (auto& p : work.plans) p.dir = work.dir / p.dir.filename();
-        makeFilm(record, work, job.execution, &base->scene.limits, outputs, outcome, diags, progress);
+        makeFilm(record, work, job.execution, outputs, outcome, diags, progress);
     } catch (const std::runtime_error& e) {
         reportFilmFailure(e, outcome, diags);
     }
@@ -639,6 +642,7 @@ AnimateOutcome resumeFilm(const fs::path& workDir, const execute::Options& execu
         outcome.compileSeconds = record->compileSeconds;
         FilmWork work;
         work.dir = fs::absolute(workDir);
+        work.resumed = true;
         for (size_t i = 0; i < record->frames.size(); ++i) {
             if (!record->frames[i].fileNumber) continue;
             auto plan = plan::readPlan(work.dir / film::framePlanName(record->frames[i].settings.number), diags);
@@ -648,7 +652,7 @@ AnimateOutcome resumeFilm(const fs::path& workDir, const execute::Options& execu
         }
         OutputSet outputs;
         declareFilmOutputs(*record, outputs);
-        makeFilm(*record, work, execution, nullptr, outputs, outcome, diags, progress);
+        makeFilm(*record, work, execution, outputs, outcome, diags, progress);
     } catch (const std::runtime_error& e) {
         reportFilmFailure(e, outcome, diags);
     }

@@ -3,6 +3,10 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <array>
+#include <stdexcept>
+
 #include "core/atomic_file.h"
 #include "core/input_file.h"
 #include "film/video.h"
@@ -15,7 +19,7 @@ using nlohmann::ordered_json;
 
 namespace {
 
-constexpr int kFilmRecordFormat = 1;
+constexpr int kFilmRecordFormat = 2;  // 2: the limits
 constexpr size_t kMaxRecordBytes = 64 << 20;  // 10,000 frames of a few keys each fit many times over
 
 ordered_json frameJson(const FilmFrame& f) {
@@ -43,6 +47,34 @@ FilmFrame frameOf(const ordered_json& j) {
     f.fileNumber = j.at("file_number").get<int>();
     f.night = f.fileNumber == 0;
     return f;
+}
+
+// The limits a resumed film is held to, and the scene file's line and column of each the scene set.
+constexpr std::array<const char*, 2> kRecordedLimits = {"limits.max_film_s", "limits.max_memory_mb"};
+
+ordered_json limitsJson(const scene::LimitsSpec& l) {
+    ordered_json setAt = ordered_json::object();
+    for (const char* key : kRecordedLimits)
+        if (l.locs.has(key)) setAt[key] = {l.locs.at(key).line, l.locs.at(key).column};
+    return {{"max_film_s", l.maxFilmS}, {"max_memory_mb", l.maxMemoryMB}, {"set_at", setAt}};
+}
+
+// Throws (as a damaged record) on a key it does not know or a number out of the scene's ranges.
+scene::LimitsSpec limitsOf(const ordered_json& j, const fs::path& scene) {
+    scene::LimitsSpec l;
+    l.maxFilmS = j.at("max_film_s").get<double>();
+    l.maxMemoryMB = j.at("max_memory_mb").get<double>();
+    if (!(l.maxFilmS >= 0 && l.maxFilmS <= 1e9 && l.maxMemoryMB >= 0 && l.maxMemoryMB <= 1e9))
+        throw std::invalid_argument("limits out of range");
+    l.locs.file = scene.string();
+    for (const auto& [key, at] : j.at("set_at").items()) {
+        if (std::find(kRecordedLimits.begin(), kRecordedLimits.end(), key) == kRecordedLimits.end())
+            throw std::invalid_argument("not a recorded limit: " + key);
+        const auto line = at.at(0).get<long long>(), column = at.at(1).get<long long>();
+        if (line < 1 || line > 1e9 || column < 1 || column > 1e9) throw std::invalid_argument("not a place in a file");
+        l.locs.keys[key] = SourceLoc{scene.string(), static_cast<int>(line), static_cast<int>(column)};
+    }
+    return l;
 }
 
 // Frames numbered 1, 2, ... and the kept ones 1, 2, ... in order: what the
@@ -91,6 +123,7 @@ void writeFilmRecord(const FilmRecord& r, const fs::path& dir) {
                             {"film_given", r.filmGiven},
                             {"terrains", r.terrains},
                             {"compile_seconds", r.compileSeconds},
+                            {"limits", limitsJson(r.limits)},
                             {"frames", frames}};
     writeFileAtomically(dir / "film.json", j.dump(1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
 }
@@ -122,8 +155,9 @@ std::optional<FilmRecord> readFilmRecord(const fs::path& dir, Diagnostics& diags
         r.filmGiven = j.at("film_given").get<bool>();
         r.terrains = j.at("terrains").get<int>();
         r.compileSeconds = j.at("compile_seconds").get<double>();
+        r.limits = limitsOf(j.at("limits"), r.scene);
         for (const auto& f : j.at("frames")) r.frames.push_back(frameOf(f));
-    } catch (const std::exception&) {  // nlohmann's, or a sun time that is not one
+    } catch (const std::exception&) {  // nlohmann's, a sun time that is not one, limits out of range
         diags.error(at, "the film's record is damaged (not the JSON relief writes): make the film again");
         return std::nullopt;
     }

@@ -36,13 +36,18 @@ struct FilmRecord {
     int terrains = 0;                  ///< terrains compiled
     double compileSeconds = 0;
     std::vector<FilmFrame> frames;     ///< every frame, kept or left out, in film order
+    /// The scene's limits.max_film_s and limits.max_memory_mb, and where it set
+    /// them: what --resume holds the frames still to render to (its other
+    /// limits were the compile's, done).
+    scene::LimitsSpec limits;
 };
 
 /// Writes `record` as `dir`/film.json (atomically).
 void writeFilmRecord(const FilmRecord& record, const std::filesystem::path& dir);
 
 /// The record in `dir`, or nullopt with an error naming film.json and what is
-/// wrong (missing, not a film's, damaged, frames out of order).
+/// wrong (missing, not a film's, damaged, frames out of order, limits out of
+/// the scene's ranges).
 std::optional<FilmRecord> readFilmRecord(const std::filesystem::path& dir, Diagnostics& diags);
 
 }  // namespace relief::film

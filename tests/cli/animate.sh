@@ -2,7 +2,7 @@
 # relief animate: frame k of a film is byte for byte relief render of the scene with that frame's
 # keys (an orbit; the sun through a morning with a key varied); the same scene gives the same MP4,
 # WebM and GIF bytes, as one tile or as tiles on two processes; the MP4 is H.264 yuv420p with its
-# index in front; nights are skipped or named; bad input (no [animation], an unknown film type, a
+# index in front; nights are skipped or named; --resume holds what is left to the scene's [limits]; bad input (no [animation], an unknown film type, a
 # window all at night, an output that cannot be written) and a missing ffmpeg leave nothing.
 # Usage: animate.sh RELIEF SOURCE_DIR WORK_DIR
 . "$(dirname "$0")/lib.sh" "$@"
@@ -120,7 +120,30 @@ mkdir -p notafilm
 [ $code = 2 ] || fail "--resume of a folder that is no film's: exit $code"
 grep -qF "notafilm/film.json: error: not a film's working folder (no film.json)" notafilm.txt || { fail "--resume notafilm:"; cat notafilm.txt; }
 
-# 2c. A frame counter in the subtitle: frame 2 is relief render with its keys.
+# 2c. --resume holds the frames still to render to the scene's [limits]. A film whose first frame's
+# POV-Ray failed (a povray on PATH that always fails) keeps its folder; resumed, it is refused by
+# limits.max_film_s at the scene's own line, exit 2, and the folder is kept, the frame rendered,
+# to be resumed again. A record whose limits are out of the scene's ranges is damaged.
+mkdir -p failing
+printf '#!/bin/sh\n[ "$1" = --version ] && exec %s "$@"\necho "povray: this one always fails" >&2\nexit 1\n' \
+  "$(command -v povray)" > failing/povray && chmod +x failing/povray
+{ cat six.toml; printf '[limits]\nmax_film_s = 0.01\n'; } > limited.toml
+line=$(grep -n '^max_film_s' limited.toml | cut -d: -f1)
+PATH="$work/failing:$PATH" "$relief" animate -q limited.toml -o lim/six.mp4 --no-sandbox 2> lim1.txt; code=$?
+[ $code = 3 ] || { fail "a film whose POV-Ray fails: exit $code, expected 3"; cat lim1.txt; }
+only "six.film " lim
+"$relief" animate -q --resume lim/six.film 2> lim2.txt; code=$?
+[ $code = 2 ] || { fail "--resume over limits.max_film_s: exit $code, expected 2"; cat lim2.txt; }
+grep -qE "^limited.toml:$line:[0-9]+: error: the film would take about [0-9.]+ s to render .*> limits.max_film_s = 0.01" lim2.txt ||
+  { fail "--resume over limits.max_film_s: not refused at the scene's key:"; cat lim2.txt; }
+only "six.film " lim
+[ -e lim/six.film/frame-00001.plan/tiles/tile-0000.png ] || fail "refused on --resume, the frame it rendered was not kept"
+sed -i 's/"max_film_s": 0.01/"max_film_s": -1/' lim/six.film/film.json
+"$relief" animate -q --resume lim/six.film 2> lim3.txt; code=$?
+[ $code = 2 ] && grep -q "film.json: error: the film's record is damaged" lim3.txt ||
+  { fail "a record with max_film_s = -1: exit $code"; cat lim3.txt; }
+
+# 2d. A frame counter in the subtitle: frame 2 is relief render with its keys.
 sed -e 's/^frames = 4/frames = 2/' -e 's/^path = "orbit"/path = "orbit"\ncounter = true/' orbit.toml > counter.toml
 "$relief" animate -q counter.toml -o counter/c.mp4 --frames counter/frames || fail "the film with a counter"
 grep -q '"overlay.subtitle": "\\"frame 2 of 2\\""' counter/c.json || fail "the counter is not frame 2's subtitle"

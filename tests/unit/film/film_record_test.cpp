@@ -22,6 +22,8 @@ FilmRecord aRecord(const std::filesystem::path& out) {
     r.filmGiven = true;
     r.terrains = 2;
     r.compileSeconds = 1.25;
+    r.limits.maxFilmS = 600;
+    r.limits.locs.keys["limits.max_film_s"] = SourceLoc{"films/orbit.toml", 14, 14};
     for (int k = 1; k <= 3; ++k) {
         FilmFrame f;
         f.settings.number = k;
@@ -55,6 +57,15 @@ TEST(FilmRecord, ReadsBackWhatWasWritten) {
     EXPECT_EQ(read->framesDir, written.framesDir);
     EXPECT_TRUE(read->filmGiven);
     EXPECT_EQ(read->terrains, 2);
+    // The limits --resume holds the rest to, and where the scene set them: its errors point there.
+    EXPECT_EQ(read->limits.maxFilmS, 600);
+    EXPECT_EQ(read->limits.maxMemoryMB, 0);
+    const SourceLoc filmLimit = read->limits.locs.at("limits.max_film_s");
+    EXPECT_EQ(filmLimit.file, "films/orbit.toml");
+    EXPECT_EQ(filmLimit.line, 14);
+    EXPECT_EQ(filmLimit.column, 14);
+    EXPECT_FALSE(read->limits.locs.has("limits.max_memory_mb"));
+    EXPECT_EQ(read->limits.locs.at("limits.max_memory_mb").file, "films/orbit.toml");
     ASSERT_EQ(read->frames.size(), 3u);
     for (size_t i = 0; i < 3; ++i) {
         const FilmFrame &a = written.frames[i], &b = read->frames[i];
@@ -120,6 +131,17 @@ TEST(FilmRecord, RefusesWhatIsNotAWholeRecord) {
         EXPECT_FALSE(readFilmRecord(dir, foreign)) << r.film << " " << r.sidecar;
         ASSERT_EQ(foreign.errorCount(), 1);
         EXPECT_NE(foreign.all().front().message.find("not this folder's"), std::string::npos);
+    }
+    // Limits out of the scene's ranges, or a place that is none.
+    FilmRecord negative = aRecord(out), nowhere = aRecord(out);
+    negative.limits.maxMemoryMB = -5;
+    nowhere.limits.locs.keys["limits.max_film_s"].line = 0;
+    for (const FilmRecord& r : {negative, nowhere}) {
+        writeFilmRecord(r, dir);
+        Diagnostics limits;
+        EXPECT_FALSE(readFilmRecord(dir, limits));
+        ASSERT_EQ(limits.errorCount(), 1);
+        EXPECT_NE(limits.all().front().message.find("damaged"), std::string::npos);
     }
     writeFilmRecord(aRecord(out), dir);
     Diagnostics own;
