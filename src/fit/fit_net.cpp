@@ -29,7 +29,8 @@ using Sparse = Eigen::SparseMatrix<double>;
 constexpr int kExactTraceNodes = 400;  // up to this many nodes the trace is exact
 constexpr int kRefinementSteps = 3;
 constexpr int kWorkers = 2;            // penalties tried at once, each with its own factorization
-constexpr double kTriedTension = 1;    // tried beside none, when the scene gives no tension
+// The tensions tried beside none when the scene gives no tension: powers of two, from 1 outwards.
+constexpr double kFirstTension = 1, kLeastTension = 0.25, kGreatestTension = 8;
 
 // A symmetric matrix stored as its lower triangle, times a vector.
 Eigen::VectorXd timesSymmetric(const Sparse& lower, const Eigen::VectorXd& v) {
@@ -175,9 +176,12 @@ private:
 // step either side of the best so far, the step halved each round, down to a
 // third of a decade (a GCV minimum is that flat). Then, unless the scene gives
 // the tension, tension 1 at the best smoothing and a third of a decade below
-// (a membrane's pull lowers the best smoothing, if anything), and if it wins,
-// a third of a decade either side of its best: on rough terrain it does, where
-// between samples the thin plate alone overshoots. A round's two trials run at
+// (a membrane's pull lowers the best smoothing, if anything); while that wins,
+// twice the tension (up to 8), and if it lost, half (down to 1/4) while that
+// wins, each at the best smoothing and a third of a decade below. On rough
+// terrain a tension wins, where between samples the thin plate alone
+// overshoots (held-out topobathy: 1/2 to 2; a smooth volcano: none, or 1/2
+// between clusters). A round's two trials run at
 // once, one on each worker; the points tried do not depend on how many cores
 // there are, so neither does the choice. Every trial is recorded; the best
 // one's solution is kept.
@@ -219,8 +223,13 @@ Solved choosePenalty(FitSystem& system, std::optional<double> givenTension, std:
     round({-6 + 2 * kStep, 2}, tension);
     for (double half = kStep / 2; half > kFinest - 1e-9; half /= 2) round({bestLog - half, bestLog + half}, tension);
     if (givenTension || best.z.size() == 0) return best;
-    round({bestLog, bestLog - kFinest}, kTriedTension);
-    if (best.penalty.tension == kTriedTension) round({bestLog - kFinest, bestLog + kFinest}, kTriedTension);
+    round({bestLog, bestLog - kFinest}, kFirstTension);
+    const double factor = best.penalty.tension == kFirstTension ? 2 : 0.5;
+    for (double t = kFirstTension * factor; t >= kLeastTension && t <= kGreatestTension; t *= factor) {
+        const double bestBefore = best.score;
+        round({bestLog, bestLog - kFinest}, t);
+        if (!(best.score < bestBefore)) break;
+    }
     return best;
 }
 

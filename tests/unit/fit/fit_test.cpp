@@ -9,6 +9,7 @@
 #include <Eigen/Dense>
 
 #include <cmath>
+#include <map>
 #include <random>
 #include <thread>
 
@@ -293,6 +294,54 @@ TEST(FitNet, CrossValidationTracesHoldForCloseFits) {
     EXPECT_LT(closest, 0.05 * n);  // the search reached fits close to interpolation, where the old estimate failed
     EXPECT_LE(chosenByFormula, 1.2 * leastByFormula);
     EXPECT_GT(report->smoothing, smallest);
+}
+
+// Without net.tension, after the smoothing's search at none: tension 1, then
+// twice it (or, if 1 lost, half) only while the last tension tried won, within
+// 1/4 .. 8, two trials each; the penalty kept is the least score of all. On a
+// smooth surface the search goes down (none chosen), on one with sharp ridges
+// between the samples up (2 chosen).
+TEST(FitNet, TensionsAreTriedOutwardsWhileTheyWin) {
+    const subdiv::Scheme scheme = schemeNamed("dlg4");
+    for (const double roughness : {0.0, 40.0}) {
+        std::mt19937 rng(11);
+        std::normal_distribution<double> noise(0, 1);
+        const std::vector<Vec3> samples = scattered(150, 3, 200, 0.5, [&](double x, double y) {
+            return 20 * std::sin(x / 40) * std::cos(y / 55) + roughness * std::abs(std::sin(x / 7 + y / 5)) + 0.01 * noise(rng);
+        });
+        geo::ControlNet net = netOf(21, 21, [](int, int) { return 0.0; });
+        Diagnostics diags;
+        const auto report = fitNet(scheme, 1, samples, scene::NetSpec{}, net, diags);
+        ASSERT_TRUE(report);
+        std::vector<double> tensions;  // in the order first tried, none left out
+        std::map<double, std::pair<double, int>> atTension;  // least score, trials
+        double least = 1e300;
+        for (const GcvTrial& t : report->gcv) {
+            if (!atTension.count(t.tension)) tensions.push_back(t.tension), atTension[t.tension] = {1e300, 0};
+            auto& [score, trials] = atTension[t.tension];
+            score = std::min(score, t.score), ++trials, least = std::min(least, t.score);
+        }
+        ASSERT_GE(tensions.size(), 3u) << roughness;  // none, 1, and 2 or 1/2
+        EXPECT_EQ(tensions[0], 0);
+        EXPECT_EQ(tensions[1], 1);
+        const double factor = tensions[2] / tensions[1];
+        ASSERT_TRUE(factor == 2 || factor == 0.5) << tensions[2];
+        EXPECT_EQ(factor, roughness > 0 ? 2 : 0.5);  // both ways: the ridged surface wants a tension, the smooth one none
+        EXPECT_EQ(factor == 2, atTension[1].first < atTension[0].first) << roughness;
+        double bestBefore = std::min(atTension[0].first, atTension[1].first);
+        for (size_t i = 2; i < tensions.size(); ++i) {
+            const double t = tensions[i];
+            EXPECT_DOUBLE_EQ(t, tensions[i - 1] * factor);
+            EXPECT_TRUE(atTension[t].second == 2 || (atTension[t].second == 1 && report->smoothing < 2e-6))
+                << t;  // at the least smoothing tried, a third of a decade below is out of the range
+            EXPECT_TRUE(t >= 0.25 && t <= 8) << t;
+            const bool won = atTension[t].first < bestBefore;
+            if (i + 1 < tensions.size()) EXPECT_TRUE(won) << "went on after tension " << t << " lost";
+            else EXPECT_TRUE(!won || t * factor < 0.25 || t * factor > 8) << "stopped while tension " << t << " won";
+            bestBefore = std::min(bestBefore, atTension[t].first);
+        }
+        EXPECT_EQ(atTension[report->tension].first, least);
+    }
 }
 
 // The smoothing chosen by GCV with Hutchinson's probes (over 400 nodes), two
