@@ -317,15 +317,19 @@ std::string estimateText(const FilmEstimate& e, double probeSeconds, const execu
 }
 
 // [limits] against the estimate: the film's rendering time, and the memory its POV-Rays hold at once here.
+// A resumed film's limits and frames are its record's: only where it renders can change.
 bool withinFilmLimits(const FilmEstimate& e, double probeSeconds, const scene::LimitsSpec& limits,
-                      const execute::Options& execution, Diagnostics& diags) {
+                      const execute::Options& execution, bool resumed, Diagnostics& diags) {
     const double total = probeSeconds + e.secondsLeft;
     if (limits.maxFilmS > 0 && total > limits.maxFilmS) {
         diags.error(limits.locs.at("limits.max_film_s"),
                     fmt::format("the film would take about {:.0f} s to render (a frame {:.1f} s, {} more) > "
-                                "limits.max_film_s = {}: raise the limit, render fewer or smaller frames "
-                                "(animation.frames, render.width), or share them out (--jobs, --executor slurm)",
-                                total, probeSeconds, e.framesLeft, formatShortest(limits.maxFilmS)));
+                                "limits.max_film_s = {}: {}",
+                                total, probeSeconds, e.framesLeft, formatShortest(limits.maxFilmS),
+                                resumed ? "share the rest out (--jobs, --executor slurm), or make the film again "
+                                          "with a higher limit"
+                                        : "raise the limit, render fewer or smaller frames (animation.frames, "
+                                          "render.width), or share them out (--jobs, --executor slurm)"));
         return false;
     }
     const double budgetMB = limits.maxMemoryMB > 0 ? limits.maxMemoryMB : subdiv::defaultMemoryBudgetMB();
@@ -487,7 +491,7 @@ void makeFilm(const film::FilmRecord& record, FilmWork& work, const execute::Opt
         estimate = estimateFilm(work.plans, probe, outcome.probeSeconds, execution);
         if (progress && estimate.framesLeft > 0)
             progress({ProgressEvent::Stage::Rendering, estimateText(estimate, outcome.probeSeconds, execution), -1});
-        if (!withinFilmLimits(estimate, outcome.probeSeconds, record.limits, execution, diags)) {
+        if (!withinFilmLimits(estimate, outcome.probeSeconds, record.limits, execution, work.resumed, diags)) {
             outcome.status = JobStatus::BadInput;
             if (work.resumed) return;  // to resume again, e.g. with fewer --jobs
             outcome.workDir.clear();  // refused: nothing is kept

@@ -6,9 +6,8 @@
 #include "cli/cli_common.h"
 #include "relief/version.h"
 
-using namespace relief::cli;
-
 int main(int argc, char** argv) {
+    using namespace relief::cli;  // in main alone: relief's command files are compiled as one
     if (argc > 1 && isImageCommand(argv[1])) return runImageHelper(argc, argv);
 
     CLI::App app{fmt::format(

@@ -19,7 +19,7 @@ using nlohmann::ordered_json;
 
 namespace {
 
-constexpr int kFilmRecordFormat = 2;  // 2: the limits
+constexpr int kFilmRecordFormat = 2;  // a record without the limits (format 1) is another relief's
 constexpr size_t kMaxRecordBytes = 64 << 20;  // 10,000 frames of a few keys each fit many times over
 
 ordered_json frameJson(const FilmFrame& f) {
@@ -64,14 +64,15 @@ scene::LimitsSpec limitsOf(const ordered_json& j, const fs::path& scene) {
     scene::LimitsSpec l;
     l.maxFilmS = j.at("max_film_s").get<double>();
     l.maxMemoryMB = j.at("max_memory_mb").get<double>();
-    if (!(l.maxFilmS >= 0 && l.maxFilmS <= 1e9 && l.maxMemoryMB >= 0 && l.maxMemoryMB <= 1e9))
-        throw std::invalid_argument("limits out of range");
+    const bool memoryInRange = l.maxMemoryMB == 0 || (l.maxMemoryMB >= 1 && l.maxMemoryMB <= 1e9);  // 0: the default
+    if (!(l.maxFilmS >= 0 && l.maxFilmS <= 1e9 && memoryInRange)) throw std::invalid_argument("limits out of range");
     l.locs.file = scene.string();
     for (const auto& [key, at] : j.at("set_at").items()) {
         if (std::find(kRecordedLimits.begin(), kRecordedLimits.end(), key) == kRecordedLimits.end())
             throw std::invalid_argument("not a recorded limit: " + key);
+        // Line 0: set by --set, on the command line, not in the file.
         const auto line = at.at(0).get<long long>(), column = at.at(1).get<long long>();
-        if (line < 1 || line > 1e9 || column < 1 || column > 1e9) throw std::invalid_argument("not a place in a file");
+        if (line < 0 || line > 1e9 || column < 0 || column > 1e9) throw std::invalid_argument("not a place in a file");
         l.locs.keys[key] = SourceLoc{scene.string(), static_cast<int>(line), static_cast<int>(column)};
     }
     return l;

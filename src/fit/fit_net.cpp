@@ -181,10 +181,9 @@ private:
 // wins, each at the best smoothing and a third of a decade below. On rough
 // terrain a tension wins, where between samples the thin plate alone
 // overshoots (held-out topobathy: 1/2 to 2; a smooth volcano: none, or 1/2
-// between clusters). A round's two trials run at
-// once, one on each worker; the points tried do not depend on how many cores
-// there are, so neither does the choice. Every trial is recorded; the best
-// one's solution is kept.
+// between clusters). A round's two trials run at once, one on each worker;
+// the points tried do not depend on how many cores there are, so neither does
+// the choice. Every trial is recorded; the best one's solution is kept.
 Solved choosePenalty(FitSystem& system, std::optional<double> givenTension, std::vector<GcvTrial>& trials) {
     Solved best;
     double bestLog = 0;  // of the best trial's smoothing

@@ -9,7 +9,8 @@
 // d / t the surface is pulled flat rather than carried on by its slope;
 // lambda from `smoothing` (dimensionless: lambda = smoothing tr(A'A) / tr(P)).
 // The smoothing given (the tension then 0 unless given too) or chosen by
-// generalized cross-validation, with the tension (given, or 0 or 1). The normal equations are
+// generalized cross-validation, with the tension (given, or chosen among 0 and
+// the powers of two from 1/4 to 8). The normal equations are
 // solved by CHOLMOD's simplicial Cholesky in nested-dissection order (no BLAS:
 // the same bits on every machine with the same SuiteSparse and METIS).
 #include <optional>

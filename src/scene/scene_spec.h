@@ -139,8 +139,9 @@ struct NetSpec {
     /// samples (dimensionless); unset: chosen by generalized cross-validation.
     std::optional<double> smoothing;
     /// gridding = "fit": the membrane's pull against the thin plate, in the
-    /// samples' mean spacing (dimensionless, 0: none); unset: 0 or 1, whichever
-    /// generalized cross-validation scores lower (0 when smoothing is given).
+    /// samples' mean spacing (dimensionless, 0: none); unset: chosen by
+    /// generalized cross-validation among 0 and the powers of two from 1/4 to 8
+    /// (0 when smoothing is given).
     std::optional<double> tension;
     /// The net prefiltered so that the scheme's surface passes through the
     /// net's own values at its nodes (an approximating scheme keeps the

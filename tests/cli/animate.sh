@@ -2,8 +2,9 @@
 # relief animate: frame k of a film is byte for byte relief render of the scene with that frame's
 # keys (an orbit; the sun through a morning with a key varied); the same scene gives the same MP4,
 # WebM and GIF bytes, as one tile or as tiles on two processes; the MP4 is H.264 yuv420p with its
-# index in front; nights are skipped or named; --resume holds what is left to the scene's [limits]; bad input (no [animation], an unknown film type, a
-# window all at night, an output that cannot be written) and a missing ffmpeg leave nothing.
+# index in front; nights are skipped or named; --resume holds what is left to the scene's [limits];
+# bad input (no [animation], an unknown film type, a window all at night, an output that cannot be
+# written) and a missing ffmpeg leave nothing.
 # Usage: animate.sh RELIEF SOURCE_DIR WORK_DIR
 . "$(dirname "$0")/lib.sh" "$@"
 needs_povray
@@ -134,10 +135,15 @@ PATH="$work/failing:$PATH" "$relief" animate -q limited.toml -o lim/six.mp4 --no
 only "six.film " lim
 "$relief" animate -q --resume lim/six.film 2> lim2.txt; code=$?
 [ $code = 2 ] || { fail "--resume over limits.max_film_s: exit $code, expected 2"; cat lim2.txt; }
-grep -qE "^limited.toml:$line:[0-9]+: error: the film would take about [0-9.]+ s to render .*> limits.max_film_s = 0.01" lim2.txt ||
+grep -qE "^limited.toml:$line:[0-9]+: error: the film would take about [0-9.]+ s to render .*> limits.max_film_s = 0.01: share the rest out" lim2.txt ||
   { fail "--resume over limits.max_film_s: not refused at the scene's key:"; cat lim2.txt; }
 only "six.film " lim
 [ -e lim/six.film/frame-00001.plan/tiles/tile-0000.png ] || fail "refused on --resume, the frame it rendered was not kept"
+# The same limit given by --set: kept with the film, told at the scene file.
+PATH="$work/failing:$PATH" "$relief" animate -q six.toml --set limits.max_film_s=0.01 -o limset/six.mp4 --no-sandbox 2> /dev/null
+"$relief" animate -q --resume limset/six.film 2> limset.txt; code=$?
+[ $code = 2 ] && grep -q "^six.toml: error: the film would take about .*> limits.max_film_s = 0.01" limset.txt ||
+  { fail "--resume over a limits.max_film_s given by --set: exit $code"; cat limset.txt; }
 sed -i 's/"max_film_s": 0.01/"max_film_s": -1/' lim/six.film/film.json
 "$relief" animate -q --resume lim/six.film 2> lim3.txt; code=$?
 [ $code = 2 ] && grep -q "film.json: error: the film's record is damaged" lim3.txt ||

@@ -23,7 +23,9 @@ FilmRecord aRecord(const std::filesystem::path& out) {
     r.terrains = 2;
     r.compileSeconds = 1.25;
     r.limits.maxFilmS = 600;
+    r.limits.maxMemoryMB = 900;
     r.limits.locs.keys["limits.max_film_s"] = SourceLoc{"films/orbit.toml", 14, 14};
+    r.limits.locs.keys["limits.max_memory_mb"] = SourceLoc{"films/orbit.toml", 0, 0};  // by --set
     for (int k = 1; k <= 3; ++k) {
         FilmFrame f;
         f.settings.number = k;
@@ -59,13 +61,22 @@ TEST(FilmRecord, ReadsBackWhatWasWritten) {
     EXPECT_EQ(read->terrains, 2);
     // The limits --resume holds the rest to, and where the scene set them: its errors point there.
     EXPECT_EQ(read->limits.maxFilmS, 600);
-    EXPECT_EQ(read->limits.maxMemoryMB, 0);
+    EXPECT_EQ(read->limits.maxMemoryMB, 900);
     const SourceLoc filmLimit = read->limits.locs.at("limits.max_film_s");
     EXPECT_EQ(filmLimit.file, "films/orbit.toml");
     EXPECT_EQ(filmLimit.line, 14);
     EXPECT_EQ(filmLimit.column, 14);
-    EXPECT_FALSE(read->limits.locs.has("limits.max_memory_mb"));
-    EXPECT_EQ(read->limits.locs.at("limits.max_memory_mb").file, "films/orbit.toml");
+    const SourceLoc memoryLimit = read->limits.locs.at("limits.max_memory_mb");
+    EXPECT_EQ(memoryLimit.file, "films/orbit.toml");
+    EXPECT_EQ(memoryLimit.line, 0);
+    // A limit the scene did not set: the scene file itself.
+    FilmRecord unset = written;
+    unset.limits = scene::LimitsSpec{};
+    writeFilmRecord(unset, dir);
+    const auto readUnset = readFilmRecord(dir, diags);
+    ASSERT_TRUE(readUnset);
+    EXPECT_FALSE(readUnset->limits.locs.has("limits.max_film_s"));
+    EXPECT_EQ(readUnset->limits.locs.at("limits.max_film_s").file, "films/orbit.toml");
     ASSERT_EQ(read->frames.size(), 3u);
     for (size_t i = 0; i < 3; ++i) {
         const FilmFrame &a = written.frames[i], &b = read->frames[i];
@@ -135,7 +146,7 @@ TEST(FilmRecord, RefusesWhatIsNotAWholeRecord) {
     // Limits out of the scene's ranges, or a place that is none.
     FilmRecord negative = aRecord(out), nowhere = aRecord(out);
     negative.limits.maxMemoryMB = -5;
-    nowhere.limits.locs.keys["limits.max_film_s"].line = 0;
+    nowhere.limits.locs.keys["limits.max_film_s"].line = -3;
     for (const FilmRecord& r : {negative, nowhere}) {
         writeFilmRecord(r, dir);
         Diagnostics limits;

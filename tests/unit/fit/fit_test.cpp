@@ -341,6 +341,7 @@ TEST(FitNet, TensionsAreTriedOutwardsWhileTheyWin) {
             bestBefore = std::min(bestBefore, atTension[t].first);
         }
         EXPECT_EQ(atTension[report->tension].first, least);
+        EXPECT_EQ(report->tension, roughness > 0 ? 2 : 0);
     }
 }
 
