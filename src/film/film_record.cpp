@@ -55,7 +55,7 @@ constexpr std::array<const char*, 2> kRecordedLimits = {"limits.max_film_s", "li
 ordered_json limitsJson(const scene::LimitsSpec& l) {
     ordered_json setAt = ordered_json::object();
     for (const char* key : kRecordedLimits)
-        if (l.locs.has(key)) setAt[key] = {l.locs.at(key).line, l.locs.at(key).column};
+        if (const auto at = l.locs.keys.find(key); at != l.locs.keys.end()) setAt[key] = {at->second.line, at->second.column};
     return {{"max_film_s", l.maxFilmS}, {"max_memory_mb", l.maxMemoryMB}, {"set_at", setAt}};
 }
 

@@ -122,15 +122,12 @@ private:
     void analyse() {
         static std::mutex ordering;
         const std::lock_guard<std::mutex> lock(ordering);
-        if (!choleskies_[0].analyse(m_)) {
-            analysisStatus_ = std::min(choleskies_[0].status(), -1);
+        for (SparseCholesky& cholesky : choleskies_) {
+            const bool first = &cholesky == &choleskies_[0];
+            if (first ? cholesky.analyse(m_) : cholesky.analyseAs(choleskies_[0])) continue;
+            analysisStatus_ = std::min(cholesky.status(), -1);
             return;
         }
-        for (size_t w = 1; w < choleskies_.size(); ++w)
-            if (!choleskies_[w].analyseAs(choleskies_[0])) {
-                analysisStatus_ = std::min(choleskies_[w].status(), -1);
-                return;
-            }
     }
 
     // GCV: N ||s - Az||^2 / (N - tr H)^2, H = A (A'A + lambda P)^-1 A' the influence matrix. Its
