@@ -5,7 +5,6 @@
 #include "animate_job.h"
 
 #include <algorithm>
-#include <chrono>
 #include <map>
 #include <thread>
 
@@ -15,6 +14,7 @@
 #include "animate_flyover.h"
 #include "core/atomic_file.h"
 #include "core/number_format.h"
+#include "core/stopwatch.h"
 #include "core/text_escape.h"
 #include "relief/version.h"
 #include "subdiv/budget.h"
@@ -24,11 +24,6 @@ namespace relief {
 namespace fs = std::filesystem;
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double secondsSince(Clock::time_point t0) {
-    return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 // "camera.azimuth_deg=90 lighting.datetime=..." : a frame's keys as --set takes them.
 std::string setsText(const scene::SceneOverrides& overrides) {

@@ -9,6 +9,7 @@
 #include "core/atomic_file.h"
 #include "core/date_time.h"
 #include "core/number_format.h"
+#include "core/stopwatch.h"
 #include "core/text_escape.h"
 #include "emit/adaptive_mesh.h"
 #include "emit/sky_light.h"
@@ -25,9 +26,6 @@
 namespace relief {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 // The sun: the scene's angles, or where it stood at [lighting] datetime over
 // the terrain's centre. The scene's axes are the frame's grid, whose north is

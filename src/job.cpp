@@ -3,7 +3,6 @@
 // (core/output_set.h), the plan kept when the render does not finish.
 #include <unistd.h>
 
-#include <chrono>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -11,6 +10,7 @@
 #include "core/atomic_file.h"
 #include "core/input_file.h"
 #include "core/png_file.h"
+#include "core/stopwatch.h"
 #include "core/text_escape.h"
 #include "pipeline.h"
 #include "render/tiles.h"
@@ -21,9 +21,6 @@ namespace relief {
 namespace fs = std::filesystem;
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 // The scene's [render] output, else out/<scene stem> with the extension.
 fs::path defaultOutput(const fs::path& scenePath, const std::string& sceneOutput, const char* extension) {

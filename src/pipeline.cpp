@@ -1,6 +1,5 @@
 #include "pipeline.h"
 
-#include <chrono>
 #include <cmath>
 #include <numbers>
 
@@ -11,6 +10,7 @@
 #include "core/date_time.h"
 #include "core/number_format.h"
 #include "core/png_file.h"
+#include "core/stopwatch.h"
 #include "emit/adaptive_mesh.h"
 #include "emit/block_base.h"
 #include "emit/camera.h"
@@ -26,15 +26,6 @@
 #include "subdiv/refine.h"
 
 namespace relief {
-
-namespace {
-
-using Clock = std::chrono::steady_clock;
-double secondsSince(Clock::time_point t0) {
-    return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
-}  // namespace
 
 std::string depthLabel(const scene::SubdivisionSpec& sub) {
     if (sub.depthAuto) return fmt::format("depth auto (tolerance_m = {})", formatShortest(sub.toleranceM));

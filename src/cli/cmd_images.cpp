@@ -1,18 +1,17 @@
 #include "cli/cli_common.h"
 
 // relief diff, relief test, relief sweep: images compared, regression runs, contact sheets.
-#include <chrono>
 #include <cmath>
 #include <iostream>
 #include <memory>
 
 #include <fmt/format.h>
-
-#include "core/text_escape.h"
 #include <nlohmann/json.hpp>
 
 #include "compare/compare_images.h"
 #include "core/number_format.h"
+#include "core/stopwatch.h"
+#include "core/text_escape.h"
 #include "figures/sweep.h"
 #include "pipeline.h"
 #include "regress/regress.h"
@@ -153,7 +152,7 @@ int runTest(const TestOptions& o) {
     ro.execution.jobs = o.execution.executor == "slurm" ? o.jobs : 0;
     // Slurm's job folder beside the report, where the paths its messages name stay true.
     ro.execution.jobDir = report.path().parent_path() / (report.path().filename().string() + ".slurm");
-    const auto t0 = std::chrono::steady_clock::now();
+    const auto t0 = Clock::now();
     std::cout << fmt::format("relief test: {} cases from {}, {} render{} at a time\n",
                              manifest->cases.size(), o.manifest, o.jobs, o.jobs == 1 ? "" : "s");
     auto results = relief::regress::runCases(
@@ -167,7 +166,7 @@ int runTest(const TestOptions& o) {
         std::cerr << "relief test: interrupted; no report written\n";
         return code(Exit::Interrupted);
     }
-    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double wall = secondsSince(t0);
     relief::regress::writeReport(*manifest, results, ro, wall);
     try {
         report.publish();

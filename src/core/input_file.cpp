@@ -10,6 +10,8 @@
 
 #include <fmt/format.h>
 
+#include "core/file_descriptor.h"
+
 namespace relief {
 
 namespace {
@@ -32,14 +34,6 @@ std::string openProblem(int err) {
     if (err == ENOENT) return "no such file";
     return fmt::format("it cannot be opened: {}", std::strerror(err));
 }
-
-// The file closed on every path out.
-struct Fd {
-    int fd = -1;
-    ~Fd() {
-        if (fd >= 0) ::close(fd);
-    }
-};
 
 }  // namespace
 

@@ -17,6 +17,7 @@
 #include <fmt/format.h>
 
 #include "core/atomic_file.h"
+#include "core/file_descriptor.h"
 #include "core/input_file.h"
 #include "core/text_escape.h"
 
@@ -98,17 +99,6 @@ public:
 
 private:
     int fd_;
-};
-
-// An open file, closed on every path out.
-struct Fd {
-    int fd = -1;
-    explicit Fd(int f) : fd(f) {}
-    Fd(Fd&& o) noexcept : fd(o.fd) { o.fd = -1; }
-    Fd(const Fd&) = delete;
-    ~Fd() {
-        if (fd >= 0) ::close(fd);
-    }
 };
 
 // A folder owned by this user, a real folder (not a link), holding relief's owner file.

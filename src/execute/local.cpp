@@ -3,20 +3,19 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <map>
 #include <mutex>
 #include <thread>
 
 #include <fmt/format.h>
 
+#include "core/stopwatch.h"
 #include "render/tiles.h"
 
 namespace relief::execute {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
 
 }  // namespace
 
@@ -60,7 +59,7 @@ Result runLocal(const std::vector<Task>& tasks, const std::vector<const plan::Re
                 continue;
             }
             ++done;
-            if (progress) progress({done, tasks.size(), std::chrono::duration<double>(Clock::now() - t0).count()});
+            if (progress) progress({done, tasks.size(), secondsSince(t0)});
         }
     };
     std::vector<std::thread> threads;

@@ -15,6 +15,7 @@
 
 #include "core/atomic_file.h"
 #include "core/input_file.h"
+#include "core/stopwatch.h"
 #include "core/text_escape.h"
 #include "execute/command.h"
 #include "execute/local.h"
@@ -24,7 +25,6 @@ namespace relief::execute {
 namespace {
 
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
 
 // The states a task of an array ends in (squeue's long names).
 bool finalState(const std::string& s) {
@@ -177,7 +177,7 @@ Result runSlurm(const std::vector<Task>& tasks, const std::vector<const plan::Re
             completed += result.taskErrors[i].empty();
             if (options.onTaskDone) options.onTaskDone(i, result.taskErrors[i]);
             if (progress && result.taskErrors[i].empty())
-                progress({completed, tasks.size(), std::chrono::duration<double>(Clock::now() - t0).count()});
+                progress({completed, tasks.size(), secondsSince(t0)});
             // A still cannot be made without every tile: the rest of the array is cancelled.
             if (!result.taskErrors[i].empty() && options.stopOnFailure) {
                 runCommand({"scancel", job});

@@ -7,7 +7,6 @@
 #include <stdexcept>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <exception>
@@ -16,6 +15,7 @@
 #include <fmt/format.h>
 #include <nanoflann.hpp>
 
+#include "core/stopwatch.h"
 #include "fit/basis.h"
 #include "fit/normal_equations.h"
 #include "fit/sparse_cholesky.h"
@@ -284,7 +284,7 @@ Residuals residualsOf(const AxisBasis& bx, const AxisBasis& by, const geo::GeoGr
 std::optional<FitReport> fitNet(const subdiv::Scheme& scheme, int depth, const std::vector<Vec3>& samples,
                                 const scene::NetSpec& spec, geo::ControlNet& net, Diagnostics& diags,
                                 const std::function<void(const std::string&)>& progress) {
-    const auto t0 = std::chrono::steady_clock::now();
+    const auto t0 = Clock::now();
     FitReport report;
     report.depth = depth;
     report.nodes = net.grid.points.size();
@@ -364,7 +364,7 @@ std::optional<FitReport> fitNet(const subdiv::Scheme& scheme, int depth, const s
     report.maxResidualM = residuals.largest;
     report.worstSample = residuals.worst;
     report.dataReachM = dataReach(samples, net);
-    report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    report.seconds = secondsSince(t0);
     return report;
 }
 

@@ -13,24 +13,12 @@
 #include <ogr_srs_api.h>
 
 #include "core/diagnostics.h"
+#include "geo/gdal_handles.h"
 #include "geo/gdal_setup.h"
 #include "geo/normalize.h"
 #include "scene/scene_spec.h"
 
 namespace relief::geo {
-
-struct DatasetCloser {
-    void operator()(void* ds) const { GDALClose(ds); }
-};
-using Dataset = std::unique_ptr<void, DatasetCloser>;
-struct SrsDeleter {
-    void operator()(void* s) const { OSRDestroySpatialReference(static_cast<OGRSpatialReferenceH>(s)); }
-};
-struct TransformDeleter {
-    void operator()(void* t) const { OCTDestroyCoordinateTransformation(static_cast<OGRCoordinateTransformationH>(t)); }
-};
-using Srs = std::unique_ptr<void, SrsDeleter>;
-using Transform = std::unique_ptr<void, TransformDeleter>;
 
 /// The transformations from WGS84 (lon, lat) to `srs` and back; either is null
 /// when PROJ has none.

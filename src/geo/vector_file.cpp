@@ -9,6 +9,7 @@
 #include <ogr_api.h>
 
 #include "core/text_escape.h"
+#include "geo/gdal_handles.h"
 #include "geo/gdal_setup.h"
 #include "geo/raster_source.h"
 
@@ -17,11 +18,6 @@ namespace relief::geo {
 namespace {
 
 constexpr int kMaxLineVertices = 1'000'000;
-
-struct FeatureDeleter {
-    void operator()(void* f) const { OGR_F_Destroy(static_cast<OGRFeatureH>(f)); }
-};
-using Feature = std::unique_ptr<void, FeatureDeleter>;
 
 // The first line of a layer's features: a LineString, or a MultiLineString's first part with two vertices or more.
 OGRGeometryH firstLineIn(OGRLayerH layer, Feature& holder) {
@@ -37,14 +33,6 @@ OGRGeometryH firstLineIn(OGRLayerH layer, Feature& holder) {
             if (OGRGeometryH part = OGR_G_GetGeometryRef(g, i); OGR_G_GetPointCount(part) >= 2) return part;
     }
     return nullptr;
-}
-
-std::string layerNames(GDALDatasetH ds) {
-    std::string names;
-    for (int i = 0; i < GDALDatasetGetLayerCount(ds); ++i)
-        names += fmt::format("{}\"{}\"", names.empty() ? "" : ", ",
-                             printableExcerpt(OGR_L_GetName(GDALDatasetGetLayer(ds, i)), 60));
-    return names.empty() ? "none" : names;
 }
 
 // The line's vertices in WGS84 lon, lat; false when a vertex cannot be transformed.
@@ -69,6 +57,14 @@ bool verticesInWgs84(OGRLayerH layer, OGRGeometryH line, std::vector<GeoPoint>& 
 }
 
 }  // namespace
+
+std::string layerNamesOf(GDALDatasetH ds) {
+    std::string names;
+    for (int i = 0; i < GDALDatasetGetLayerCount(ds); ++i)
+        names += fmt::format("{}\"{}\"", names.empty() ? "" : ", ",
+                             printableExcerpt(OGR_L_GetName(GDALDatasetGetLayer(ds, i)), 60));
+    return names.empty() ? "none" : names;
+}
 
 Dataset openVectorFile(const std::filesystem::path& path, const std::string& shown, const SourceLoc& at,
                        Diagnostics& diags, const char* const* openOptions) {
@@ -115,14 +111,14 @@ std::optional<std::vector<GeoPoint>> firstLineOf(const std::filesystem::path& pa
         found = found || layerName == OGR_L_GetName(GDALDatasetGetLayer(ds.get(), i));
     if (!found)
         diags.error(at, fmt::format("{} has no layer \"{}\"; its layers: {}", shown, printableExcerpt(layerName, 60),
-                                    layerNames(ds.get())));
+                                    layerNamesOf(ds.get())));
     else
         diags.error(at, fmt::format("{} holds no line (a LineString or MultiLineString with two vertices or more) "
                                     "in {}; its layers: {}",
                                     shown,
                                     named ? fmt::format("layer \"{}\"", printableExcerpt(layerName, 60))
                                           : std::string("any layer"),
-                                    layerNames(ds.get())));
+                                    layerNamesOf(ds.get())));
     return std::nullopt;
 }
 

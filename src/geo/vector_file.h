@@ -19,6 +19,10 @@ namespace relief::geo {
 Dataset openVectorFile(const std::filesystem::path& path, const std::string& shown, const SourceLoc& at,
                        Diagnostics& diags, const char* const* openOptions = nullptr);
 
+/// The names of `ds`'s layers, quoted, printable and cut to 60 characters
+/// each (a file's names are untrusted), comma-separated: "none" when it has none.
+std::string layerNamesOf(GDALDatasetH ds);
+
 /// The vertices of the first line in `path` (a LineString, or a
 /// MultiLineString's first part) of the layer named `layer`, or of the first
 /// layer holding one when `layer` is "", as WGS84 lon, lat and the file's z

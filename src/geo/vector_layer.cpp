@@ -14,6 +14,7 @@
 #include "core/number_format.h"
 #include "core/text_escape.h"
 #include "geo/gdal_crs.h"
+#include "geo/gdal_handles.h"
 #include "geo/gdal_setup.h"
 #include "geo/raster_source.h"
 #include "geo/vector_file.h"
@@ -21,15 +22,6 @@
 namespace relief::geo {
 
 namespace {
-
-struct FeatureDeleter {
-    void operator()(void* f) const { OGR_F_Destroy(static_cast<OGRFeatureH>(f)); }
-};
-using Feature = std::unique_ptr<void, FeatureDeleter>;
-struct GeometryDeleter {
-    void operator()(void* g) const { OGR_G_DestroyGeometry(static_cast<OGRGeometryH>(g)); }
-};
-using Geometry = std::unique_ptr<void, GeometryDeleter>;
 
 // A CSV's points are in columns GDAL must be told of; a WKT column it finds itself.
 constexpr const char* kOpenOptions[] = {"X_POSSIBLE_NAMES=lon,long,longitude,x,easting",
@@ -39,12 +31,6 @@ std::string quotedList(std::vector<std::string> names) {
     std::string out;
     for (const auto& n : names) out += fmt::format("{}\"{}\"", out.empty() ? "" : ", ", printableExcerpt(n, 60));
     return out.empty() ? "none" : out;
-}
-
-std::vector<std::string> layerNames(GDALDatasetH ds) {
-    std::vector<std::string> names;
-    for (int i = 0; i < GDALDatasetGetLayerCount(ds); ++i) names.emplace_back(OGR_L_GetName(GDALDatasetGetLayer(ds, i)));
-    return names;
 }
 
 // The layer asked for, or the first with a feature (a GPX's waypoints before its empty routes).
@@ -192,7 +178,7 @@ std::optional<VectorLayer> readVectorLayer(const scene::LayerSpec& spec, long lo
         diags.error(spec.locs.at(spec.layer.empty() ? "layer.path" : "layer.layer"),
                     fmt::format("{} has no layer{}; its layers: {}", shown,
                                 spec.layer.empty() ? "" : fmt::format(" \"{}\"", printableExcerpt(spec.layer, 60)),
-                                quotedList(layerNames(ds.get()))));
+                                layerNamesOf(ds.get())));
         return std::nullopt;
     }
     const auto labelField = labelFieldOf(layer, spec, diags);

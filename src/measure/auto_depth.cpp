@@ -1,6 +1,5 @@
 #include "measure/auto_depth.h"
 
-#include <chrono>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -8,6 +7,7 @@
 #include <fmt/format.h>
 #include <omp.h>
 
+#include "core/stopwatch.h"
 #include "curves/hausdorff.h"
 #include "subdiv/refine.h"
 
@@ -57,7 +57,7 @@ DepthChoice chooseDepth(const subdiv::Scheme& scheme, const geo::GeoGrid& net, d
     // the rates between levels are worth seeing well below it.
     const double hausdorffTolerance = 1e-4 * toleranceM;
     for (int level = 1; level <= maxDepth; ++level) {
-        const auto t0 = std::chrono::steady_clock::now();
+        const auto t0 = Clock::now();
         std::vector<curves::OneSided> witness(curves.size());
         std::vector<double> distance(curves.size());
         std::vector<std::vector<Vec3>> finer(curves.size());
@@ -94,7 +94,7 @@ DepthChoice chooseDepth(const subdiv::Scheme& scheme, const geo::GeoGrid& net, d
         change.x = curves[worst].isRow ? w.x : net.x0 + curves[worst].index * net.dx;
         change.y = curves[worst].isRow ? net.y0 + curves[worst].index * net.dy : w.x;
         change.z = w.y;
-        change.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        change.seconds = secondsSince(t0);
         choice.levels.push_back(change);
         choice.depth = level;
         if (change.distanceM <= toleranceM) {

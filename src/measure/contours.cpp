@@ -9,18 +9,10 @@
 #include <gdal_alg.h>
 #include <ogr_api.h>
 
+#include "geo/gdal_handles.h"
 #include "geo/gdal_setup.h"
 
 namespace relief::measure {
-
-namespace {
-
-struct DatasetCloser {
-    void operator()(void* ds) const { GDALClose(ds); }
-};
-using Dataset = std::unique_ptr<void, DatasetCloser>;
-
-}  // namespace
 
 std::vector<curves::CurveSet> contourLines(const geo::GeoGrid& lat, const std::vector<double>& levels,
                                            std::string& error) {
@@ -30,8 +22,8 @@ std::vector<curves::CurveSet> contourLines(const geo::GeoGrid& lat, const std::v
     const Grid& g = lat.grid;
     // The raster: GDAL's row 0 is north, so rows are flipped; the pixel
     // centres are the nodes.
-    Dataset raster(GDALCreate(GDALGetDriverByName("MEM"), "", g.cols, g.rows, 1, GDT_Float64, nullptr));
-    Dataset vector(GDALCreate(GDALGetDriverByName("Memory"), "", 0, 0, 0, GDT_Unknown, nullptr));
+    geo::Dataset raster(GDALCreate(GDALGetDriverByName("MEM"), "", g.cols, g.rows, 1, GDT_Float64, nullptr));
+    geo::Dataset vector(GDALCreate(GDALGetDriverByName("Memory"), "", 0, 0, 0, GDT_Unknown, nullptr));
     if (!raster || !vector) {
         error = "GDAL's MEM or Memory driver is missing";
         return out;

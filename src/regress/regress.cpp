@@ -16,6 +16,7 @@
 
 #include "core/atomic_file.h"
 #include "core/input_file.h"
+#include "core/stopwatch.h"
 #include "core/text_escape.h"
 #include "core/text_distance.h"
 #include "pipeline.h"
@@ -352,7 +353,7 @@ std::vector<CaseResult> runCases(const Manifest& m, const RunOptions& o, const C
     std::mutex mutex;
     size_t reported = 0;
     auto finished = [&](size_t i) {
-        results[i].seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started[i]).count();
+        results[i].seconds = secondsSince(started[i]);
         std::lock_guard lock(mutex);
         if (done) done(results[i], ++reported, m.cases.size());
     };

@@ -24,6 +24,7 @@
 #include "core/atomic_file.h"
 #include "core/output_set.h"
 #include "core/png_file.h"
+#include "core/stopwatch.h"
 #include "render/png.h"
 
 extern char** environ;
@@ -434,7 +435,7 @@ std::string runPovray(std::vector<char*>& argv, std::vector<char*>& envp, const 
 
 RenderResult renderPov(const RenderRequest& req, const ProgressFn& progress) {
     RenderResult result;
-    const auto t0 = std::chrono::steady_clock::now();
+    const auto t0 = Clock::now();
     const std::string povray = findOnPath("povray");
     if (povray.empty()) {
         result.error = "povray is not installed (on Debian: apt-get install povray)";
@@ -507,7 +508,7 @@ RenderResult renderPov(const RenderRequest& req, const ProgressFn& progress) {
         return result;
     }
     result.ok = true;
-    result.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    result.wallSeconds = secondsSince(t0);
     return result;
 }
 

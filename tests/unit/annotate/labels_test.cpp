@@ -31,7 +31,9 @@ void expectValid(const std::vector<std::optional<PlacedLabel>>& placed, const st
         EXPECT_NEAR(b.x1 - b.x0, requests[i].w, 1e-9);
         for (const LabelBox& o : obstacles) EXPECT_FALSE(b.meets(o, 0)) << "label " << i << " over an obstacle";
         for (size_t j = 0; j < i; ++j)
-            if (placed[j]) EXPECT_FALSE(b.meets(placed[j]->box, 0)) << "labels " << j << " and " << i << " overlap";
+            if (placed[j]) {
+                EXPECT_FALSE(b.meets(placed[j]->box, 0)) << "labels " << j << " and " << i << " overlap";
+            }
     }
 }
 
@@ -85,7 +87,9 @@ TEST(PlaceLabels, ACrowdOfFiftyNeverOverlaps) {
     const auto again = placeLabels(r, 480, 320, {});
     for (size_t i = 0; i < placed.size(); ++i) {
         ASSERT_EQ(placed[i].has_value(), again[i].has_value());
-        if (placed[i]) EXPECT_EQ(placed[i]->box.x0, again[i]->box.x0);
+        if (placed[i]) {
+            EXPECT_EQ(placed[i]->box.x0, again[i]->box.x0);
+        }
     }
 }
 

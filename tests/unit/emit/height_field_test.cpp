@@ -20,7 +20,7 @@ namespace {
 namespace fs = std::filesystem;
 
 // 4 x 3 nodes 100 m apart rising 10 m per column to the east, and 1 m per row to the north.
-geo::GeoGrid tiltedPlane() {
+geo::GeoGrid risingPlaneNet() {
     geo::GeoGrid g;
     g.grid.rows = 3;
     g.grid.cols = 4;
@@ -43,7 +43,7 @@ std::string sdlOf(const HeightField& field, const geo::GeoGrid& grid, const Scen
 
 // Levels: 0 at the lowest node, 65535 at the highest, row 0 of the image north.
 TEST(HeightField, QuantizesNorthFirst) {
-    const auto grid = tiltedPlane();
+    const auto grid = risingPlaneNet();
     const HeightField field = quantizeHeights(grid, placeTerrain(grid, {}));
     ASSERT_EQ(field.levels.size(), 12u);
     EXPECT_EQ(field.zMinM, 50);
@@ -57,7 +57,7 @@ TEST(HeightField, QuantizesNorthFirst) {
 // The PNG holds the levels exactly, 16-bit, and the same levels give the same bytes.
 TEST(HeightField, PngRoundTripAndDeterminism) {
     const fs::path dir = relief::testing::freshTestDir("relief-height-field");
-    const auto plane = tiltedPlane();
+    const auto plane = risingPlaneNet();
     const HeightField field = quantizeHeights(plane, placeTerrain(plane, {}));
     ASSERT_NO_THROW(writeHeightFieldPng(field, dir / "a.png"));
     ASSERT_NO_THROW(writeHeightFieldPng(field, dir / "b.png"));
@@ -73,7 +73,7 @@ TEST(HeightField, PngRoundTripAndDeterminism) {
 
 // The drape gives each node the colour the mesh2 gives its vertex.
 TEST(HeightField, DrapeColoursAreTheMeshPalette) {
-    const auto grid = tiltedPlane();
+    const auto grid = risingPlaneNet();
     const Mesh mesh = buildMesh(grid, scene::LookSpec{});
     const Drape drape = elevationDrape(grid, mesh);
     for (int r = 0; r < 3; ++r)
@@ -89,7 +89,7 @@ TEST(HeightField, DrapeColoursAreTheMeshPalette) {
 // A height_field has no holes: masked nodes are transparent in the drape (alpha 0), and their
 // filled heights do not stretch the levels' range.
 TEST(HeightField, MaskedNodesAreTransparent) {
-    auto grid = tiltedPlane();
+    auto grid = risingPlaneNet();
     grid.masked.assign(12, 0);
     grid.masked[2 * 4 + 3] = 1;                  // the north-east node...
     grid.grid.at(2, 3).z = 5000;                 // ...with a wild filled height
@@ -121,7 +121,7 @@ TEST(HeightField, MaskedNodesAreTransparent) {
 // The height field lands where the mesh2 puts the nodes: 10 m per unit, centred; its image map's
 // pixel centres on the nodes.
 TEST(HeightField, SdlPlacesItWhereTheMeshIs) {
-    const auto grid = tiltedPlane();
+    const auto grid = risingPlaneNet();
     const ScenePlacement where = placeTerrain(grid, {});
     const std::string sdl = sdlOf(quantizeHeights(grid, where), grid, where);
     EXPECT_NE(sdl.find("png \"t.height.png\"\n  smooth"), std::string::npos) << sdl;

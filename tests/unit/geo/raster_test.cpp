@@ -76,11 +76,12 @@ void writeCells(const fs::path& path, int cols, int rows, double x0, double y0, 
         for (int c = 0; c < cols; ++c) out << cell(c, r) << (c + 1 < cols ? " " : "\n");
 }
 
-scene::SamplesSpec rasterSpec(const fs::path& path, const std::string& crs) {
+scene::SamplesSpec rasterSpec(const fs::path& path, const std::string& crs, const std::string& verticalUnit = "") {
     scene::SamplesSpec s;
     s.path = path;
     s.pathAsWritten = path.filename().string();
     s.crs = crs;
+    s.verticalUnit = verticalUnit;
     return s;
 }
 
@@ -666,9 +667,7 @@ TEST(Raster, CraftedRastersAreErrorsOrHandled) {
         EXPECT_EQ(GDALRasterIO(GDALGetRasterBand(ds, 1), GF_Write, 0, 0, 4, 4, cells.data(), 4, 4, GDT_Float32, 0, 0),
                   CE_None);
         GDALClose(ds);
-        auto spec = rasterSpec(path, "");
-        spec.verticalUnit = "m";
-        return spec;
+        return rasterSpec(path, "", "m");
     };
     const std::vector<float> plain(16, 100.0f);
     // A cell of size 0 (a VRT keeps the geotransform as written): it cannot be inverted.
