@@ -3,7 +3,6 @@
 // (core/output_set.h), the plan kept when the render does not finish.
 #include <unistd.h>
 
-
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 

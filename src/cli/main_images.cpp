@@ -6,9 +6,8 @@
 #include "cli/cli_common.h"
 #include "relief/version.h"
 
-using namespace relief::cli;
-
 int main(int argc, char** argv) {
+    using namespace relief::cli;
     CLI::App app{fmt::format("relief {}: image commands", relief::kVersion), "relief"};
     app.footer("\n" + exitCodesHelp());
     app.set_version_flag("--version", fmt::format("relief {}", relief::kVersion));

@@ -14,11 +14,6 @@
 
 namespace relief::execute {
 
-namespace {
-
-
-}  // namespace
-
 Result runLocal(const std::vector<Task>& tasks, const std::vector<const plan::RenderPlan*>& plans,
                 const Options& options, const std::function<void(const Progress&)>& progress) {
     Result result;

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include <gdal.h>
+
 #include "core/diagnostics.h"
 #include "core/types.h"
 #include "geo/raster_source.h"

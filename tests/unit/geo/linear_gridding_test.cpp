@@ -12,11 +12,8 @@
 
 #include "geo/linear_gridding.h"
 
+namespace relief::geo {
 namespace {
-
-using relief::geo::GridLayout;
-using relief::geo::gridLinear;
-using relief::geo::LinearGriddingStats;
 
 constexpr double kNoData = -1e30;
 
@@ -106,3 +103,4 @@ TEST(LinearGridding, CollinearSamplesAreAnError) {
 }
 
 }  // namespace
+}  // namespace relief::geo
