@@ -57,7 +57,8 @@ std::vector<curves::CurveSet> contourLines(const geo::GeoGrid& lat, const std::v
     }
     // Features in GDAL's order, which depends only on the raster: deterministic.
     OGR_L_ResetReading(layer);
-    while (OGRFeatureH f = OGR_L_GetNextFeature(layer)) {
+    while (const geo::Feature feature{OGR_L_GetNextFeature(layer)}) {
+        OGRFeatureH f = feature.get();
         const double level = OGR_F_GetFieldAsDouble(f, 1);
         const auto it = std::find(levels.begin(), levels.end(), level);
         OGRGeometryH geom = OGR_F_GetGeometryRef(f);
@@ -70,7 +71,6 @@ std::vector<curves::CurveSet> contourLines(const geo::GeoGrid& lat, const std::v
             out[static_cast<size_t>(it - levels.begin())].push_back(
                 curves::toBezier(curves::CurveFile{"polyline", closed && pts.size() >= 3, pts}));
         }
-        OGR_F_Destroy(f);
     }
     return out;
 }
