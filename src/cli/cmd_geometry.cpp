@@ -148,36 +148,124 @@ nlohmann::ordered_json whereJson(const relief::measure::Where& w, const char* po
 }
 
 
-// `relief compare-geometry`: Hausdorff distances between two scenes' surfaces.
-int runCompareGeometry(const CompareGeometryOptions& o) {
-    namespace m = relief::measure;
-    relief::Diagnostics diags;
-    relief::scene::SceneOverrides overA, overB;
-    if (!parseOverrides(o.setA, overA) || !parseOverrides(o.setB, overB)) return code(Exit::BadInput);
-    std::vector<m::ProfileLine> lines;
-    for (const auto& text : o.profiles) {
+// --profile's "LON,LAT:LON,LAT" lines; nullopt after saying which one is not.
+std::optional<std::vector<relief::measure::ProfileLine>> parseProfileLines(const std::vector<std::string>& texts) {
+    std::vector<relief::measure::ProfileLine> lines;
+    for (const auto& text : texts) {
         const auto ends = split(text, ':');
         const auto from = ends.size() == 2 ? parseLonLat(ends[0]) : std::nullopt;
         const auto to = ends.size() == 2 ? parseLonLat(ends[1]) : std::nullopt;
         if (!from || !to) {
             std::cerr << "relief: error: --profile " << relief::terminalText(text, 200)
                       << ": write LON,LAT:LON,LAT in WGS84 degrees, e.g. 174.76,-36.88:174.77,-36.87\n";
-            return code(Exit::BadInput);
+            return std::nullopt;
         }
         lines.push_back({text, *from, *to});
     }
+    return lines;
+}
+
+// --levels' "100,200,..." (none when empty); nullopt after saying it is not a list of elevations.
+std::optional<std::vector<double>> parseLevels(const std::string& text) {
     std::vector<double> levels;
-    if (!o.levels.empty())
-        for (const auto& v : split(o.levels, ',')) {
-            char* end = nullptr;
-            const double z = std::strtod(v.c_str(), &end);
-            if (end == v.c_str() || *end || !std::isfinite(z)) {
-                std::cerr << "relief: error: --levels " << relief::terminalText(o.levels, 200) << ": write elevations in metres, "
-                          << "e.g. --levels 100,200,300\n";
-                return code(Exit::BadInput);
-            }
-            levels.push_back(z);
+    if (text.empty()) return levels;
+    for (const auto& v : split(text, ',')) {
+        char* end = nullptr;
+        const double z = std::strtod(v.c_str(), &end);
+        if (end == v.c_str() || *end || !std::isfinite(z)) {
+            std::cerr << "relief: error: --levels " << relief::terminalText(text, 200) << ": write elevations in metres, "
+                      << "e.g. --levels 100,200,300\n";
+            return std::nullopt;
         }
+        levels.push_back(z);
+    }
+    return levels;
+}
+
+// What compare-geometry compared: both scenes, as loaded and refined, and the distances.
+struct ComparedScenes {
+    const relief::LoadedScene &loadedA, &loadedB;
+    const relief::Surface &surfaceA, &surfaceB;
+    const relief::measure::FramedSurface &a, &b;
+    const relief::measure::GeometryComparison& result;
+    double worstProfile = 0, worstContour = 0;
+};
+
+std::string describeSurface(const relief::LoadedScene& l, const relief::Surface& s) {
+    return fmt::format("{}, depth {}, {}", l.resolved.family, s.depth, relief::subdiv::certifiedClass(l.resolved.report));
+}
+
+nlohmann::ordered_json comparisonJson(const CompareGeometryOptions& o, const ComparedScenes& c) {
+    nlohmann::ordered_json j;
+    j["a"] = {{"scene", o.a}, {"surface", describeSurface(c.loadedA, c.surfaceA)}, {"frame", c.a.frame().describe()}};
+    j["b"] = {{"scene", o.b}, {"surface", describeSurface(c.loadedB, c.surfaceB)}, {"frame", c.b.frame().describe()}};
+    auto profiles = nlohmann::ordered_json::array();
+    for (const auto& p : c.result.profiles)
+        profiles.push_back({{"name", p.line.name},
+                            {"from", {p.line.from.lonDeg, p.line.from.latDeg}},
+                            {"to", {p.line.to.lonDeg, p.line.to.latDeg}},
+                            {"length_m", p.lengthM},
+                            {"H", p.h.H},
+                            {"h_ab", p.h.ab.value},
+                            {"h_ba", p.h.ba.value},
+                            {"where", whereJson(p.where, "distance_elevation_m")}});
+    j["profiles"] = profiles;
+    auto contours = nlohmann::ordered_json::array();
+    for (const auto& l : c.result.contours) {
+        nlohmann::ordered_json cj{{"level_m", l.level}, {"lines_a", l.linesA}, {"lines_b", l.linesB},
+                                  {"H", jsonNumber(l.h.H)}, {"h_ab", jsonNumber(l.h.ab.value)},
+                                  {"h_ba", jsonNumber(l.h.ba.value)}};
+        if (std::isfinite(l.h.H) && l.linesA + l.linesB > 0) cj["where"] = whereJson(l.where, "xy_m");
+        contours.push_back(cj);
+    }
+    j["contours"] = contours;
+    j["max_profile_H"] = c.worstProfile;
+    j["max_contour_H"] = jsonNumber(c.worstContour);
+    return j;
+}
+
+void printComparison(const CompareGeometryOptions& o, const ComparedScenes& c) {
+    using relief::measure::formatDistance;
+    std::cout << fmt::format("a: {} ({})\nb: {} ({})\n", o.a, describeSurface(c.loadedA, c.surfaceA), o.b,
+                             describeSurface(c.loadedB, c.surfaceB));
+    for (const auto& p : c.result.profiles) {
+        const auto& w = p.where;
+        std::cout << fmt::format("profile {} ({:.1f} km): H = {}  (h(a,b) {}, h(b,a) {})\n", p.line.name,
+                                 p.lengthM / 1000, formatDistance(p.h.H), formatDistance(p.h.ab.value),
+                                 formatDistance(p.h.ba.value));
+        std::cout << fmt::format("    at {:.0f} m along, lat {:.6f} lon {:.6f}: {} at {:.1f} m, nearest {} "
+                                 "point ({:.0f} m along) at {:.1f} m\n",
+                                 w.point.x, w.latDeg, w.lonDeg, w.onA ? "a" : "b", w.point.y,
+                                 w.onA ? "b" : "a", w.foot.x, w.foot.y);
+    }
+    for (const auto& l : c.result.contours) {
+        std::cout << fmt::format("contour {} m: {} line{} in a, {} in b: H = {}", relief::formatShortest(l.level),
+                                 l.linesA, l.linesA == 1 ? "" : "s", l.linesB, formatDistance(l.h.H));
+        if (l.linesA == 0 || l.linesB == 0) {
+            std::cout << (l.linesA + l.linesB == 0 ? " (neither surface reaches it)\n"
+                                                   : fmt::format(" (only {} reaches it)\n", l.linesA ? "a" : "b"));
+            continue;
+        }
+        const auto& w = l.where;
+        std::cout << fmt::format("  (h(a,b) {}, h(b,a) {})\n    at lat {:.6f} lon {:.6f} (x {:.0f}, y {:.0f} m): "
+                                 "{}'s line is {} from {}'s nearest\n",
+                                 formatDistance(l.h.ab.value), formatDistance(l.h.ba.value), w.latDeg, w.lonDeg,
+                                 w.point.x, w.point.y, w.onA ? "a" : "b", formatDistance(l.h.H), w.onA ? "b" : "a");
+    }
+    std::cout << fmt::format("largest: {} between profiles, {} between contour lines\n",
+                             formatDistance(c.worstProfile), formatDistance(c.worstContour));
+}
+
+// `relief compare-geometry`: Hausdorff distances between two scenes' surfaces.
+int runCompareGeometry(const CompareGeometryOptions& o) {
+    namespace m = relief::measure;
+    relief::Diagnostics diags;
+    relief::scene::SceneOverrides overA, overB;
+    if (!parseOverrides(o.setA, overA) || !parseOverrides(o.setB, overB)) return code(Exit::BadInput);
+    auto lines = parseProfileLines(o.profiles);
+    if (!lines) return code(Exit::BadInput);
+    auto levels = parseLevels(o.levels);
+    if (!levels) return code(Exit::BadInput);
     auto loadedA = relief::loadScene(o.a, diags, overA);
     auto loadedB = relief::loadScene(o.b, diags, overB);
     auto surfA = loadedA ? relief::buildSurface(*loadedA, diags, o.threads) : std::nullopt;
@@ -187,9 +275,9 @@ int runCompareGeometry(const CompareGeometryOptions& o) {
         return code(Exit::BadInput);
     }
     const m::FramedSurface A{o.a, &surfA->refined}, B{o.b, &surfB->refined};
-    if (lines.empty()) lines = m::defaultProfiles(A, B);
+    if (lines->empty()) lines = m::defaultProfiles(A, B);
     if (o.levels.empty()) levels = m::defaultLevels(A, B);
-    const auto result = m::compareGeometry(A, B, lines, levels, o.samples, diags);
+    const auto result = m::compareGeometry(A, B, *lines, *levels, o.samples, diags);
     if (!result) {
         printDiagnostics(diags, false);
         return code(Exit::BadInput);
@@ -200,68 +288,11 @@ int runCompareGeometry(const CompareGeometryOptions& o) {
         relief::writeFileAtomically(o.map, relief::measure::comparisonMapSvg(*result, o.a, o.b, A.frame().describe()));
         std::cerr << "wrote " << o.map << '\n';
     }
-    auto describe = [](const relief::LoadedScene& l, const relief::Surface& s) {
-        return fmt::format("{}, depth {}, {}", l.resolved.family, s.depth, relief::subdiv::certifiedClass(l.resolved.report));
-    };
-    double worstProfile = 0, worstContour = 0;
-    for (const auto& p : result->profiles) worstProfile = std::max(worstProfile, p.h.H);
-    for (const auto& c : result->contours) worstContour = std::max(worstContour, c.h.H);
-    if (o.json) {
-        nlohmann::ordered_json j;
-        j["a"] = {{"scene", o.a}, {"surface", describe(*loadedA, *surfA)}, {"frame", A.frame().describe()}};
-        j["b"] = {{"scene", o.b}, {"surface", describe(*loadedB, *surfB)}, {"frame", B.frame().describe()}};
-        auto profiles = nlohmann::ordered_json::array();
-        for (const auto& p : result->profiles)
-            profiles.push_back({{"name", p.line.name},
-                                {"from", {p.line.from.lonDeg, p.line.from.latDeg}},
-                                {"to", {p.line.to.lonDeg, p.line.to.latDeg}},
-                                {"length_m", p.lengthM},
-                                {"H", p.h.H},
-                                {"h_ab", p.h.ab.value},
-                                {"h_ba", p.h.ba.value},
-                                {"where", whereJson(p.where, "distance_elevation_m")}});
-        j["profiles"] = profiles;
-        auto contours = nlohmann::ordered_json::array();
-        for (const auto& c : result->contours) {
-            nlohmann::ordered_json cj{{"level_m", c.level}, {"lines_a", c.linesA}, {"lines_b", c.linesB},
-                                      {"H", jsonNumber(c.h.H)}, {"h_ab", jsonNumber(c.h.ab.value)},
-                                      {"h_ba", jsonNumber(c.h.ba.value)}};
-            if (std::isfinite(c.h.H) && c.linesA + c.linesB > 0) cj["where"] = whereJson(c.where, "xy_m");
-            contours.push_back(cj);
-        }
-        j["contours"] = contours;
-        j["max_profile_H"] = worstProfile;
-        j["max_contour_H"] = jsonNumber(worstContour);
-        std::cout << j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << '\n';
-        return code(Exit::Ok);
-    }
-    std::cout << fmt::format("a: {} ({})\nb: {} ({})\n", o.a, describe(*loadedA, *surfA), o.b,
-                             describe(*loadedB, *surfB));
-    for (const auto& p : result->profiles) {
-        const auto& w = p.where;
-        std::cout << fmt::format("profile {} ({:.1f} km): H = {}  (h(a,b) {}, h(b,a) {})\n", p.line.name,
-                                 p.lengthM / 1000, relief::measure::formatDistance(p.h.H), relief::measure::formatDistance(p.h.ab.value), relief::measure::formatDistance(p.h.ba.value));
-        std::cout << fmt::format("    at {:.0f} m along, lat {:.6f} lon {:.6f}: {} at {:.1f} m, nearest {} "
-                                 "point ({:.0f} m along) at {:.1f} m\n",
-                                 w.point.x, w.latDeg, w.lonDeg, w.onA ? "a" : "b", w.point.y,
-                                 w.onA ? "b" : "a", w.foot.x, w.foot.y);
-    }
-    for (const auto& c : result->contours) {
-        std::cout << fmt::format("contour {} m: {} line{} in a, {} in b: H = {}", relief::formatShortest(c.level),
-                                 c.linesA, c.linesA == 1 ? "" : "s", c.linesB, relief::measure::formatDistance(c.h.H));
-        if (c.linesA == 0 || c.linesB == 0) {
-            std::cout << (c.linesA + c.linesB == 0 ? " (neither surface reaches it)\n"
-                                                   : fmt::format(" (only {} reaches it)\n", c.linesA ? "a" : "b"));
-            continue;
-        }
-        const auto& w = c.where;
-        std::cout << fmt::format("  (h(a,b) {}, h(b,a) {})\n    at lat {:.6f} lon {:.6f} (x {:.0f}, y {:.0f} m): "
-                                 "{}'s line is {} from {}'s nearest\n",
-                                 relief::measure::formatDistance(c.h.ab.value), relief::measure::formatDistance(c.h.ba.value), w.latDeg, w.lonDeg, w.point.x,
-                                 w.point.y, w.onA ? "a" : "b", relief::measure::formatDistance(c.h.H), w.onA ? "b" : "a");
-    }
-    std::cout << fmt::format("largest: {} between profiles, {} between contour lines\n", relief::measure::formatDistance(worstProfile),
-                             relief::measure::formatDistance(worstContour));
+    ComparedScenes compared{*loadedA, *loadedB, *surfA, *surfB, A, B, *result};
+    for (const auto& p : result->profiles) compared.worstProfile = std::max(compared.worstProfile, p.h.H);
+    for (const auto& c : result->contours) compared.worstContour = std::max(compared.worstContour, c.h.H);
+    if (o.json) std::cout << comparisonJson(o, compared).dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << '\n';
+    else printComparison(o, compared);
     return code(Exit::Ok);
 }
 

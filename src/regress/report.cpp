@@ -142,22 +142,9 @@ void ReportFolder::publish() {
     throw std::runtime_error(fmt::format("cannot move the report into {}: {}", dir_.string(), ec.message()));
 }
 
-void writeReport(const Manifest& m, const std::vector<CaseResult>& results, const RunOptions& o,
-                 double wallSeconds) {
-    // Failed cases first, then the rest in manifest order.
-    std::vector<const CaseResult*> order;
-    for (const auto& r : results) order.push_back(&r);
-    std::stable_sort(order.begin(), order.end(), [](const CaseResult* a, const CaseResult* b) {
-        return failed(a->status) && !failed(b->status);
-    });
-    size_t nFailed = 0;
-    for (const auto& r : results) nFailed += failed(r.status);
-    const std::string bless = fmt::format("relief test {} --update", shellQuoted(o.manifestArgument));
+namespace {
 
-    std::string h;
-    h += "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n";
-    h += fmt::format("<title>relief test: {} passed, {} failed</title>\n", results.size() - nFailed, nFailed);
-    h += R"(<style>
+constexpr const char* kReportStyle = R"(<style>
 body { font-family: sans-serif; margin: 1.5em; color: #222; }
 h1 { font-size: 1.3em; } .summary { font-size: 1.1em; margin-bottom: 1em; }
 .case { border: 1px solid #ccc; border-radius: 6px; padding: 0.8em; margin: 1em 0; }
@@ -175,6 +162,65 @@ code { background: #f2f2f2; padding: 2px 4px; }
 img.geometry-plot { max-width: 420px; max-height: 320px; border: 1px solid #eee; }
 </style></head><body>
 )";
+
+// A case's images: the new one (the reference under it on hover), the reference, the difference.
+std::string imagesHtml(const CaseResult& r, const fs::path& reportDir) {
+    std::string h = "<div class=\"images\">\n";
+    const std::string newImg = relativeUrl(r.newImage, reportDir), refImg = relativeUrl(r.referenceImage, reportDir),
+                      diffImg = relativeUrl(r.diffImage, reportDir);
+    if (!newImg.empty() && fs::exists(r.newImage)) {
+        h += "<figure><div class=\"blink\">";
+        h += fmt::format("<img class=\"new\" src=\"{}\" alt=\"new\">", newImg);
+        if (!refImg.empty())
+            h += fmt::format("<img class=\"reference-under\" src=\"{}\" alt=\"reference (hover)\">", refImg);
+        h += "</div><figcaption>new (hover: reference)</figcaption></figure>\n";
+    }
+    if (!refImg.empty())
+        h += fmt::format("<figure><img class=\"reference\" src=\"{}\" alt=\"reference\"><figcaption>"
+                         "reference {}</figcaption></figure>\n",
+                         refImg, markupText(r.referenceName));
+    if (!diffImg.empty())
+        h += fmt::format("<figure><img class=\"difference\" src=\"{}\" alt=\"difference\"><figcaption>"
+                         "difference (black: identical; scaled to the largest)</figcaption></figure>\n",
+                         diffImg);
+    return h + "</div>\n";
+}
+
+// A case's section: its status, message, images, the difference's measures and the geometry checks.
+std::string caseHtml(const CaseResult& r, const fs::path& reportDir) {
+    const TestCase& c = *r.testCase;
+    std::string cls = statusName(r.status);
+    std::transform(cls.begin(), cls.end(), cls.begin(), [](unsigned char ch) { return std::tolower(ch); });
+    std::string h = fmt::format("<div class=\"case {}\" data-case=\"{}\">\n<h2><span class=\"status\">{}</span> {}</h2>\n",
+                                cls, markupText(c.name), statusName(r.status), markupText(c.name));
+    h += fmt::format("<p>{} — scene <code>{}</code>, {} x {}, {:.1f} s</p>\n", markupText(r.message),
+                     markupText(c.scene.string()), c.width, c.height, r.seconds);
+    h += imagesHtml(r, reportDir);
+    if (r.difference.width > 0) {
+        const auto& d = r.difference;
+        const auto& t = c.thresholds;
+        h += "<table class=\"metrics\"><tr><th>max error</th><th>at</th><th>mean</th><th>RMS</th><th>PSNR</th>"
+             "<th>pixels over fail</th><th>fail</th><th>failpercent</th><th>hardfail</th></tr>\n";
+        h += fmt::format("<tr><td>{}</td><td>({}, {})</td><td>{}</td><td>{}</td><td>{}</td><td>{} ({:.3f} %)</td>"
+                         "<td>{}</td><td>{}</td><td>{}</td></tr></table>\n",
+                         number(d.maxError), d.maxX, d.maxY, number(d.meanError), number(d.rmsError),
+                         number(d.psnr), d.failingPixels, d.failingPercent, number(t.fail),
+                         number(t.failPercent), number(t.hardFail));
+    }
+    return h + geometryHtml(r, reportDir) + "</div>\n";
+}
+
+// index.html: the summary, how to bless the failing cases, then each case, failed ones first.
+std::string indexHtml(const Manifest& m, const std::vector<CaseResult>& results, const fs::path& reportDir,
+                      size_t nFailed, const std::string& bless, double wallSeconds) {
+    std::vector<const CaseResult*> order;
+    for (const auto& r : results) order.push_back(&r);
+    std::stable_sort(order.begin(), order.end(), [](const CaseResult* a, const CaseResult* b) {
+        return failed(a->status) && !failed(b->status);
+    });
+    std::string h = "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n";
+    h += fmt::format("<title>relief test: {} passed, {} failed</title>\n", results.size() - nFailed, nFailed);
+    h += kReportStyle;
     h += fmt::format("<h1>relief test — {}</h1>\n", markupText(m.file.string()));
     h += fmt::format("<p class=\"summary\" id=\"summary\">{} passed, {} failed, {} cases in {:.1f} s</p>\n",
                      results.size() - nFailed, nFailed, results.size(), wallSeconds);
@@ -182,51 +228,13 @@ img.geometry-plot { max-width: 420px; max-height: 320px; border: 1px solid #eee;
         h += fmt::format("<p>To accept the new images of the failing cases as references: "
                          "<code id=\"bless\">{}</code></p>\n",
                          markupText(bless));
-    for (const CaseResult* r : order) {
-        const TestCase& c = *r->testCase;
-        std::string cls = statusName(r->status);
-        std::transform(cls.begin(), cls.end(), cls.begin(), [](unsigned char ch) { return std::tolower(ch); });
-        h += fmt::format("<div class=\"case {}\" data-case=\"{}\">\n<h2><span class=\"status\">{}</span> {}</h2>\n",
-                         cls, markupText(c.name), statusName(r->status), markupText(c.name));
-        h += fmt::format("<p>{} — scene <code>{}</code>, {} x {}, {:.1f} s</p>\n", markupText(r->message),
-                         markupText(c.scene.string()), c.width, c.height, r->seconds);
-        h += "<div class=\"images\">\n";
-        const std::string newImg = relativeUrl(r->newImage, o.reportDir),
-                          refImg = relativeUrl(r->referenceImage, o.reportDir),
-                          diffImg = relativeUrl(r->diffImage, o.reportDir);
-        if (!newImg.empty() && fs::exists(r->newImage)) {
-            h += "<figure><div class=\"blink\">";
-            h += fmt::format("<img class=\"new\" src=\"{}\" alt=\"new\">", newImg);
-            if (!refImg.empty())
-                h += fmt::format("<img class=\"reference-under\" src=\"{}\" alt=\"reference (hover)\">", refImg);
-            h += "</div><figcaption>new (hover: reference)</figcaption></figure>\n";
-        }
-        if (!refImg.empty())
-            h += fmt::format("<figure><img class=\"reference\" src=\"{}\" alt=\"reference\"><figcaption>"
-                             "reference {}</figcaption></figure>\n",
-                             refImg, markupText(r->referenceName));
-        if (!diffImg.empty())
-            h += fmt::format("<figure><img class=\"difference\" src=\"{}\" alt=\"difference\"><figcaption>"
-                             "difference (black: identical; scaled to the largest)</figcaption></figure>\n",
-                             diffImg);
-        h += "</div>\n";
-        if (r->difference.width > 0) {
-            const auto& d = r->difference;
-            const auto& t = c.thresholds;
-            h += "<table class=\"metrics\"><tr><th>max error</th><th>at</th><th>mean</th><th>RMS</th><th>PSNR</th>"
-                 "<th>pixels over fail</th><th>fail</th><th>failpercent</th><th>hardfail</th></tr>\n";
-            h += fmt::format("<tr><td>{}</td><td>({}, {})</td><td>{}</td><td>{}</td><td>{}</td><td>{} ({:.3f} %)</td>"
-                             "<td>{}</td><td>{}</td><td>{}</td></tr></table>\n",
-                             number(d.maxError), d.maxX, d.maxY, number(d.meanError), number(d.rmsError),
-                             number(d.psnr), d.failingPixels, d.failingPercent, number(t.fail),
-                             number(t.failPercent), number(t.hardFail));
-        }
-        h += geometryHtml(*r, o.reportDir);
-        h += "</div>\n";
-    }
-    h += "</body></html>\n";
-    writeFileAtomically(o.reportDir / "index.html", h);
+    for (const CaseResult* r : order) h += caseHtml(*r, reportDir);
+    return h + "</body></html>\n";
+}
 
+// summary.json: the counts, and each case's status, measures and geometry checks, in manifest order.
+std::string summaryJson(const Manifest& m, const std::vector<CaseResult>& results, const RunOptions& o,
+                        size_t nFailed, const std::string& bless, double wallSeconds) {
     nlohmann::ordered_json j;
     j["manifest"] = m.file.string();
     j["passed"] = results.size() - nFailed;
@@ -254,8 +262,11 @@ img.geometry-plot { max-width: 420px; max-height: 320px; border: 1px solid #eee;
     }
     j["cases"] = cases;
     if (nFailed) j["bless"] = bless;
-    writeFileAtomically(o.reportDir / "summary.json", j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
+    return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+}
 
+// junit.xml, which CI systems read: a test case a relief case, a failure each failed one.
+std::string junitXml(const Manifest& m, const std::vector<CaseResult>& results, size_t nFailed, double wallSeconds) {
     std::string x = fmt::format("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuite name=\"relief\" "
                                 "tests=\"{}\" failures=\"{}\" time=\"{:.3f}\">\n",
                                 results.size(), nFailed, wallSeconds);
@@ -268,8 +279,19 @@ img.geometry-plot { max-width: 420px; max-height: 320px; border: 1px solid #eee;
         else
             x += "/>\n";
     }
-    x += "</testsuite>\n";
-    writeFileAtomically(o.reportDir / "junit.xml", x);
+    return x + "</testsuite>\n";
+}
+
+}  // namespace
+
+void writeReport(const Manifest& m, const std::vector<CaseResult>& results, const RunOptions& o,
+                 double wallSeconds) {
+    size_t nFailed = 0;
+    for (const auto& r : results) nFailed += failed(r.status);
+    const std::string bless = fmt::format("relief test {} --update", shellQuoted(o.manifestArgument));
+    writeFileAtomically(o.reportDir / "index.html", indexHtml(m, results, o.reportDir, nFailed, bless, wallSeconds));
+    writeFileAtomically(o.reportDir / "summary.json", summaryJson(m, results, o, nFailed, bless, wallSeconds));
+    writeFileAtomically(o.reportDir / "junit.xml", junitXml(m, results, nFailed, wallSeconds));
 }
 
 }  // namespace relief::regress
