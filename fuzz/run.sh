@@ -2,9 +2,10 @@
 # Runs one fuzz target for SECONDS (or, with RUNS=N in the environment, N executions) on a corpus
 # seeded from the project's own files of its kind; a finding (crash, leak, undefined behaviour,
 # timeout) fails it and leaves the input as crash-* / leak-* / timeout-* in the corpus folder.
+# RELIEF_FUZZ_SECONDS in the environment, when set, stands for SECONDS (the build's configured value).
 # Usage: fuzz/run.sh TARGET_BINARY scene|samples|curve|manifest|cpt|vrt|plan CORPUS_DIR SECONDS
 set -u
-bin=$(realpath "$1") kind=$2 corpus=$3 seconds=$4
+bin=$(realpath "$1") kind=$2 corpus=$3 seconds=${RELIEF_FUZZ_SECONDS:-$4}
 src=$(cd "$(dirname "$0")/.." && pwd)
 mkdir -p "$corpus"
 seed() { for f in "$@"; do [ -f "$f" ] && [ "$(stat -c %s "$f")" -le 65536 ] && cp "$f" "$corpus/seed-$(echo "$f" | md5sum | cut -c1-12)"; done; }
