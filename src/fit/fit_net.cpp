@@ -180,8 +180,10 @@ private:
 // overshoots (held-out topobathy: 1/2 to 2; a smooth volcano: none, or 1/2
 // between clusters). A round's two trials run at once, one on each worker;
 // the points tried do not depend on how many cores there are, so neither does
-// the choice. Every trial is recorded; the best one's solution is kept.
-Solved choosePenalty(FitSystem& system, std::optional<double> givenTension, std::vector<GcvTrial>& trials) {
+// the choice. Every trial is recorded; the best one's solution is kept. `told` (may be empty) hears
+// each round's end: a large net's trials take seconds each.
+Solved choosePenalty(FitSystem& system, std::optional<double> givenTension, std::vector<GcvTrial>& trials,
+                     const std::function<void(const std::string&)>& told) {
     Solved best;
     double bestLog = 0;  // of the best trial's smoothing
     // No point tried before (a point is log10 smoothing and tension).
@@ -212,6 +214,9 @@ Solved choosePenalty(FitSystem& system, std::optional<double> givenTension, std:
             trials.push_back({std::pow(10.0, logs[i]), tension, solved[i].score, solved[i].traceH});
             if (solved[i].score < best.score) best = std::move(solved[i]), bestLog = logs[i];
         }
+        if (told && best.z.size() != 0)
+            told(fmt::format("cross-validation: {} penalties tried, the best so far smoothing {:.3g}, tension {:.3g}",
+                             trials.size(), best.penalty.smoothing, best.penalty.tension));
     };
     const double tension = givenTension.value_or(0);
     constexpr double kStep = 8.0 / 3, kFinest = 1.0 / 3;
@@ -321,7 +326,7 @@ std::optional<FitReport> fitNet(const subdiv::Scheme& scheme, int depth, const s
         report.chosenBy = "net.smoothing";
     } else {
         if (progress) progress(fmt::format("fitting {} samples: choosing the penalty by cross-validation", report.samples));
-        solved = choosePenalty(system, spec.tension, report.gcv);
+        solved = choosePenalty(system, spec.tension, report.gcv, progress);
         // No smoothing gave a solution: the largest tried, the best conditioned, fails below saying why.
         if (solved.z.size() == 0) solved = system.solve({1e2, spec.tension.value_or(0)}, false, 0);
         report.chosenBy = "generalized cross-validation";
