@@ -1,5 +1,7 @@
 #include "fit/sparse_cholesky.h"
 
+#include "fit/dense_kernels.h"
+
 #include <Eigen/CholmodSupport>
 #include <fmt/format.h>
 
@@ -62,10 +64,11 @@ cholmod_sparse lowerView(const Eigen::SparseMatrix<double>& lower) {
 }  // namespace
 
 SparseCholesky::SparseCholesky() : cholmod_(std::make_unique<Cholmod>()) {
+    fixDenseKernels();
     cholmod_common& common = cholmod_->common;
     cholmod_start(&common);
     common.print = 0;  // its warnings would go to stdout
-    common.supernodal = CHOLMOD_SIMPLICIAL;
+    common.supernodal = CHOLMOD_SUPERNODAL;
     common.final_asis = 0;
     common.final_ll = 1;  // LL', so that L^-1 alone halves a quadratic form's solve
     common.nmethods = 1;
