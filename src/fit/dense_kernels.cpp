@@ -3,18 +3,28 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 
+#include <dlfcn.h>
+
+#include <cmath>
 #include <cstddef>
-#include <mutex>
 
 namespace relief::fit {
 
-void fixDenseKernels() {
-    static std::once_flag fixed;
-    std::call_once(fixed, [] {
-        Eigen::setNbThreads(1);
-        // A common x86-64's L1, L2 and L3 (a mismatch costs speed, never bits).
-        Eigen::setCpuCacheSizes(32 * 1024, 1024 * 1024, 8 * 1024 * 1024);
-    });
+namespace {
+
+// Before main: no call, from CHOLMOD or any other library, sees Eigen's own choices.
+const bool kEigenFixed = [] {
+    Eigen::setNbThreads(1);
+    // A common x86-64's L1, L2 and L3 (a mismatch costs speed, never bits).
+    Eigen::setCpuCacheSizes(32 * 1024, 1024 * 1024, 8 * 1024 * 1024);
+    return true;
+}();
+
+}  // namespace
+
+bool denseKernelsAreTheProcesss() {
+    return kEigenFixed && dlsym(RTLD_DEFAULT, "dgemm_") == reinterpret_cast<void*>(&dgemm_) &&
+           dlsym(RTLD_DEFAULT, "dpotrf_") == reinterpret_cast<void*>(&dpotrf_);
 }
 
 namespace {
@@ -62,7 +72,7 @@ extern "C" {
 void dgemm_(const char* transa, const char* transb, const int* m, const int* n, const int* k, const double* alpha,
             const double* a, const int* lda, const double* b, const int* ldb, const double* beta, double* c,
             const int* ldc) {
-    if (*m == 0 || *n == 0) return;
+    if (*m == 0 || *n == 0 || ((*alpha == 0 || *k == 0) && *beta == 1)) return;
     MatrixAt C = matrixAt(c, *m, *n, *ldc);
     if (*beta == 0) C.setZero();
     else if (*beta != 1) C *= *beta;
@@ -79,7 +89,7 @@ void dgemm_(const char* transa, const char* transb, const int* m, const int* n, 
 // C = alpha A A' + beta C (trans "N") or alpha A' A + beta C, C's lower or upper triangle only.
 void dsyrk_(const char* uplo, const char* trans, const int* n, const int* k, const double* alpha, const double* a,
             const int* lda, const double* beta, double* c, const int* ldc) {
-    if (*n == 0) return;
+    if (*n == 0 || ((*alpha == 0 || *k == 0) && *beta == 1)) return;
     MatrixAt C = matrixAt(c, *n, *n, *ldc);
     const bool lower = flagIs(uplo, 'l'), transposed = !flagIs(trans, 'n');
     const auto scale = [&](auto triangle) {
@@ -112,29 +122,37 @@ void dtrsm_(const char* side, const char* uplo, const char* transa, const char* 
     else solveTriangle<Eigen::OnTheRight>(A, lower, transposed, unit, B);
 }
 
-// A = L L' (uplo "L") or U' U in place; info 0, or > 0 when A is not positive definite.
+// A = L L' (uplo "L") or U' U in place; info 0, or the order of the first leading minor that is
+// not positive definite (a pivot not above 0, or NaN).
 void dpotrf_(const char* uplo, const int* n, double* a, const int* lda, int* info) {
-    using InPlace = Eigen::Ref<DenseMatrix, 0, Eigen::OuterStride<>>;
     *info = 0;
     if (*n == 0) return;
     MatrixAt A = matrixAt(a, *n, *n, *lda);
-    InPlace place(A);
-    const bool ok = flagIs(uplo, 'l') ? Eigen::LLT<InPlace, Eigen::Lower>(place).info() == Eigen::Success
-                                      : Eigen::LLT<InPlace, Eigen::Upper>(place).info() == Eigen::Success;
-    // LAPACK says which leading minor failed; CHOLMOD needs only that one did.
-    if (!ok) *info = 1;
+    // Eigen's in-place factorization, internal for the column where it stopped, which LAPACK reports.
+    const Eigen::Index stopped = flagIs(uplo, 'l') ? Eigen::internal::llt_inplace<double, Eigen::Lower>::blocked(A)
+                                                   : Eigen::internal::llt_inplace<double, Eigen::Upper>::blocked(A);
+    if (stopped >= 0) {
+        *info = static_cast<int>(stopped) + 1;
+        return;
+    }
+    for (int j = 0; j < *n; ++j)
+        if (std::isnan(A(j, j))) {
+            *info = j + 1;
+            return;
+        }
 }
 
 // y = alpha op(A) x + beta y (y not read when beta is 0).
 void dgemv_(const char* trans, const int* m, const int* n, const double* alpha, const double* a, const int* lda,
             const double* x, const int* incx, const double* beta, double* y, const int* incy) {
+    if (*m == 0 || *n == 0 || (*alpha == 0 && *beta == 1)) return;
     const bool transposed = !flagIs(trans, 'n');
     const int ny = transposed ? *n : *m, nx = transposed ? *m : *n;
     for (int i = 0; i < ny; ++i) {
         double& yi = y[elementAt(i, ny, *incy)];
         yi = *beta == 0 ? 0 : *beta * yi;
     }
-    if (*alpha == 0 || nx == 0) return;
+    if (*alpha == 0) return;
     const ConstMatrixAt A = matrixAt(a, *m, *n, *lda);
     for (int j = 0; j < *n; ++j) {
         if (transposed) {

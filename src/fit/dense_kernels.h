@@ -3,20 +3,24 @@
 // dtrsm, dgemv, dtrsv; LAPACK dpotrf), defined by relief on Eigen's. An
 // executable's own definitions come before any shared library's, so CHOLMOD
 // calls these whichever BLAS the machine has installed (Debian's reference
-// BLAS, or OpenBLAS with kernels chosen for the CPU it runs on): a fit has the
-// same bits on every x86-64 machine, as the reference BLAS alone, too slow for
-// the supernodes, would not give them. Internal to fit/.
+// BLAS, too slow for the supernodes, or OpenBLAS, whose kernels and so whose
+// bits follow the CPU): a fit has the same bits on every x86-64 machine.
+// They are the whole process's: every library in it that calls these six
+// routines by name (LAPACK's own, Armadillo's through GDAL) gets them too, so
+// they keep the reference's meaning to the letter, flags, increments, quick
+// returns and LAPACK's info included.
 //
 // Eigen's blocked products round according to their blocking, which depends
 // on the cache sizes Eigen reads from the CPU and on its thread count; both
-// are fixed here before the first factorization.
+// are fixed when the program starts, before any call.
 
 namespace relief::fit {
 
-/// Fixes Eigen's dense products to one thread and to fixed cache sizes (once
-/// a process; SparseCholesky calls it). Referencing it also brings the
-/// kernels into every executable that factorizes.
-void fixDenseKernels();
+/// Whether the process calls these kernels, where a link that hid them (hidden
+/// visibility, --exclude-libs) would leave CHOLMOD on the machine's BLAS.
+/// SparseCholesky refuses to factorize otherwise; referencing this also
+/// brings the kernels into every executable that factorizes.
+bool denseKernelsAreTheProcesss();
 
 }  // namespace relief::fit
 

@@ -64,7 +64,10 @@ cholmod_sparse lowerView(const Eigen::SparseMatrix<double>& lower) {
 }  // namespace
 
 SparseCholesky::SparseCholesky() : cholmod_(std::make_unique<Cholmod>()) {
-    fixDenseKernels();
+    // Else the machine's BLAS would decide the bits: a build defect, never the user's input.
+    if (!denseKernelsAreTheProcesss())
+        throw std::logic_error("fit: relief's dense kernels are not the ones this process calls (were they hidden "
+                               "at link time?); CHOLMOD would use the machine's BLAS");
     cholmod_common& common = cholmod_->common;
     cholmod_start(&common);
     common.print = 0;  // its warnings would go to stdout

@@ -52,6 +52,7 @@ Stored triangle(int n, bool lower, unsigned seed) {
         for (int i = 0; i < n; ++i) {
             if (i == j) t.at(i, j) = 2 + std::abs(t.at(i, j));
             else if ((i > j) != lower) t.at(i, j) = std::numeric_limits<double>::quiet_NaN();
+            else t.at(i, j) /= n;  // well conditioned at any size
         }
     return t;
 }
@@ -65,29 +66,57 @@ MatrixXd triangleOf(Stored& t, bool lower, bool unit) {
     return m;
 }
 
+// Small sizes take Eigen's coefficient-wise products; CHOLMOD's supernodes, its blocked ones.
+struct Sizes {
+    int m, n, k;
+};
+constexpr Sizes kSizes[] = {{7, 5, 6}, {150, 90, 120}};
+
 TEST(DenseKernels, GemmEveryTransposeAndScale) {
-    for (const char* ta : {"N", "T", "c"})
-        for (const char* tb : {"n", "T", "C"})
-            for (const double beta : {0.0, 1.0, -0.5}) {
-                const int m = 7, n = 5, k = 6;
-                const bool tA = *ta != 'N' && *ta != 'n', tB = *tb != 'N' && *tb != 'n';
-                Stored a(tA ? k : m, tA ? m : k, 1), b(tB ? n : k, tB ? k : n, 2), c(m, n, 3);
-                if (beta == 0)  // C is not read when beta is 0: NaN in it must not reach the result
-                    for (int j = 0; j < n; ++j) c.at(0, j) = std::numeric_limits<double>::quiet_NaN();
-                const MatrixXd A = tA ? a.dense().transpose() : a.dense(), B = tB ? b.dense().transpose() : b.dense();
-                const MatrixXd want = 1.5 * A * B + (beta == 0 ? MatrixXd::Zero(m, n) : MatrixXd(beta * c.dense()));
-                const double alpha = 1.5;
-                dgemm_(ta, tb, &m, &n, &k, &alpha, a.data.data(), &a.leading, b.data.data(), &b.leading, &beta,
-                       c.data.data(), &c.leading);
-                EXPECT_LT((c.dense() - want).cwiseAbs().maxCoeff(), 1e-13) << ta << tb << beta;
-                EXPECT_TRUE(c.paddingUntouched());
-            }
+    for (const Sizes size : kSizes)
+        for (const char* ta : {"N", "T", "c"})
+            for (const char* tb : {"n", "T", "C"})
+                for (const double beta : {0.0, 1.0, -0.5}) {
+                    const int m = size.m, n = size.n, k = size.k;
+                    const bool tA = *ta != 'N' && *ta != 'n', tB = *tb != 'N' && *tb != 'n';
+                    Stored a(tA ? k : m, tA ? m : k, 1), b(tB ? n : k, tB ? k : n, 2), c(m, n, 3);
+                    if (beta == 0)  // C is not read when beta is 0: NaN in it must not reach the result
+                        for (int j = 0; j < n; ++j) c.at(0, j) = std::numeric_limits<double>::quiet_NaN();
+                    const MatrixXd A = tA ? a.dense().transpose() : a.dense(), B = tB ? b.dense().transpose() : b.dense();
+                    const MatrixXd want = 1.5 * A * B + (beta == 0 ? MatrixXd::Zero(m, n) : MatrixXd(beta * c.dense()));
+                    const double alpha = 1.5;
+                    dgemm_(ta, tb, &m, &n, &k, &alpha, a.data.data(), &a.leading, b.data.data(), &b.leading, &beta,
+                           c.data.data(), &c.leading);
+                    EXPECT_LT((c.dense() - want).cwiseAbs().maxCoeff(), 1e-12) << m << ta << tb << beta;
+                    EXPECT_TRUE(c.paddingUntouched());
+                }
+}
+
+// The reference's quick returns: alpha 0 or k 0 with beta 1 leaves C as it was, unread operands
+// (NaN here) never reach it; m or n 0 leaves y alone.
+TEST(DenseKernels, QuickReturnsLeaveTheOutputAlone) {
+    const int m = 4, n = 3, k = 2, zero = 0, one = 1;
+    Stored a(m, k, 12), b(k, n, 13), c(m, n, 14);
+    for (double& v : a.data) v = std::numeric_limits<double>::quiet_NaN();
+    const MatrixXd before = c.dense();
+    const double alpha0 = 0, beta1 = 1, alpha = 2;
+    dgemm_("N", "N", &m, &n, &k, &alpha0, a.data.data(), &a.leading, b.data.data(), &b.leading, &beta1,
+           c.data.data(), &c.leading);
+    EXPECT_EQ(c.dense(), before);
+    dgemm_("N", "N", &m, &n, &zero, &alpha, a.data.data(), &a.leading, b.data.data(), &b.leading, &beta1,
+           c.data.data(), &c.leading);
+    EXPECT_EQ(c.dense(), before);
+    std::vector<double> y = {5, 6, 7};
+    const double beta0 = 0;
+    dgemv_("T", &zero, &n, &alpha, a.data.data(), &a.leading, y.data(), &one, &beta0, y.data(), &one);
+    EXPECT_EQ(y, (std::vector<double>{5, 6, 7}));
 }
 
 TEST(DenseKernels, SyrkWritesOneTriangle) {
+    for (const Sizes size : kSizes)
     for (const char* uplo : {"L", "u"})
         for (const char* trans : {"N", "t"}) {
-            const int n = 6, k = 4;
+            const int n = size.m, k = size.k;
             const bool lower = *uplo == 'L', t = *trans == 't';
             Stored a(t ? k : n, t ? n : k, 4), c(n, n, 5);
             const MatrixXd before = c.dense(), A = t ? a.dense().transpose() : a.dense();
@@ -98,17 +127,18 @@ TEST(DenseKernels, SyrkWritesOneTriangle) {
             for (int j = 0; j < n; ++j)
                 for (int i = 0; i < n; ++i) {
                     const bool inside = lower ? i >= j : i <= j;
-                    EXPECT_NEAR(got(i, j), inside ? full(i, j) : before(i, j), 1e-13) << uplo << trans << i << j;
+                    EXPECT_NEAR(got(i, j), inside ? full(i, j) : before(i, j), 1e-12) << uplo << trans << i << j;
                 }
         }
 }
 
 TEST(DenseKernels, TrsmEverySideTriangleAndDiagonal) {
+    for (const Sizes size : kSizes)
     for (const char* side : {"L", "r"})
         for (const char* uplo : {"L", "U"})
             for (const char* trans : {"N", "T"})
                 for (const char* diag : {"N", "u"}) {
-                    const int m = 6, n = 4;
+                    const int m = size.m, n = size.n;
                     const bool left = *side == 'L', lower = *uplo == 'L', unit = *diag == 'u';
                     Stored a = triangle(left ? m : n, lower, 6), b(m, n, 7);
                     MatrixXd op = triangleOf(a, lower, unit);
@@ -118,31 +148,39 @@ TEST(DenseKernels, TrsmEverySideTriangleAndDiagonal) {
                     dtrsm_(side, uplo, trans, diag, &m, &n, &alpha, a.data.data(), &a.leading, b.data.data(),
                            &b.leading);
                     const MatrixXd x = b.dense(), back = left ? MatrixXd(op * x) : MatrixXd(x * op);
-                    EXPECT_LT((back - rhs).cwiseAbs().maxCoeff(), 1e-13) << side << uplo << trans << diag;
+                    EXPECT_LT((back - rhs).cwiseAbs().maxCoeff(), 1e-12) << m << side << uplo << trans << diag;
                     EXPECT_TRUE(b.paddingUntouched());
                 }
 }
 
-TEST(DenseKernels, PotrfFactorsAndRefusesWhatIsNotPositiveDefinite) {
-    for (const char* uplo : {"L", "U"}) {
-        const int n = 8;
-        Stored r(n, n, 8);
-        const MatrixXd spd = r.dense() * r.dense().transpose() + n * MatrixXd::Identity(n, n);
-        Stored a(n, n, 9);
-        for (int j = 0; j < n; ++j)
-            for (int i = 0; i < n; ++i) a.at(i, j) = spd(i, j);
-        int info = -1;
-        dpotrf_(uplo, &n, a.data.data(), &a.leading, &info);
-        EXPECT_EQ(info, 0);
-        const bool lower = *uplo == 'L';
-        const MatrixXd f = triangleOf(a, lower, false);
-        const MatrixXd product = lower ? MatrixXd(f * f.transpose()) : MatrixXd(f.transpose() * f);
-        EXPECT_LT((product - spd).cwiseAbs().maxCoeff(), 1e-12) << uplo;
-        for (int j = 0; j < n; ++j)  // a negative pivot: no longer positive definite
-            for (int i = 0; i < n; ++i) a.at(i, j) = i == j && j == 3 ? -1.0 : spd(i, j);
-        dpotrf_(uplo, &n, a.data.data(), &a.leading, &info);
-        EXPECT_GT(info, 0) << uplo;
-    }
+TEST(DenseKernels, PotrfFactorsAndNamesTheMinorThatIsNotPositiveDefinite) {
+    for (const int n : {8, 200})
+        for (const char* uplo : {"L", "U"}) {
+            Stored r(n, n, 8);
+            const MatrixXd spd = r.dense() * r.dense().transpose() + n * MatrixXd::Identity(n, n);
+            Stored a(n, n, 9);
+            const auto fill = [&](int bad, double value) {
+                for (int j = 0; j < n; ++j)
+                    for (int i = 0; i < n; ++i) a.at(i, j) = i == j && j == bad ? value : spd(i, j);
+            };
+            fill(-1, 0);
+            int info = -1;
+            dpotrf_(uplo, &n, a.data.data(), &a.leading, &info);
+            EXPECT_EQ(info, 0);
+            const bool lower = *uplo == 'L';
+            const MatrixXd f = triangleOf(a, lower, false);
+            const MatrixXd product = lower ? MatrixXd(f * f.transpose()) : MatrixXd(f.transpose() * f);
+            EXPECT_LT((product - spd).cwiseAbs().maxCoeff(), 1e-10 * n) << n << uplo;
+            EXPECT_TRUE(a.paddingUntouched());
+            // LAPACK's info: the order of the first leading minor that fails, a negative pivot or NaN.
+            const int bad = n - 5;
+            fill(bad, -1);
+            dpotrf_(uplo, &n, a.data.data(), &a.leading, &info);
+            EXPECT_EQ(info, bad + 1) << n << uplo;
+            fill(bad, std::numeric_limits<double>::quiet_NaN());
+            dpotrf_(uplo, &n, a.data.data(), &a.leading, &info);
+            EXPECT_EQ(info, bad + 1) << n << uplo << " NaN";
+        }
 }
 
 TEST(DenseKernels, GemvAndTrsvWithIncrements) {
@@ -192,6 +230,7 @@ TEST(DenseKernels, AreTheOnesTheProcessFinds) {
     EXPECT_EQ(dlsym(RTLD_DEFAULT, "dpotrf_"), reinterpret_cast<void*>(&dpotrf_));
     EXPECT_EQ(dlsym(RTLD_DEFAULT, "dgemv_"), reinterpret_cast<void*>(&dgemv_));
     EXPECT_EQ(dlsym(RTLD_DEFAULT, "dtrsv_"), reinterpret_cast<void*>(&dtrsv_));
+    EXPECT_TRUE(denseKernelsAreTheProcesss());
 }
 
 }  // namespace
