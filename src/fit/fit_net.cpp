@@ -29,8 +29,9 @@ using Sparse = Eigen::SparseMatrix<double>;
 constexpr int kExactTraceNodes = 400;  // up to this many nodes the trace is exact
 constexpr int kRefinementSteps = 3;
 constexpr int kWorkers = 2;            // penalties tried at once, each with its own factorization
-// The tensions tried beside none when the scene gives no tension: powers of two, from 1 outwards.
+// The tensions tried beside none when the scene gives no tension: powers of two, from 1 and 1/2 outwards.
 constexpr double kFirstTension = 1, kLeastTension = 0.25, kGreatestTension = 8;
+constexpr double kTensionGain = 1e-3;  // the least share of the score a first tension must gain to be pursued
 
 // A symmetric matrix stored as its lower triangle, times a vector.
 Eigen::VectorXd timesSymmetric(const Sparse& lower, const Eigen::VectorXd& v) {
@@ -168,39 +169,46 @@ private:
 };
 
 // The penalty of the least GCV score. The smoothing over log10 [-6, 2]
-// (below, the equations' condition makes the score itself uncertain): four
-// points a third of the range apart, then rounds that try the points half a
-// step either side of the best so far, the step halved each round, down to a
-// third of a decade (a GCV minimum is that flat). Then, unless the scene gives
-// the tension, tension 1 at the best smoothing and a third of a decade below
-// (a membrane's pull lowers the best smoothing, if anything); while that wins,
-// twice the tension (up to 8), and if it lost, half (down to 1/4) while that
-// wins, each at the best smoothing and a third of a decade below. On rough
-// terrain a tension wins, where between samples the thin plate alone
-// overshoots (held-out topobathy: 1/2 to 2; a smooth volcano: none, or 1/2
-// between clusters). A round's two trials run at once, one on each worker;
-// the points tried do not depend on how many cores there are, so neither does
-// the choice. Every trial is recorded; the best one's solution is kept. `told` (may be empty) hears
-// each round's end: a large net's trials take seconds each.
+// (below, the equations' condition makes the score itself uncertain): two
+// points a third and two thirds of the way across, then rounds that try the
+// points half a step either side of the best so far, the step halved each
+// round, down to a third of a decade (a GCV minimum is that flat): the range's
+// ends themselves are not tried, their neighbours are. Then, unless the scene
+// gives the tension, tensions 1 and 1/2 at the best smoothing; if neither
+// gains a thousandth of the score (a third of a decade of smoothing moves it
+// by about a hundredth near its minimum), the search ends there. Else, from
+// the winner, twice the tension (up to 8) or half (down to 1/4) while that
+// wins, at the best smoothing and a third of a decade below (a membrane's pull
+// lowers the best smoothing, if anything). On rough terrain a tension wins,
+// where between samples the thin plate alone overshoots (held-out topobathy:
+// 1/2 to 8 in 14 of 15 fits; the smooth volcano: none to 1). A round's two
+// trials run at once, one on each worker; the points tried do not depend on
+// how many cores there are, so neither does the choice. Every trial is
+// recorded; the best one's solution is kept. `told` (may be empty) hears each
+// round's end: a large net's trials take seconds each.
 Solved choosePenalty(FitSystem& system, std::optional<double> givenTension, std::vector<GcvTrial>& trials,
                      const std::function<void(const std::string&)>& told) {
+    struct Point {
+        double log, tension;  // log10 of the smoothing
+    };
     Solved best;
     double bestLog = 0;  // of the best trial's smoothing
-    // No point tried before (a point is log10 smoothing and tension).
-    auto round = [&](std::vector<double> logs, double tension) {
+    // No point tried before.
+    auto round = [&](std::vector<Point> points) {
         constexpr double kLow = -6, kHigh = 2;
-        std::erase_if(logs, [&](double l) {
-            return l < kLow - 1e-9 || l > kHigh + 1e-9 || std::any_of(trials.begin(), trials.end(), [&](const GcvTrial& t) {
-                       return t.tension == tension && std::abs(std::log10(t.smoothing) - l) < 1e-9;
+        std::erase_if(points, [&](const Point& p) {
+            return p.log < kLow - 1e-9 || p.log > kHigh + 1e-9 || std::any_of(trials.begin(), trials.end(), [&](const GcvTrial& t) {
+                       return t.tension == p.tension && std::abs(std::log10(t.smoothing) - p.log) < 1e-9;
                    });
         });
-        std::vector<Solved> solved(logs.size());
-        std::vector<std::exception_ptr> thrown(logs.size());  // an exception may not leave a parallel region
+        std::vector<Solved> solved(points.size());
+        std::vector<std::exception_ptr> thrown(points.size());  // an exception may not leave a parallel region
 #pragma omp parallel for num_threads(kWorkers) schedule(static, 1)
-        for (int i = 0; i < static_cast<int>(logs.size()); ++i) {
+        for (int i = 0; i < static_cast<int>(points.size()); ++i) {
+            const Point& p = points[static_cast<size_t>(i)];
             Solved& trial = solved[static_cast<size_t>(i)];
             try {
-                trial = system.solve({std::pow(10.0, logs[static_cast<size_t>(i)]), tension}, true, i % kWorkers);
+                trial = system.solve({std::pow(10.0, p.log), p.tension}, true, i % kWorkers);
             } catch (const std::bad_alloc&) {
                 trial = Solved{};
                 trial.cholmodStatus = SparseCholesky::kOutOfMemory;
@@ -210,9 +218,9 @@ Solved choosePenalty(FitSystem& system, std::optional<double> givenTension, std:
         }
         for (const std::exception_ptr& e : thrown)
             if (e) std::rethrow_exception(e);
-        for (size_t i = 0; i < logs.size(); ++i) {
-            trials.push_back({std::pow(10.0, logs[i]), tension, solved[i].score, solved[i].traceH});
-            if (solved[i].score < best.score) best = std::move(solved[i]), bestLog = logs[i];
+        for (size_t i = 0; i < points.size(); ++i) {
+            trials.push_back({std::pow(10.0, points[i].log), points[i].tension, solved[i].score, solved[i].traceH});
+            if (solved[i].score < best.score) best = std::move(solved[i]), bestLog = points[i].log;
         }
         if (told && best.z.size() != 0)
             told(fmt::format("cross-validation: {} penalties tried, the best so far smoothing {:.3g}, tension {:.3g}",
@@ -220,15 +228,17 @@ Solved choosePenalty(FitSystem& system, std::optional<double> givenTension, std:
     };
     const double tension = givenTension.value_or(0);
     constexpr double kStep = 8.0 / 3, kFinest = 1.0 / 3;
-    round({-6, -6 + kStep}, tension);
-    round({-6 + 2 * kStep, 2}, tension);
-    for (double half = kStep / 2; half > kFinest - 1e-9; half /= 2) round({bestLog - half, bestLog + half}, tension);
+    round({{-6 + kStep, tension}, {-6 + 2 * kStep, tension}});
+    for (double half = kStep / 2; half > kFinest - 1e-9; half /= 2)
+        round({{bestLog - half, tension}, {bestLog + half, tension}});
     if (givenTension || best.z.size() == 0) return best;
-    round({bestLog, bestLog - kFinest}, kFirstTension);
+    const double untensioned = best.score;
+    round({{bestLog, kFirstTension}, {bestLog, kFirstTension / 2}});
+    if (!(best.score < (1 - kTensionGain) * untensioned)) return best;
     const double factor = best.penalty.tension == kFirstTension ? 2 : 0.5;
-    for (double t = kFirstTension * factor; t >= kLeastTension && t <= kGreatestTension; t *= factor) {
+    for (double t = best.penalty.tension * factor; t >= kLeastTension && t <= kGreatestTension; t *= factor) {
         const double bestBefore = best.score;
-        round({bestLog, bestLog - kFinest}, t);
+        round({{bestLog, t}, {bestLog - kFinest, t}});
         if (!(best.score < bestBefore)) break;
     }
     return best;
