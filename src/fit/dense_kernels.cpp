@@ -170,11 +170,15 @@ void dgemv_(const char* trans, const int* m, const int* n, const double* alpha, 
 void dtrsv_(const char* uplo, const char* trans, const char* diag, const int* n, const double* a, const int* lda,
             double* x, const int* incx) {
     if (*n == 0) return;
-    DenseMatrix column(*n, 1);
+    const auto solveColumn = [&](double* column) {
+        MatrixAt b = matrixAt(column, *n, 1, *n);
+        solveTriangle<Eigen::OnTheLeft>(matrixAt(a, *n, *n, *lda), flagIs(uplo, 'l'), !flagIs(trans, 'n'),
+                                        flagIs(diag, 'u'), b);
+    };
+    if (*incx == 1) return solveColumn(x);
+    DenseMatrix column(*n, 1);  // a strided vector, gathered
     for (int i = 0; i < *n; ++i) column(i, 0) = x[elementAt(i, *n, *incx)];
-    MatrixAt b = matrixAt(column.data(), *n, 1, *n);
-    solveTriangle<Eigen::OnTheLeft>(matrixAt(a, *n, *n, *lda), flagIs(uplo, 'l'), !flagIs(trans, 'n'),
-                                    flagIs(diag, 'u'), b);
+    solveColumn(column.data());
     for (int i = 0; i < *n; ++i) x[elementAt(i, *n, *incx)] = column(i, 0);
 }
 
