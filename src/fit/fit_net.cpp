@@ -18,6 +18,7 @@
 #include "core/stopwatch.h"
 #include "fit/basis.h"
 #include "fit/normal_equations.h"
+#include "fit/penalty_search.h"
 #include "fit/sparse_cholesky.h"
 
 namespace relief::fit {
@@ -29,19 +30,12 @@ using Sparse = Eigen::SparseMatrix<double>;
 constexpr int kExactTraceNodes = 400;  // up to this many nodes the trace is exact
 constexpr int kRefinementSteps = 3;
 constexpr int kWorkers = 2;            // penalties tried at once, each with its own factorization
-// The tensions tried beside none when the scene gives no tension: powers of two, from 1 and 1/2 outwards.
-constexpr double kFirstTension = 1, kLeastTension = 0.25, kGreatestTension = 8;
-constexpr double kTensionGain = 1e-3;  // the least share of the score a first tension must gain to be pursued
 
 // A symmetric matrix stored as its lower triangle, times a vector.
 Eigen::VectorXd timesSymmetric(const Sparse& lower, const Eigen::VectorXd& v) {
     Eigen::VectorXd out = lower.selfadjointView<Eigen::Lower>() * v;
     return out;
 }
-
-struct Penalty {
-    double smoothing = 0, tension = 0;
-};
 
 // The system (A'A + lambda P) z = A's for one penalty: solved, its GCV score.
 struct Solved {
@@ -168,47 +162,25 @@ private:
     Eigen::MatrixXd probeSums_;  ///< A'U, U Hutchinson's probes over the samples; empty: the exact trace
 };
 
-// The penalty of the least GCV score. The smoothing over log10 [-6, 2]
-// (below, the equations' condition makes the score itself uncertain): two
-// points a third and two thirds of the way across, then rounds that try the
-// points half a step either side of the best so far, the step halved each
-// round, down to a third of a decade (a GCV minimum is that flat): the range's
-// ends themselves are not tried, their neighbours are. Then, unless the scene
-// gives the tension, tensions 1 and 1/2 at the best smoothing; if neither
-// gains a thousandth of the score (a third of a decade of smoothing moves it
-// by about a hundredth near its minimum), the search ends there. Else, from
-// the winner, twice the tension (up to 8) or half (down to 1/4) while that
-// wins, at the best smoothing and a third of a decade below (a membrane's pull
-// lowers the best smoothing, if anything). On rough terrain a tension wins,
-// where between samples the thin plate alone overshoots (held-out topobathy:
-// 1/2 to 8 in 14 of 15 fits; the smooth volcano: none to 1). A round's two
-// trials run at once, one on each worker; the points tried do not depend on
-// how many cores there are, so neither does the choice. Every trial is
-// recorded; the best one's solution is kept. `told` (may be empty) hears each
-// round's end: a large net's trials take seconds each.
+// The penalty of the least GCV score, as searchPenalty tries them (on rough
+// terrain a tension wins, where between samples the thin plate alone
+// overshoots: held-out topobathy, mostly 1/2 to 8; the smooth volcano, none to
+// 1). A round's two trials run at once, one on each worker; the points tried
+// do not depend on how many cores there are, so neither does the choice.
+// Every trial is recorded; the best one's solution is kept (none when no trial
+// gave one). `told` (may be empty) hears each round's end: a large net's
+// trials take seconds each.
 Solved choosePenalty(FitSystem& system, std::optional<double> givenTension, std::vector<GcvTrial>& trials,
                      const std::function<void(const std::string&)>& told) {
-    struct Point {
-        double log, tension;  // log10 of the smoothing
-    };
     Solved best;
-    double bestLog = 0;  // of the best trial's smoothing
-    // No point tried before.
-    auto round = [&](std::vector<Point> points) {
-        constexpr double kLow = -6, kHigh = 2;
-        std::erase_if(points, [&](const Point& p) {
-            return p.log < kLow - 1e-9 || p.log > kHigh + 1e-9 || std::any_of(trials.begin(), trials.end(), [&](const GcvTrial& t) {
-                       return t.tension == p.tension && std::abs(std::log10(t.smoothing) - p.log) < 1e-9;
-                   });
-        });
-        std::vector<Solved> solved(points.size());
-        std::vector<std::exception_ptr> thrown(points.size());  // an exception may not leave a parallel region
+    const ScoreRound scoreRound = [&](const std::vector<Penalty>& round) {
+        std::vector<Solved> solved(round.size());
+        std::vector<std::exception_ptr> thrown(round.size());  // an exception may not leave a parallel region
 #pragma omp parallel for num_threads(kWorkers) schedule(static, 1)
-        for (int i = 0; i < static_cast<int>(points.size()); ++i) {
-            const Point& p = points[static_cast<size_t>(i)];
+        for (int i = 0; i < static_cast<int>(round.size()); ++i) {
             Solved& trial = solved[static_cast<size_t>(i)];
             try {
-                trial = system.solve({std::pow(10.0, p.log), p.tension}, true, i % kWorkers);
+                trial = system.solve(round[static_cast<size_t>(i)], true, i % kWorkers);
             } catch (const std::bad_alloc&) {
                 trial = Solved{};
                 trial.cholmodStatus = SparseCholesky::kOutOfMemory;
@@ -218,29 +190,22 @@ Solved choosePenalty(FitSystem& system, std::optional<double> givenTension, std:
         }
         for (const std::exception_ptr& e : thrown)
             if (e) std::rethrow_exception(e);
-        for (size_t i = 0; i < points.size(); ++i) {
-            trials.push_back({std::pow(10.0, points[i].log), points[i].tension, solved[i].score, solved[i].traceH});
-            if (solved[i].score < best.score) best = std::move(solved[i]), bestLog = points[i].log;
+        std::vector<double> scores;
+        for (size_t i = 0; i < round.size(); ++i) {
+            trials.push_back({round[i].smoothing, round[i].tension, solved[i].score, solved[i].traceH});
+            scores.push_back(solved[i].score);
+            if (solved[i].score < best.score) best = std::move(solved[i]);
         }
         if (told && best.z.size() != 0)
             told(fmt::format("cross-validation: {} penalties tried, the best so far smoothing {:.3g}, tension {:.3g}",
                              trials.size(), best.penalty.smoothing, best.penalty.tension));
+        return scores;
     };
-    const double tension = givenTension.value_or(0);
-    constexpr double kStep = 8.0 / 3, kFinest = 1.0 / 3;
-    round({{-6 + kStep, tension}, {-6 + 2 * kStep, tension}});
-    for (double half = kStep / 2; half > kFinest - 1e-9; half /= 2)
-        round({{bestLog - half, tension}, {bestLog + half, tension}});
-    if (givenTension || best.z.size() == 0) return best;
-    const double untensioned = best.score;
-    round({{bestLog, kFirstTension}, {bestLog, kFirstTension / 2}});
-    if (!(best.score < (1 - kTensionGain) * untensioned)) return best;
-    const double factor = best.penalty.tension == kFirstTension ? 2 : 0.5;
-    for (double t = best.penalty.tension * factor; t >= kLeastTension && t <= kGreatestTension; t *= factor) {
-        const double bestBefore = best.score;
-        round({{bestLog, t}, {bestLog - kFinest, t}});
-        if (!(best.score < bestBefore)) break;
-    }
+    const PenaltySearch search = searchPenalty(scoreRound, givenTension);
+    // The search's choice is the least score, as kept here: the same trial, its solution.
+    if (search.best && (search.tried[*search.best].smoothing != best.penalty.smoothing ||
+                        search.tried[*search.best].tension != best.penalty.tension))
+        throw std::logic_error("fit: the penalty kept is not the one the search chose");
     return best;
 }
 
@@ -337,8 +302,12 @@ std::optional<FitReport> fitNet(const subdiv::Scheme& scheme, int depth, const s
     } else {
         if (progress) progress(fmt::format("fitting {} samples: choosing the penalty by cross-validation", report.samples));
         solved = choosePenalty(system, spec.tension, report.gcv, progress);
-        // No smoothing gave a solution: the largest tried, the best conditioned, fails below saying why.
-        if (solved.z.size() == 0) solved = system.solve({1e2, spec.tension.value_or(0)}, false, 0);
+        // No smoothing gave a solution: the largest tried, the best conditioned, fails again below saying why.
+        if (solved.z.size() == 0) {
+            const auto largest = std::max_element(report.gcv.begin(), report.gcv.end(),
+                                                  [](const GcvTrial& a, const GcvTrial& b) { return a.smoothing < b.smoothing; });
+            solved = system.solve({largest->smoothing, largest->tension}, false, 0);
+        }
         report.chosenBy = "generalized cross-validation";
     }
     report.smoothing = solved.penalty.smoothing;
