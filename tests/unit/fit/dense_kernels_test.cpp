@@ -205,19 +205,25 @@ TEST(DenseKernels, GemvAndTrsvWithIncrements) {
         }
     for (const char* uplo : {"L", "U"})
         for (const char* trans : {"N", "T"})
-            for (const int inc : {1, -2}) {
-                const int order = 6, step = std::abs(inc);
-                Stored t = triangle(order, *uplo == 'L', 11);
-                MatrixXd op = triangleOf(t, *uplo == 'L', false);
-                if (*trans == 'T') op.transposeInPlace();
-                Eigen::VectorXd rhs(order);
-                std::vector<double> x(static_cast<size_t>(order * step));
-                const auto slot = [&](int i) { return static_cast<size_t>(inc > 0 ? i * inc : (order - 1 - i) * step); };
-                for (int i = 0; i < order; ++i) x[slot(i)] = rhs[i] = 1.0 / (i + 1);
-                dtrsv_(uplo, trans, "N", &order, t.data.data(), &t.leading, x.data(), &inc);
-                Eigen::VectorXd solved(order);
-                for (int i = 0; i < order; ++i) solved[i] = x[slot(i)];
-                EXPECT_LT((op * solved - rhs).cwiseAbs().maxCoeff(), 1e-13) << uplo << trans << inc;
+            for (const char* diag : {"N", "U"}) {
+                std::vector<Eigen::VectorXd> byIncrement;
+                for (const int inc : {1, -2}) {
+                    const int order = 6, step = std::abs(inc);
+                    Stored t = triangle(order, *uplo == 'L', 11);
+                    MatrixXd op = triangleOf(t, *uplo == 'L', *diag == 'U');
+                    if (*trans == 'T') op.transposeInPlace();
+                    Eigen::VectorXd rhs(order);
+                    std::vector<double> x(static_cast<size_t>(order * step));
+                    const auto slot = [&](int i) { return static_cast<size_t>(inc > 0 ? i * inc : (order - 1 - i) * step); };
+                    for (int i = 0; i < order; ++i) x[slot(i)] = rhs[i] = 1.0 / (i + 1);
+                    dtrsv_(uplo, trans, diag, &order, t.data.data(), &t.leading, x.data(), &inc);
+                    Eigen::VectorXd solved(order);
+                    for (int i = 0; i < order; ++i) solved[i] = x[slot(i)];
+                    EXPECT_LT((op * solved - rhs).cwiseAbs().maxCoeff(), 1e-13) << uplo << trans << diag << inc;
+                    byIncrement.push_back(solved);
+                }
+                // Solved in place or gathered, the same arithmetic: the same bits.
+                EXPECT_EQ(byIncrement[0], byIncrement[1]) << uplo << trans << diag;
             }
 }
 
