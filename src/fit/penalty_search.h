@@ -25,8 +25,9 @@ struct PenaltySearch {
     std::optional<size_t> best;  ///< into tried: the least score (the first of equals); none if none scored
 };
 
-/// The smoothing over log10 [-6, 2] at the tension given (else none): the
-/// points a third and two thirds of the way across, then three rounds of the
+/// The smoothing over log10 [-6, 2] (below, the equations' condition makes
+/// the score itself uncertain) at the tension given (else none): the points a
+/// third and two thirds of the way across, then three rounds of the
 /// points half a step either side of the best so far, the step halved each
 /// round, down to a third of a decade (a GCV minimum is that flat): the
 /// range's ends themselves are not tried, their neighbours are. Then, unless
@@ -36,7 +37,8 @@ struct PenaltySearch {
 /// score kept. Else twice the tension while it wins, from 1 up to 8 if 1 won,
 /// or half, from 1/2 down to 1/4 if 1/2 won, each at the best smoothing and a
 /// third of a decade below (a membrane's pull lowers the best smoothing, if
-/// anything). 8 scores with the tension given, 10 to 16 without.
+/// anything). 8 penalties with the tension given, 10 to 16 without (fewer
+/// when none scores).
 PenaltySearch searchPenalty(const ScoreRound& scoreRound, std::optional<double> givenTension);
 
 }  // namespace relief::fit
