@@ -9,8 +9,10 @@ grid a quarter of the lattice's spacing, or finer): RMSE in metres.
 
 Methods: gdal_grid -a linear and -a invdist; GRASS v.surf.rst (its defaults, and tension and
 smoothing tuned on the truth, every point kept), v.surf.bspline (bicubic, one-lattice-cell steps);
-relief's net.gridding = "fit" (GCV) with three schemes, its net at the lattice's spacing.
-Needs Debian's python3-numpy, python3-gdal, gdal-bin and grass-core.
+relief's net.gridding = "fit" (GCV) with three schemes, its net at the lattice's spacing; kriging
+with an exponential covariance and a nugget fitted by maximum likelihood (up to 2,500 samples: its
+cost grows as N^3, some minutes at 2,000).
+Needs Debian's python3-numpy, python3-gdal, gdal-bin, grass-core and python3-sklearn.
 Usage: /usr/bin/python3 bench/holdout.py build/relief [shared/data] [methods...]"""
 import json, math, os, shutil, subprocess, sys, tempfile
 import numpy as np
@@ -144,6 +146,17 @@ r.out.gdal input=surface output={out} type=Float64 --quiet --overwrite
     return bilinear(*read_tif(out), q)
 
 
+def kriging(xy, z, spacing, q, nu):
+    """Kriging as a Gaussian process: a Matern covariance (nu = 1/2, the exponential; 3/2) and a
+    nugget, their parameters by maximum likelihood (scikit-learn). O(N^3): at most 2,500 samples."""
+    if len(z) > 2500: raise RuntimeError(f'skipped: {len(z)} samples (at most 2,500)')
+    from sklearn.gaussian_process import GaussianProcessRegressor
+    from sklearn.gaussian_process.kernels import ConstantKernel, Matern, WhiteKernel
+    kernel = ConstantKernel() * Matern(length_scale=5.0, nu=nu) + WhiteKernel(0.01)
+    gp = GaussianProcessRegressor(kernel, normalize_y=True, random_state=0).fit(xy / spacing, z)
+    return gp.predict(q / spacing)
+
+
 def relief_fit(work, kind, scheme, lonlat, z, box, epsg, q):
     csv = os.path.join(work, 's.csv')
     with open(csv, 'w') as f:
@@ -192,6 +205,7 @@ def main():
                     'v.surf.rst tuned': lambda: min((grass(work, epsg, f'v.surf.rst input=pts elevation=surface tension={t} smooth={s} dmin={spacing * 0.01}', xy[picked], z[picked], box, q)
                                                      for t in (10, 20, 40, 80, 160) for s in (0.1, 0.5)), key=lambda v: float(np.sqrt(np.mean((v - want) ** 2)))),
                     'v.surf.bspline bicubic': lambda: grass(work, epsg, f'v.surf.bspline input=pts raster_output=surface method=bicubic ew_step={spacing} ns_step={spacing}', xy[picked], z[picked], box, q),
+                    'kriging, exponential (ML)': lambda: kriging(xy[picked], z[picked], spacing, q, 0.5),
                 }
                 for label, (k, scheme) in SCHEMES.items():
                     methods[label] = (lambda k=k, scheme=scheme: relief_fit(work, k, scheme, lonlat[picked], z[picked], box, epsg, q))
