@@ -147,8 +147,8 @@ r.out.gdal input=surface output={out} type=Float64 --quiet --overwrite
 
 
 def kriging(xy, z, spacing, q, nu):
-    """Kriging as a Gaussian process: a Matern covariance (nu = 1/2, the exponential; 3/2) and a
-    nugget, their parameters by maximum likelihood (scikit-learn). O(N^3): at most 2,500 samples."""
+    """Kriging as a Gaussian process: a Matern covariance of smoothness nu (1/2: the exponential) and
+    a nugget, their parameters by maximum likelihood (scikit-learn). O(N^3): at most 2,500 samples."""
     if len(z) > 2500: raise RuntimeError(f'skipped: {len(z)} samples (at most 2,500)')
     from sklearn.gaussian_process import GaussianProcessRegressor
     from sklearn.gaussian_process.kernels import ConstantKernel, Matern, WhiteKernel

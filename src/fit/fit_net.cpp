@@ -302,7 +302,8 @@ std::optional<FitReport> fitNet(const subdiv::Scheme& scheme, int depth, const s
     } else {
         if (progress) progress(fmt::format("fitting {} samples: choosing the penalty by cross-validation", report.samples));
         solved = choosePenalty(system, spec.tension, report.gcv, progress);
-        // No smoothing gave a solution: the largest tried, the best conditioned, fails again below saying why.
+        // No smoothing gave a solution: the largest tried (the search's first round always tries two),
+        // the best conditioned, fails again below saying why.
         if (solved.z.size() == 0) {
             const auto largest = std::max_element(report.gcv.begin(), report.gcv.end(),
                                                   [](const GcvTrial& a, const GcvTrial& b) { return a.smoothing < b.smoothing; });

@@ -1,9 +1,9 @@
 #include "fit/penalty_search.h"
 
-#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <utility>
 
 namespace relief::fit {
 

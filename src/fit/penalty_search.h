@@ -29,16 +29,16 @@ struct PenaltySearch {
 /// the score itself uncertain) at the tension given (else none): the points a
 /// third and two thirds of the way across, then three rounds of the
 /// points half a step either side of the best so far, the step halved each
-/// round, down to a third of a decade (a GCV minimum is that flat): the
-/// range's ends themselves are not tried, their neighbours are. Then, unless
+/// round, down to a third of a decade (a GCV minimum is that flat): these
+/// rounds reach the ends' neighbours, not the ends. Then, unless
 /// the tension is given, tensions 1 and 1/2 at the best smoothing; if neither
 /// lowers the score by a thousandth (a third of a decade of smoothing moves it
 /// by about a hundredth near its minimum), the search ends there, the least
 /// score kept. Else twice the tension while it wins, from 1 up to 8 if 1 won,
 /// or half, from 1/2 down to 1/4 if 1/2 won, each at the best smoothing and a
 /// third of a decade below (a membrane's pull lowers the best smoothing, if
-/// anything). 8 penalties with the tension given, 10 to 16 without (fewer
-/// when none scores).
+/// anything; this may reach 10^-6). 8 penalties with the tension given, 10 to
+/// 16 without (fewer when the first round scores nothing).
 PenaltySearch searchPenalty(const ScoreRound& scoreRound, std::optional<double> givenTension);
 
 }  // namespace relief::fit

@@ -2,6 +2,7 @@
 // penalties it tries, in rounds of at most two, and which it keeps.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -45,7 +46,8 @@ std::function<double(double, double)> bowl(double least, std::map<double, double
 // on a bowl, the third of a decade nearest its bottom, the range's ends not
 // tried. Every round at most two penalties, none tried twice.
 TEST(PenaltySearch, TheSmoothingToAThirdOfADecade) {
-    for (double least = -6.5; least <= 2.5; least += 0.05) {
+    for (int i = 0; i <= 180; ++i) {
+        const double least = -6.49 + 0.05 * i;  // never half way between two thirds of a decade: no tie
         Landscape l(bowl(least));
         const PenaltySearch s = l.search(2.0);
         ASSERT_TRUE(s.best);
@@ -62,6 +64,20 @@ TEST(PenaltySearch, TheSmoothingToAThirdOfADecade) {
         EXPECT_NEAR(l.chosenLog(s), nearest, 1e-9) << least;
         EXPECT_EQ(s.scores[*s.best], *std::min_element(s.scores.begin(), s.scores.end()));
     }
+}
+
+// The whole sequence on one bowl, in order: the rounds' points, lower first.
+TEST(PenaltySearch, TheSequenceOnABowl) {
+    Landscape l(bowl(0.4));
+    const PenaltySearch s = l.search(std::nullopt);
+    std::vector<double> logs, tensions;
+    for (const Penalty& p : s.tried) logs.push_back(std::round(3 * std::log10(p.smoothing))), tensions.push_back(p.tension);
+    // In thirds of a decade, the bowl's bottom at 1.2: -10, -2; -2 +- 4; 2 +- 2; 2 +- 1; then 1 at
+    // tensions 1 and 1/2.
+    EXPECT_EQ(logs, (std::vector<double>{-10, -2, -6, 2, 0, 4, 1, 3, 1, 1}));
+    EXPECT_EQ(tensions, (std::vector<double>{0, 0, 0, 0, 0, 0, 0, 0, 1, 0.5}));
+    EXPECT_EQ(l.rounds.size(), 5u);
+    EXPECT_NEAR(l.chosenLog(s), 1.0 / 3, 1e-9);
 }
 
 // Without a tension given: tensions 1 and 1/2 at the best smoothing, one trial
