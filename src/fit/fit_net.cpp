@@ -167,18 +167,19 @@ private:
 // overshoots: held-out topobathy, mostly 1/2 to 8; the smooth volcano, none to
 // 1). A round's two trials run at once, one on each worker; the points tried
 // do not depend on how many cores there are, so neither does the choice.
-// Every trial is recorded; the best one's solution is kept (none when no trial
-// gave one). `told` (may be empty) hears each round's end: a large net's
-// trials take seconds each.
+// Every trial is recorded in `trials`; the chosen one's solution is returned
+// (none when no trial gave one). `told` (may be empty) hears each round's end:
+// a large net's trials take seconds each.
 Solved choosePenalty(FitSystem& system, std::optional<double> givenTension, std::vector<GcvTrial>& trials,
                      const std::function<void(const std::string&)>& told) {
-    Solved best;
+    std::vector<Solved> solved;  // every trial's, in the order tried: a few net-sized vectors
     const ScoreRound scoreRound = [&](const std::vector<Penalty>& round) {
-        std::vector<Solved> solved(round.size());
+        const size_t first = solved.size();
+        solved.resize(first + round.size());
         std::vector<std::exception_ptr> thrown(round.size());  // an exception may not leave a parallel region
 #pragma omp parallel for num_threads(kWorkers) schedule(static, 1)
         for (int i = 0; i < static_cast<int>(round.size()); ++i) {
-            Solved& trial = solved[static_cast<size_t>(i)];
+            Solved& trial = solved[first + static_cast<size_t>(i)];
             try {
                 trial = system.solve(round[static_cast<size_t>(i)], true, i % kWorkers);
             } catch (const std::bad_alloc&) {
@@ -191,22 +192,19 @@ Solved choosePenalty(FitSystem& system, std::optional<double> givenTension, std:
         for (const std::exception_ptr& e : thrown)
             if (e) std::rethrow_exception(e);
         std::vector<double> scores;
-        for (size_t i = 0; i < round.size(); ++i) {
-            trials.push_back({round[i].smoothing, round[i].tension, solved[i].score, solved[i].traceH});
+        for (size_t i = first; i < solved.size(); ++i) {
+            trials.push_back({round[i - first].smoothing, round[i - first].tension, solved[i].score, solved[i].traceH});
             scores.push_back(solved[i].score);
-            if (solved[i].score < best.score) best = std::move(solved[i]);
         }
-        if (told && best.z.size() != 0)
+        const auto best = std::min_element(solved.begin(), solved.end(),
+                                           [](const Solved& a, const Solved& b) { return a.score < b.score; });
+        if (told && best->z.size() != 0)
             told(fmt::format("cross-validation: {} penalties tried, the best so far smoothing {:.3g}, tension {:.3g}",
-                             trials.size(), best.penalty.smoothing, best.penalty.tension));
+                             trials.size(), best->penalty.smoothing, best->penalty.tension));
         return scores;
     };
     const PenaltySearch search = searchPenalty(scoreRound, givenTension);
-    // The search's choice is the least score, as kept here: the same trial, its solution.
-    if (search.best && (search.tried[*search.best].smoothing != best.penalty.smoothing ||
-                        search.tried[*search.best].tension != best.penalty.tension))
-        throw std::logic_error("fit: the penalty kept is not the one the search chose");
-    return best;
+    return search.best ? std::move(solved[*search.best]) : Solved{};
 }
 
 // The farthest any node is from its nearest sample, metres (a k-d tree of the samples).
