@@ -13,6 +13,7 @@
 
 #include "animate_flyover.h"
 #include "core/atomic_file.h"
+#include "core/hash.h"
 #include "core/number_format.h"
 #include "core/stopwatch.h"
 #include "core/text_escape.h"
@@ -169,7 +170,8 @@ bool planFrame(const AnimateJob& job, const LoadedScene& scene, const SharedTerr
     paths.still = plan.dir / "frame.png";  // a label only: finishFrames names the frames kept
     paths.pov = options.povPath;
     paths.sidecar = plan.dir / "frame.json";
-    describeRender(plan, *compiled, paths, job.tiles, job.sandbox, job.templatesDir);
+    describeRender(plan, *compiled, paths, job.tiles);
+    plan::copyTemplates(plan, job.templatesDir);
     if (!writePlan(plan, diags)) return false;
     work.plans.push_back(std::move(plan));
     return true;
@@ -188,7 +190,7 @@ bool planGroup(const AnimateJob& job, std::vector<LoadedScene>& scenes, const st
     options.threads = job.threads;
     options.progress = progress;
     options.writeAt = [&](const fs::path& final, std::string_view role) {
-        shared.push_back({final.filename().string(), final, std::string(role)});
+        shared.push_back({final.filename().string(), final, std::string(role), ""});
         return sharedDir / final.filename();
     };
     // The terrain does not depend on the sun: compiled with the scene's angles, so that a first
@@ -196,6 +198,12 @@ bool planGroup(const AnimateJob& job, std::vector<LoadedScene>& scenes, const st
     LoadedScene terrainScene = scenes[group.front()];
     terrainScene.scene.look.lighting.sunTime.reset();
     const auto terrain = compileSharedTerrain(terrainScene, options, diags);
+    // Hashed once for every frame's plan: each hard link added moves a file's change time, which
+    // fileSha256 would take for a change.
+    for (auto& f : shared) {
+        std::string problem;
+        f.sha256 = fileSha256(sharedDir / f.name, problem);
+    }
     if (!terrain || !checkNights(scenes.front().scene.animation, terrain->net(), group, frames, diags) ||
         !addTerrainKeys(job, *terrain, group, scenes, frames, diags))
         return false;
@@ -355,10 +363,7 @@ std::string filmSidecar(const film::FilmRecord& record, const AnimateOutcome& o,
         frames.push_back(j);
     }
     // The command as run, with the working folder's frames and the staged film named as kept.
-    film::VideoRequest shown = video;
-    shown.frames = record.framesDir.empty() ? fs::path("frames") : record.framesDir.filename();
-    shown.output = record.film.filename();
-    const std::vector<std::string> command = film::ffmpegCommand(shown);
+    const std::vector<std::string> command = film::ffmpegCommand(video);
     nlohmann::ordered_json j = {
         {"relief_version", kVersion},
         {"scene", record.scene.string()},
@@ -384,7 +389,7 @@ std::string filmSidecar(const film::FilmRecord& record, const AnimateOutcome& o,
 
 // The frames' stills, written into work/frames/ (what ffmpeg reads) and, for --frames, into the set.
 bool finishFrames(const film::FilmRecord& record, const FilmWork& work, OutputSet& outputs, Diagnostics& diags) {
-    fs::create_directories(work.dir / "frames");
+    makeOwnFolder(work.dir / "frames");
     for (size_t p = 0; p < work.plans.size(); ++p) {
         std::optional<annotate::OverlayRecord> overlays;
         const auto still = stillOfPlan(work.plans[p], overlays, diags);
@@ -503,7 +508,7 @@ void makeFilm(const film::FilmRecord& record, FilmWork& work, const execute::Opt
     const auto e0 = Clock::now();
     film::VideoRequest video;
     film::videoFormatOf(record.film, video.format);
-    video.frames = work.dir / "frames";
+    video.workDir = work.dir;
     video.frameCount = static_cast<int>(work.plans.size());
     video.fps = record.fps;
     video.output = outputs.staged(record.film);
@@ -623,17 +628,21 @@ AnimateOutcome runAnimateJob(const AnimateJob& job, Diagnostics& diags, const Pr
     return outcome;
 }
 
-AnimateOutcome resumeFilm(const fs::path& workDir, const execute::Options& execution, Diagnostics& diags,
-                          const ProgressFn& progress) {
+AnimateOutcome resumeFilm(const fs::path& workDir, const execute::Options& execution, const fs::path& framesDir,
+                          Diagnostics& diags, const ProgressFn& progress) {
     AnimateOutcome outcome;
     try {
         auto record = film::readFilmRecord(workDir, diags);
         if (!record) return outcome;
-        const auto lock = plan::PlanLock::take(workDir);
-        if (!lock) {
-            diags.error({(workDir / "film.json").string(), 0, 0}, "another relief is making this film now");
+        if (record->framesKept && framesDir.empty()) {
+            diags.error({(workDir / "film.json").string(), 0, 0},
+                        "the film's first run kept its frames (--frames), and its record names no folder outside its "
+                        "own: give --frames DIR again to say where they go");
             return outcome;
         }
+        record->framesDir = framesDir.empty() ? fs::path() : fs::absolute(framesDir);
+        const auto lock = plan::PlanLock::take(workDir, diags);
+        if (!lock) return outcome;
         outcome.film = record->film;
         outcome.sidecar = record->sidecar;
         outcome.frames = record->frames;
@@ -644,7 +653,9 @@ AnimateOutcome resumeFilm(const fs::path& workDir, const execute::Options& execu
         work.resumed = true;
         for (size_t i = 0; i < record->frames.size(); ++i) {
             if (!record->frames[i].fileNumber) continue;
-            auto plan = plan::readPlan(work.dir / film::framePlanName(record->frames[i].settings.number), diags);
+            const fs::path planDir = work.dir / film::framePlanName(record->frames[i].settings.number);
+            makeOwnFolder(planDir);  // a link planted in its place would send the frame's tiles elsewhere
+            auto plan = plan::readPlan(planDir, diags);
             if (!plan) return outcome;
             work.plans.push_back(std::move(*plan));
             work.planFrame.push_back(i);

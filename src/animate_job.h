@@ -22,9 +22,8 @@ struct AnimateJob {
     std::filesystem::path framesDir;  ///< also each frame's PNG there (frame-00001.png, ...); "" = none
     std::filesystem::path templatesDir;
     int threads = 0;      ///< refiner threads; 0 = all cores
-    bool sandbox = true;  ///< POV-Ray in bubblewrap
     int tiles = 1;        ///< strips of each frame
-    execute::Options execution;
+    execute::Options execution;  ///< where the tiles render, and whether POV-Ray is sandboxed
 };
 
 using film::FilmFrame;
@@ -49,8 +48,10 @@ AnimateOutcome runAnimateJob(const AnimateJob& job, Diagnostics& diags, const Pr
 
 /// `relief animate --resume DIR`: a kept working folder's missing tiles
 /// rendered (`execution` says where), then the film made as runAnimateJob
-/// makes it, from the folder alone (the scene is not read again).
+/// makes it, from the folder alone (the scene is not read again). Its record
+/// names no folder outside it: `framesDir` is where --frames go, which a film
+/// whose first run kept its frames must be given again.
 AnimateOutcome resumeFilm(const std::filesystem::path& workDir, const execute::Options& execution,
-                          Diagnostics& diags, const ProgressFn& progress);
+                          const std::filesystem::path& framesDir, Diagnostics& diags, const ProgressFn& progress);
 
 }  // namespace relief

@@ -138,7 +138,14 @@ void compileIntoPlan(PlannedJob& p, const LoadedScene& loaded, Diagnostics& diag
     plan.dir = building.path();
     CompileOptions copts = compileOptions(job, paths, progress);
     copts.writeAt = [&](const fs::path& final, std::string_view role) {
-        plan::PlanFile f{final.filename().string(), fs::absolute(final), std::string(role)};
+        plan::PlanFile f{final.filename().string(), fs::absolute(final), std::string(role), ""};
+        // The plan holds its outputs by file name, and writes them beside itself when read back.
+        const auto taken = [&](const plan::PlanFile& g) { return g.name == f.name; };
+        if (plan.pov.name == f.name || std::any_of(plan.reads.begin(), plan.reads.end(), taken) ||
+            std::any_of(plan.extras.begin(), plan.extras.end(), taken))
+            throw OutputError(final, fmt::format("has the file name of another output of the render ({}): a render "
+                                                 "plan holds its outputs by name; give {} another name",
+                                                 f.name, role));
         if (role == "the .pov") plan.pov = f;
         else if (role == "--dump-net" || role == "--dump-surface") plan.extras.push_back(f);
         else plan.reads.push_back(f);
@@ -146,7 +153,8 @@ void compileIntoPlan(PlannedJob& p, const LoadedScene& loaded, Diagnostics& diag
     };
     p.outcome.compiled = compileScene(loaded, copts, diags);
     if (!p.outcome.compiled) return;
-    describeRender(plan, *p.outcome.compiled, paths, job.tiles, job.sandbox, job.templatesDir);
+    describeRender(plan, *p.outcome.compiled, paths, job.tiles);
+    plan::copyTemplates(plan, job.templatesDir);
     if (!writePlan(plan, diags)) return;
     // Named when whole (the lock goes with it); another render onto the same
     // name may take the name first, and this one takes the next.
@@ -245,8 +253,7 @@ std::optional<fs::path> nameWorkingFolder(const fs::path& building, const fs::pa
     return std::nullopt;
 }
 
-void describeRender(plan::RenderPlan& plan, const CompileResult& compiled, const OutputPaths& paths, int tiles,
-                    bool sandbox, const fs::path& templatesDir) {
+void describeRender(plan::RenderPlan& plan, const CompileResult& compiled, const OutputPaths& paths, int tiles) {
     const scene::SceneSpec& s = compiled.scene;
     plan.povrayVersion = plan::povrayVersion();
     plan.width = s.render.width;
@@ -257,10 +264,8 @@ void describeRender(plan::RenderPlan& plan, const CompileResult& compiled, const
     plan.antialiasThreshold = quality.antialiasThreshold;
     plan.antialiasDepth = quality.antialiasDepth;
     plan.alpha = s.render.background == scene::Background::Transparent;
-    plan.sandbox = sandbox;
     plan.timeoutS = s.render.timeoutS;
     plan.dpi = s.render.dpi.value_or(0);
-    plan.templatesDir = templatesDir.empty() ? fs::path() : fs::absolute(templatesDir);
     plan.still = fs::absolute(paths.still);
     plan.sidecar = fs::absolute(paths.sidecar);
     plan.overlays = annotate::overlaysWanted(s.overlay, s.render.width);
@@ -368,7 +373,7 @@ bool finishPlan(const plan::RenderPlan& plan, OutputSet& outputs, bool stillOnly
 
 namespace {
 
-// The tiles rendered; the outcome says how, when not all were.
+// The tiles rendered (POV-Ray sandboxed unless `execution` says not); the outcome says how, when not all were.
 bool renderTiles(const plan::RenderPlan& plan, const execute::Options& execution, JobOutcome& outcome,
                  Diagnostics& diags, const ProgressFn& progress) {
     execute::Options options = execution;
@@ -423,13 +428,9 @@ JobOutcome resumePlan(const fs::path& planDir, const execute::Options& execution
                       const ProgressFn& progress) {
     JobOutcome outcome;  // without a plan to resume until it is read and ours
     auto plan = plan::readPlan(planDir, diags);
-    if (!plan) return outcome;
-    plan->dir = fs::absolute(planDir);
-    const auto lock = plan::PlanLock::take(plan->dir);
-    if (!lock) {
-        diags.error({(plan->dir / "plan.json").string(), 0, 0}, "another relief is rendering this plan now");
-        return outcome;
-    }
+    if (!plan || !plan::checkRenderable(*plan, diags)) return outcome;
+    const auto lock = plan::PlanLock::take(plan->dir, diags);
+    if (!lock) return outcome;
     outcome.plan = planDir;
     outcome.paths = outputPathsFor(plan->still);
     if (!renderTiles(*plan, execution, outcome, diags, progress)) return outcome;

@@ -245,7 +245,6 @@ struct SceneJob {
     std::filesystem::path dumpNetPath;
     std::filesystem::path dumpSurfacePath;  ///< the refined surface rendered (--dump-surface)
     int threads = 0;            ///< refiner threads; 0 = all cores
-    bool sandbox = true;        ///< POV-Ray in bubblewrap (render/povray.h)
     bool stillOnly = false;     ///< keep the PNG alone (relief test): no .pov, PNGs or sidecar beside it
     /// Where the outputs are declared and staged. Null: a set of the job's
     /// own, committed when the job succeeds. Given (relief sweep): the caller
@@ -255,7 +254,7 @@ struct SceneJob {
     int tiles = 1;                          ///< strips of the still, each rendered on its own
     std::filesystem::path planDir;          ///< "" = <still>.plan beside the still
     bool keepPlan = false;                  ///< leave the plan after a render that succeeded
-    execute::Options execution;             ///< here or on Slurm, how many at once
+    execute::Options execution;             ///< here or on Slurm, how many at once, POV-Ray sandboxed or not
 };
 
 enum class JobStatus { Ok, BadInput, ToolFailed, Cancelled };
@@ -313,8 +312,7 @@ std::optional<std::filesystem::path> nameWorkingFolder(const std::filesystem::pa
 /// The render plan's fields for a compiled scene: the still's size and
 /// POV-Ray's options, where the still and sidecar go, the overlays and their
 /// facts, the sidecar so far (compiling into plan.dir adds its files).
-void describeRender(plan::RenderPlan& plan, const CompileResult& compiled, const OutputPaths& paths, int tiles,
-                    bool sandbox, const std::filesystem::path& templatesDir);
+void describeRender(plan::RenderPlan& plan, const CompileResult& compiled, const OutputPaths& paths, int tiles);
 
 /// The plan's tiles stitched into the still's pixels, no overlays; nullopt with the reason.
 std::optional<PngImage8> stitchedStill(const plan::RenderPlan& plan, Diagnostics& diags);

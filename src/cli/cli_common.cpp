@@ -181,11 +181,15 @@ void installInterruptHandler() {
 
 bool interrupted() { return gSignals.load() > 0; }
 
-execute::Options executionOf(const ExecutionOptions& o) {
+execute::Options executionOf(const ExecutionOptions& o, bool noSandbox) {
     execute::Options e;
     e.executor = o.executor == "slurm" ? execute::Executor::Slurm : execute::Executor::Local;
     e.jobs = o.jobs;
     e.slurmArgs = o.slurmArgs;
+    e.sandbox = !noSandbox;
+    if (noSandbox)  // the only way to turn it off, and never quietly
+        std::cerr << "relief: warning: POV-Ray runs outside its sandbox (--no-sandbox): a .pov can then read and "
+                     "write any file you can; use it only for scenes and plans you trust\n";
     e.cancelled = [] { return interrupted(); };
     return e;
 }

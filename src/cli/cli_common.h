@@ -142,7 +142,9 @@ void addTilesOption(CLI::App* app, ExecutionOptions& o);  ///< --tiles alone (re
 /// rendered, and a default soft limit of 1024 would cap a suite at about 500.
 void raiseOpenFileLimit();
 /// As execute::Options, cancelled by Ctrl-C (interruptHandler).
-execute::Options executionOf(const ExecutionOptions& o);
+/// The execution options, POV-Ray sandboxed unless `noSandbox` (--no-sandbox,
+/// the only way to turn it off: a warning says so).
+execute::Options executionOf(const ExecutionOptions& o, bool noSandbox);
 
 /// Ctrl-C and SIGTERM stop a long command cleanly: the first asks the work
 /// to stop (every POV-Ray process it started, the Slurm job), which then

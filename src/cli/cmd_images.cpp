@@ -145,10 +145,9 @@ int runTest(const TestOptions& o) {
     ro.templatesDir = findTemplates(o.templates);
     ro.jobs = o.jobs;
     ro.update = o.update;
-    ro.sandbox = !o.noSandbox;
     ro.manifestArgument = o.manifest;
     installInterruptHandler();
-    ro.execution = executionOf(o.execution);
+    ro.execution = executionOf(o.execution, o.noSandbox);
     ro.execution.jobs = o.execution.executor == "slurm" ? o.jobs : 0;
     // Slurm's job folder beside the report, where the paths its messages name stay true.
     ro.execution.jobDir = report.path().parent_path() / (report.path().filename().string() + ".slurm");
@@ -215,11 +214,10 @@ int runSweep(const SweepOptions& o) {
                         : fs::path(o.common.output);
     request.templatesDir = findTemplates(o.common.templates);
     request.threads = o.common.threads;
-    request.sandbox = !o.common.noSandbox;
     request.columns = o.columns;
     request.tiles = o.execution.tiles;
     installInterruptHandler();
-    request.execution = executionOf(o.execution);
+    request.execution = executionOf(o.execution, o.common.noSandbox);
     Progress progress(o.common.quiet);
     using Kind = relief::figures::SweepEvent::Kind;
     const auto result = relief::figures::runSweep(request, [&](const relief::figures::SweepEvent& e) {

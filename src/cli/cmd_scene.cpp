@@ -38,11 +38,10 @@ relief::SceneJob sceneJob(const SceneOptions& o, relief::SceneJob::Until until, 
     job.dumpNetPath = o.dumpNet;
     job.dumpSurfacePath = o.dumpSurface;
     job.threads = o.common.threads;
-    job.sandbox = !o.common.noSandbox;
     job.tiles = o.execution.tiles;
     job.planDir = o.plan;
     job.keepPlan = o.keepPlan;
-    job.execution = executionOf(o.execution);
+    job.execution = executionOf(o.execution, o.common.noSandbox);
     return job;
 }
 
@@ -120,7 +119,8 @@ int runScene(const SceneOptions& o, relief::SceneJob::Until until) {
     if (until == relief::SceneJob::Until::Png || !o.resume.empty()) installInterruptHandler();
     relief::JobOutcome outcome;
     if (!o.resume.empty()) {
-        outcome = relief::resumePlan(o.resume, executionOf(o.execution), o.keepPlan, diags, showing(progress));
+        outcome = relief::resumePlan(o.resume, executionOf(o.execution, o.common.noSandbox), o.keepPlan, diags,
+                                     showing(progress));
     } else {
         bool ok = true;
         const relief::SceneJob job = sceneJob(o, until, ok);
@@ -153,45 +153,54 @@ int runPlan(const SceneOptions& o) {
     std::cout << planned.plan->dir.string() << '\n';
     if (!o.common.quiet)
         std::cerr << fmt::format("planned {} tile{} of {}: relief render-tile {} --tile K (K from 0), then relief "
-                                 "finish {}\n",
+                                 "finish {} (which writes {}, beside the plan)\n",
                                  planned.plan->tiles, planned.plan->tiles == 1 ? "" : "s",
                                  terminalText(planned.outcome.paths.still.string(), 500),
                                  terminalText(shellQuoted(planned.plan->dir.string()), 500),
-                                 terminalText(shellQuoted(planned.plan->dir.string()), 500));
+                                 terminalText(shellQuoted(planned.plan->dir.string()), 500),
+                                 terminalText((planned.plan->dir.parent_path() /
+                                               planned.plan->still.filename()).string(), 500));
     return code(Exit::Ok);
 }
 
 struct TileOptions {
-    std::string plan, tasks;
+    std::string plan, tasks, tasksSha256;
     int tile = -1, index = -1, threads = 0;
+    bool noSandbox = false;
 };
 
-// `relief render-tile`: one tile of a plan (what a Slurm task runs).
+// `relief render-tile`: one tile of a plan, or one task of a Slurm job's list (what a Slurm task runs).
 int runRenderTile(const TileOptions& o) {
     installInterruptHandler();
-    std::string error;
     if (!o.tasks.empty()) {
-        error = relief::execute::runListedTask(o.tasks, o.index, [] { return interrupted(); });
-    } else {
-        relief::execute::Options e;
-        e.jobs = 1;
-        e.cancelled = [] { return interrupted(); };
-        relief::Diagnostics diags;
-        auto plan = relief::plan::readPlan(o.plan, diags);
-        if (!plan) {
-            printDiagnostics(diags, false);
-            return code(Exit::BadInput);
-        }
-        if (o.tile < 0 || o.tile >= plan->tiles) {
-            std::cerr << fmt::format("relief: error: --tile {}: the plan has tiles 0 to {}\n", o.tile, plan->tiles - 1);
-            return code(Exit::BadInput);
-        }
-        const auto r = relief::execute::run({{std::filesystem::absolute(o.plan), o.tile}}, e, {});
-        error = r.ok ? "" : r.error;
+        const std::string error = relief::execute::runListedTask({o.tasks, o.tasksSha256, o.index, !o.noSandbox},
+                                                                 [] { return interrupted(); });
+        if (error.empty()) return code(Exit::Ok);
+        std::cerr << "relief: error: " << terminalText(error, 8000, true) << '\n';
+        return code(interrupted() ? Exit::Interrupted : Exit::ToolFailed);
     }
-    if (error.empty()) return code(Exit::Ok);
-    std::cerr << "relief: error: " << terminalText(error, 8000, true) << '\n';
-    return code(interrupted() ? Exit::Interrupted : Exit::ToolFailed);
+    ExecutionOptions one;
+    one.jobs = 1;
+    relief::execute::Options e = executionOf(one, o.noSandbox);
+    relief::Diagnostics diags;
+    auto plan = relief::plan::readPlan(o.plan, diags);
+    if (!plan) {
+        printDiagnostics(diags, false);
+        return code(Exit::BadInput);
+    }
+    if (o.tile < 0 || o.tile >= plan->tiles) {
+        std::cerr << fmt::format("relief: error: --tile {}: the plan has tiles 0 to {}\n", o.tile, plan->tiles - 1);
+        return code(Exit::BadInput);
+    }
+    const auto r = relief::execute::run({{plan->dir, o.tile}}, e, {});
+    if (r.ok) return code(Exit::Ok);
+    if (r.badInput && !r.at.file.empty()) {
+        diags.error(r.at, r.error);
+        printDiagnostics(diags, false);
+    } else {
+        std::cerr << "relief: error: " << terminalText(r.error, 8000, true) << '\n';
+    }
+    return code(interrupted() ? Exit::Interrupted : r.badInput ? Exit::BadInput : Exit::ToolFailed);
 }
 
 // `relief finish`: a plan whose tiles are all rendered, made into the still and its set.
@@ -200,15 +209,9 @@ int runFinish(const std::string& planDir, bool keepPlan) {
     relief::execute::Options none;
     none.cancelled = [] { return false; };
     auto plan = relief::plan::readPlan(planDir, diags);
-    if (!plan) {
-        printDiagnostics(diags, false);
-        return code(Exit::BadInput);
-    }
-    plan->dir = std::filesystem::absolute(planDir);
-    const auto lock = relief::plan::PlanLock::take(plan->dir);
+    const auto lock = plan ? relief::plan::PlanLock::take(plan->dir, diags) : std::nullopt;
     if (!lock) {
-        std::cerr << fmt::format("relief: error: {}: another relief is using this render plan now; wait for it\n",
-                                 terminalText(planDir, 500));
+        printDiagnostics(diags, false);
         return code(Exit::BadInput);
     }
     // A tile rendered but not right (another plan's, another POV-Ray's) is named by stitching; one not there is counted.
@@ -368,12 +371,11 @@ int runAnimate(const AnimateOptions& o) {
     job.framesDir = o.frames;
     job.templatesDir = findTemplates(o.common.templates);
     job.threads = o.common.threads;
-    job.sandbox = !o.common.noSandbox;
     job.tiles = o.execution.tiles;
-    job.execution = executionOf(o.execution);
+    job.execution = executionOf(o.execution, o.common.noSandbox);
     const relief::AnimateOutcome outcome =
         o.resume.empty() ? relief::runAnimateJob(job, diags, showing(progress))
-                         : relief::resumeFilm(o.resume, job.execution, diags, showing(progress));
+                         : relief::resumeFilm(o.resume, job.execution, o.frames, diags, showing(progress));
     progress.done();
     const std::string kept =
         outcome.workDir.empty()
@@ -460,7 +462,9 @@ void addSceneCommands(CLI::App& app, std::vector<Command>& out) {
                         "(<film>.film), encode it (no scene file)");
     animate->add_option("-o,--output", a->common.output,
                         "the film: .mp4 (H.264), .webm (VP9) or .gif (default: out/<scene name>.mp4)");
-    animate->add_option("--frames", a->frames, "also keep every frame's PNG in this folder (frame-00001.png, ...)");
+    animate->add_option("--frames", a->frames,
+                        "also keep every frame's PNG in this folder (frame-00001.png, ...); with --resume, where a "
+                        "film whose first run kept them keeps them");
     animate->add_option("--templates", a->common.templates, "folder with scene.pov.in");
     animate->add_option("--threads", a->common.threads, "refiner threads (0: all cores)")->check(CLI::Range(0, 256));
     animate->add_flag("-q,--quiet", a->common.quiet, "print errors only");
@@ -473,8 +477,8 @@ void addSceneCommands(CLI::App& app, std::vector<Command>& out) {
         if (a->resume.empty() && a->common.scene.empty()) throw CLI::RequiredError("scene");
         if (!a->resume.empty() && !a->common.scene.empty())
             throw CLI::ValidationError("--resume", "give a film's folder to resume or a scene, not both");
-        if (!a->resume.empty() && (!a->common.output.empty() || !a->frames.empty() || !a->common.sets.empty()))
-            throw CLI::ValidationError("--resume", "the film's folder says what it makes: no -o, --frames or --set");
+        if (!a->resume.empty() && (!a->common.output.empty() || !a->common.sets.empty()))
+            throw CLI::ValidationError("--resume", "the film's folder says what it makes: no -o or --set");
     });
     out.push_back({animate, [a] { return runAnimate(*a); }});
 
@@ -483,10 +487,13 @@ void addSceneCommands(CLI::App& app, std::vector<Command>& out) {
     tile->add_option("plan", t->plan, "the render plan's folder");
     tile->add_option("--tile", t->tile, "the tile, from 0");
     tile->add_option("--tasks", t->tasks, "a task list (relief's Slurm job: a line a task) ...");
+    tile->add_option("--tasks-sha256", t->tasksSha256, "... the SHA-256 it was submitted with ...");
     tile->add_option("--index", t->index, "... and the line of it to run, from 0 ($SLURM_ARRAY_TASK_ID)");
+    tile->add_flag("--no-sandbox", t->noSandbox,
+                   "run POV-Ray without its bubblewrap sandbox (only for plans you trust; a plan never turns it off)");
     tile->callback([t] {
-        if (t->tasks.empty() == t->plan.empty())
-            throw CLI::ValidationError("render-tile", "give PLAN --tile K, or --tasks LIST --index K");
+        if (t->tasks.empty() == t->plan.empty() || t->tasks.empty() != t->tasksSha256.empty())
+            throw CLI::ValidationError("render-tile", "give PLAN --tile K, or --tasks LIST --tasks-sha256 H --index K");
     });
     out.push_back({tile, [t] { return runRenderTile(*t); }});
 

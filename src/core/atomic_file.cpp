@@ -1,6 +1,7 @@
 #include "core/atomic_file.h"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -75,6 +76,16 @@ void createParentFolder(const std::filesystem::path& file) {
     if (ec)
         throw OutputError(file.parent_path(), fmt::format("cannot be made as the folder of {}: {}",
                                                           file.filename().string(), ec.message()));
+}
+
+void makeOwnFolder(const std::filesystem::path& folder) {
+    if (::mkdir(folder.c_str(), 0777) != 0 && errno != EEXIST) throw OutputError::system(folder, errno);
+    struct stat st {};
+    if (::lstat(folder.c_str(), &st) != 0) throw OutputError::system(folder, errno);
+    if (S_ISLNK(st.st_mode))
+        throw OutputError(folder, "is a link, and relief writes through none in its working folders (someone put it "
+                                  "there): remove it");
+    if (!S_ISDIR(st.st_mode)) throw OutputError(folder, "is in the way of a folder relief makes here: remove it");
 }
 
 std::string readFile(const std::filesystem::path& path) {

@@ -61,6 +61,13 @@ void writeThroughTemporary(const std::filesystem::path& path,
 /// the folder with the system's reason.
 void createParentFolder(const std::filesystem::path& file);
 
+/// Makes the folder `folder` (its parent must exist) unless it is there,
+/// and checks that it is a folder and not a link: relief writes into the
+/// folders of its own working folders (a render plan's tiles/, a film's
+/// frames/) only when it can see they are real, so a link planted in their
+/// place leads nowhere. Throws OutputError at `folder` ("is a link ...").
+void makeOwnFolder(const std::filesystem::path& folder);
+
 /// Reads a whole file; throws std::runtime_error naming the path on failure.
 /// For relief's own files (tests, benchmarks); inputs go through
 /// readInputFile (core/input_file.h).

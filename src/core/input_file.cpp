@@ -66,6 +66,13 @@ std::string inputFileProblem(const std::filesystem::path& path, std::uintmax_t m
     return sizeProblem(static_cast<std::uintmax_t>(st.st_size), maxBytes);
 }
 
+std::string plainFileProblem(const std::filesystem::path& path) {
+    struct stat st {};
+    if (::lstat(path.c_str(), &st) != 0) return openProblem(errno);
+    if (S_ISLNK(st.st_mode)) return "it is a link, and relief follows none out of its own folders";
+    return kindProblem(st.st_mode);
+}
+
 namespace {
 
 // Reads regular files only, at most `cap` bytes (0: all); `wholeOrRefuse`:

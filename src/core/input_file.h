@@ -25,6 +25,12 @@ inline constexpr std::uintmax_t kMaxCurveBytes = 64'000'000;
 /// block on a FIFO or read a device for ever.
 std::string inputFileProblem(const std::filesystem::path& path, std::uintmax_t maxBytes = 0);
 
+/// Why `path` is not a regular file of its own, or "": like
+/// inputFileProblem, but a symbolic link is a problem too ("it is a link"),
+/// never followed. For the files of relief's own working folders (a render
+/// plan's, a film's), where a link can only have been planted.
+std::string plainFileProblem(const std::filesystem::path& path);
+
 /// Reads a whole regular file of at most `maxBytes`, without blocking on a
 /// FIFO and without following it to a device; nullopt with `problem` set
 /// (as inputFileProblem words it) otherwise.

@@ -75,7 +75,8 @@ bool encode(std::FILE* file, const PngPixels& p, png_bytep* rows, std::string& e
     return true;
 }
 
-bool decode(std::FILE* file, PngImage8& image, std::vector<png_bytep>& rows, std::string& error) {
+bool decode(std::FILE* file, PngImage8& image, std::vector<png_bytep>& rows, const PngSize* expected,
+            std::string& error) {
     png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &error, onPngError, onPngWarning);
     if (!png) return false;
     png_infop info = png_create_info_struct(png);
@@ -85,6 +86,14 @@ bool decode(std::FILE* file, PngImage8& image, std::vector<png_bytep>& rows, std
     }
     png_init_io(png, file);
     png_read_info(png, info);
+    // Nothing is allocated for a size the caller did not expect (a header can claim 60000 x 60000).
+    if (expected && (png_get_image_width(png, info) != png_uint_32(expected->width) ||
+                     png_get_image_height(png, info) != png_uint_32(expected->height))) {
+        error = fmt::format("it is {} x {} pixels, not {} x {}", png_get_image_width(png, info),
+                            png_get_image_height(png, info), expected->width, expected->height);
+        png_destroy_read_struct(&png, &info, nullptr);
+        return false;
+    }
     png_set_expand(png);  // palette -> RGB, grey < 8 bits -> 8 bits, tRNS -> alpha
     png_set_scale_16(png);
     png_read_update_info(png, info);
@@ -147,7 +156,7 @@ void writePngAtomically(const std::filesystem::path& path, const PngPixels& p) {
     out.commit();
 }
 
-std::string readPng8(const std::filesystem::path& path, PngImage8& image) {
+std::string readPng8(const std::filesystem::path& path, PngImage8& image, const PngSize* expected) {
     std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rbe"), std::fclose);
     if (!file) return fmt::format("cannot read {}: cannot open it", path.string());
     png_byte signature[8] = {};
@@ -156,7 +165,7 @@ std::string readPng8(const std::filesystem::path& path, PngImage8& image) {
     std::rewind(file.get());
     std::vector<png_bytep> rows;
     std::string error;
-    if (!decode(file.get(), image, rows, error))
+    if (!decode(file.get(), image, rows, expected, error))
         return fmt::format("cannot read {}: {}", path.string(), error.empty() ? "libpng failed" : error);
     return {};
 }

@@ -26,10 +26,15 @@ struct PngImage8 {
     std::vector<std::uint8_t> pixels;  ///< rows top first, channels interleaved
 };
 
+struct PngSize {
+    int width = 0, height = 0;
+};
+
 /// Reads a PNG as 8-bit samples: palettes expand to RGB (RGBA with a tRNS
 /// chunk), low bit depths to 8 and 16-bit samples are rounded to 8 bits.
-/// Returns "" or the error, naming `path`.
-std::string readPng8(const std::filesystem::path& path, PngImage8& image);
+/// With `expected`, a PNG of another size is refused from its header, before
+/// anything is allocated for its pixels. Returns "" or the error, naming `path`.
+std::string readPng8(const std::filesystem::path& path, PngImage8& image, const PngSize* expected = nullptr);
 
 /// Decodes a whole PNG a row at a time and keeps nothing: "" when it is
 /// whole, else why not (a truncated or damaged file), quietly. For readers

@@ -2,6 +2,7 @@
 // Untrusted text where it lands: in markup (SVG, HTML, XML), on one line (an
 // SDL comment, a diagnostic), or as an excerpt of a file in a message.
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -41,6 +42,12 @@ std::string asciiLower(std::string text);
 /// invisible marks as spaces), at most `maxChars` characters, cut with "…".
 /// Drawn as text, never as markup.
 std::string drawnText(std::string_view text, std::size_t maxChars = 80);
+
+/// Bytes as lower-case hex digits, two a byte: a name that is not UTF-8 kept
+/// whole in a JSON record.
+std::string hexBytes(std::string_view bytes);
+/// The bytes of hexBytes' digits; nullopt when `hex` is not such digits.
+std::optional<std::string> bytesOfHex(std::string_view hex);
 
 /// Whether `text` is well-formed UTF-8 (RFC 3629).
 bool isUtf8(std::string_view text);

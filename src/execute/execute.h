@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -28,7 +29,13 @@ struct Options {
     /// its share of the threads); Slurm, array tasks running at once (0: as
     /// many as the cluster gives).
     int jobs = 0;
-    std::string slurmArgs;             ///< passed to sbatch, split at spaces ("--partition=x --time=10")
+    /// POV-Ray in its bubblewrap sandbox. Only the command that runs POV-Ray
+    /// turns it off (--no-sandbox), never a plan: on Slurm the batch script
+    /// (which sbatch copies when the job is submitted) carries the choice.
+    bool sandbox = true;
+    /// Passed to sbatch, split into words as a POSIX shell splits them
+    /// (quotes and backslashes honoured, nothing expanded): "--job-name='a b' --time=10".
+    std::string slurmArgs;
     std::filesystem::path jobDir;      ///< Slurm: the batch script, the task list and the logs
     std::function<bool()> cancelled;   ///< asked often; true stops every task (scancel on Slurm)
     render::ProgressFn povray;         ///< POV-Ray's own lines, when one task runs here alone (may be empty)
@@ -57,9 +64,24 @@ struct Result {
 /// Runs every task; `progress` (may be empty) hears each one that finishes.
 Result run(const std::vector<Task>& tasks, const Options& options, const std::function<void(const Progress&)>& progress);
 
+/// --slurm-args split into sbatch's words as a POSIX shell splits them
+/// (GLib's g_shell_parse_argv: quotes and backslashes, no expansion);
+/// nullopt with `problem` when a quote is not closed.
+std::optional<std::vector<std::string>> slurmArgWords(const std::string& text, std::string& problem);
+
+/// A task list, as a Slurm task reads it: the file and the SHA-256 the
+/// batch script holds for it (the list sits on a shared disk, the script is
+/// sbatch's copy), the task's line, and how POV-Ray runs.
+struct ListedTask {
+    std::filesystem::path tasksFile;
+    std::string tasksSha256;
+    int index = -1;
+    bool sandbox = true;
+};
+
 /// One task of a Slurm job array, as the batch script asks for it: line
-/// `index` of the task list `tasksFile`. Returns "" or why it failed.
-std::string runListedTask(const std::filesystem::path& tasksFile, int index,
-                          const std::function<bool()>& cancelled = {});
+/// `index` of the task list, once the list is the one submitted and the plan
+/// it names verifies and is the one listed. Returns "" or why it failed.
+std::string runListedTask(const ListedTask& task, const std::function<bool()>& cancelled = {});
 
 }  // namespace relief::execute

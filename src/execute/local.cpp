@@ -21,6 +21,7 @@ Result runLocal(const std::vector<Task>& tasks, const std::vector<const plan::Re
     const int jobs = std::clamp(options.jobs > 0 ? options.jobs : cores, 1, std::max<int>(1, static_cast<int>(tasks.size())));
     render::TileOptions tile;
     tile.threads = std::max(1, cores / jobs);
+    tile.sandbox = options.sandbox;
     std::atomic<bool> stop{false};
     tile.cancelled = [&] { return stop.load() || (options.cancelled && options.cancelled()); };
     std::atomic<size_t> next{0};

@@ -12,8 +12,10 @@
 #include <thread>
 
 #include <fmt/format.h>
+#include <glib.h>
 
 #include "core/atomic_file.h"
+#include "core/hash.h"
 #include "core/input_file.h"
 #include "core/stopwatch.h"
 #include "core/text_escape.h"
@@ -37,9 +39,15 @@ std::string clusterProblem() {
     for (const char* tool : {"sbatch", "squeue", "scancel", "sinfo"})
         if (runCommand({"sh", "-c", std::string("command -v ") + tool}).status != 0)
             return fmt::format("Slurm's {} is not on PATH (Debian: apt-get install slurm-client)", tool);
-    const CommandOutput info = runCommand({"sinfo", "-h", "-o", "%P"});
+    // sinfo waits for the controller as long as slurm.conf's MessageTimeout (60 s by default): a cluster that
+    // answers at all answers sooner.
+    constexpr double kAnswerSeconds = 10;
+    const CommandOutput info = runCommand({"sinfo", "-h", "-o", "%P"}, {{}, kAnswerSeconds});
     if (info.status == 0) return "";
-    std::string problem = fmt::format("no Slurm cluster answers (sinfo: {})", firstLine(info.output));
+    std::string problem = info.timedOut ? fmt::format("no Slurm cluster answers (sinfo had no answer in {:.0f} s: is "
+                                                      "slurmctld running, and is this its slurm.conf?)",
+                                                      kAnswerSeconds)
+                                        : fmt::format("no Slurm cluster answers (sinfo: {})", firstLine(info.output));
     if (!std::getenv("SLURM_CONF"))
         problem += "; SLURM_CONF is not set: point it at the cluster's slurm.conf (or install the cluster's "
                    "configuration in /etc/slurm)";
@@ -60,28 +68,40 @@ std::string reliefProgram() {
     return "relief";
 }
 
-// The task list (a line a task: the tile, a tab, the plan's folder) and the
-// batch script that runs line $SLURM_ARRAY_TASK_ID of it.
-fs::path writeJob(const std::vector<Task>& tasks, const fs::path& dir) {
-    fs::create_directories(dir / "logs");
+// The task list (a line a task: the tile, the plan's hash, the plan's folder,
+// tab-separated) and the batch script that runs line $SLURM_ARRAY_TASK_ID of
+// it. sbatch keeps its own copy of the script when the job is submitted, so
+// what the script holds (the list's SHA-256, whether POV-Ray is sandboxed)
+// cannot be changed on the shared disk afterwards; the list's lines then pin
+// each plan's hash.
+fs::path writeJob(const std::vector<Task>& tasks, const std::vector<const plan::RenderPlan*>& plans, bool sandbox,
+                  const fs::path& dir) {
+    makeOwnFolder(dir);
+    makeOwnFolder(dir / "logs");
     std::string list;
-    for (const auto& t : tasks) list += fmt::format("{}\t{}\n", t.tile, t.plan.string());
+    for (size_t i = 0; i < tasks.size(); ++i)
+        list += fmt::format("{}\t{}\t{}\n", tasks[i].tile, plans[i]->hash, tasks[i].plan.string());
     writeFileAtomically(dir / "tasks.txt", list);
+    Sha256 h;
+    h.add(list);
     const std::string script = fmt::format(
         "#!/bin/sh\n"
         "# relief's tiles as a Slurm job array: task $SLURM_ARRAY_TASK_ID renders line $SLURM_ARRAY_TASK_ID of the\n"
-        "# task list (counted from 0). The plans' folders must be on a filesystem every node sees.\n"
-        "exec {} render-tile --tasks {} --index \"$SLURM_ARRAY_TASK_ID\"\n",
-        shellQuoted(reliefProgram()), shellQuoted(fs::absolute(dir / "tasks.txt").string()));
+        "# task list (counted from 0), if the list is the one submitted. The plans' folders must be on a filesystem\n"
+        "# every node sees.\n"
+        "exec {} render-tile --tasks {} --tasks-sha256 {} --index \"$SLURM_ARRAY_TASK_ID\"{}\n",
+        shellQuoted(reliefProgram()), shellQuoted(fs::absolute(dir / "tasks.txt").string()), h.hex(),
+        sandbox ? "" : " --no-sandbox");
     writeFileAtomically(dir / "job.sh", script);
     return dir / "job.sh";
 }
 
-std::vector<std::string> words(const std::string& s) {
-    std::vector<std::string> out;
-    std::istringstream in(s);
-    for (std::string w; in >> w;) out.push_back(w);
-    return out;
+// sbatch's file names are patterns (%a: the task's index, %x: the job's name,
+// %%: a %): a folder's own % is written %%.
+std::string slurmPattern(const fs::path& dir, std::string_view pattern) {
+    std::string out;
+    for (const char c : dir.string()) out += c == '%' ? std::string("%%") : std::string(1, c);
+    return out + "/" + std::string(pattern);
 }
 
 // The states squeue gives the array's tasks now (task index -> state).
@@ -119,6 +139,22 @@ std::string logSays(const fs::path& log) {
 
 }  // namespace
 
+std::optional<std::vector<std::string>> slurmArgWords(const std::string& text, std::string& problem) {
+    if (text.find_first_not_of(" \t\n") == std::string::npos) return std::vector<std::string>{};
+    gchar** argv = nullptr;
+    GError* error = nullptr;
+    if (!g_shell_parse_argv(text.c_str(), nullptr, &argv, &error)) {
+        problem = fmt::format("\"{}\" cannot be split into words as a shell would ({}): close its quotes",
+                              terminalText(text, 200), error ? terminalText(error->message, 200) : "?");
+        g_clear_error(&error);
+        return std::nullopt;
+    }
+    std::vector<std::string> words;
+    for (gchar** w = argv; *w; ++w) words.emplace_back(*w);
+    g_strfreev(argv);
+    return words;
+}
+
 Result runSlurm(const std::vector<Task>& tasks, const std::vector<const plan::RenderPlan*>& plans,
                 const Options& options, const std::function<void(const Progress&)>& progress) {
     Result result;
@@ -127,14 +163,21 @@ Result runSlurm(const std::vector<Task>& tasks, const std::vector<const plan::Re
         result.error = problem;
         return result;
     }
-    const fs::path script = writeJob(tasks, options.jobDir);
+    std::string problem;
+    const auto args = slurmArgWords(options.slurmArgs, problem);
+    if (!args) {
+        result.badInput = true;
+        result.error = "--slurm-args: " + problem;
+        return result;
+    }
+    const fs::path script = writeJob(tasks, plans, options.sandbox, options.jobDir);
     std::vector<std::string> sbatch{"sbatch",
                                     "--parsable",
                                     fmt::format("--array=0-{}{}", tasks.size() - 1,
                                                 options.jobs > 0 ? fmt::format("%{}", options.jobs) : std::string()),
-                                    "--output=" + (fs::absolute(options.jobDir) / "logs" / "task-%a.log").string(),
+                                    "--output=" + slurmPattern(fs::absolute(options.jobDir) / "logs", "task-%a.log"),
                                     "--job-name=relief"};
-    for (const auto& w : words(options.slurmArgs)) sbatch.push_back(w);
+    sbatch.insert(sbatch.end(), args->begin(), args->end());
     sbatch.push_back(script.string());
     const CommandOutput submitted = runCommand(sbatch);
     const std::string job = firstLine(submitted.output).substr(0, firstLine(submitted.output).find(';'));

@@ -119,7 +119,6 @@ SceneJob jobOf(const SweepRequest& request, const std::vector<std::pair<std::str
     job.output = output;
     job.templatesDir = request.templatesDir;
     job.threads = request.threads;
-    job.sandbox = request.sandbox;
     job.tiles = request.tiles;
     return job;
 }

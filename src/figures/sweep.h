@@ -40,7 +40,6 @@ struct SweepRequest {
     std::filesystem::path sheet;         ///< the contact sheet; the stills go to <sheet>-stills/
     std::filesystem::path templatesDir;
     int threads = 0;
-    bool sandbox = true;                 ///< POV-Ray in bubblewrap
     int columns = 0;                     ///< 0: the first variation's count
     int tiles = 1;                       ///< strips of each still
     execute::Options execution;          ///< where the stills render (all at once)

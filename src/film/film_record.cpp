@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "core/atomic_file.h"
+#include "core/json_name.h"
 #include "core/input_file.h"
 #include "film/video.h"
 #include "relief/version.h"
@@ -19,7 +20,7 @@ using nlohmann::ordered_json;
 
 namespace {
 
-constexpr int kFilmRecordFormat = 2;  // a record without the limits (format 1) is another relief's
+constexpr int kFilmRecordFormat = 3;  // 2 named the film and its frames by absolute paths
 constexpr size_t kMaxRecordBytes = 64 << 20;  // 10,000 frames of a few keys each fit many times over
 
 ordered_json frameJson(const FilmFrame& f) {
@@ -90,18 +91,15 @@ bool framesInOrder(const std::vector<FilmFrame>& frames) {
 }
 
 // The record is untrusted: it may only name the film whose working folder it
-// is in (<film>.film or <film>.film-N beside it, a video relief makes) and that
-// film's sidecar, never any other file to be written over.
-bool namesBelongTo(const FilmRecord& r, const fs::path& dir) {
-    std::error_code ec;
-    const fs::path folder = fs::weakly_canonical(fs::absolute(dir, ec), ec);
-    const fs::path filmParent = fs::weakly_canonical(r.film.parent_path(), ec);
-    const std::string name = folder.filename().string(), own = r.film.stem().string() + ".film";
-    const bool named = name == own || (name.rfind(own + "-", 0) == 0 && name.size() > own.size() + 1 &&
-                                       name.find_first_not_of("0123456789", own.size() + 1) == std::string::npos);
+// is in (<film>.film or <film>.film-N beside it, a video relief makes); the
+// film is written beside the folder and its sidecar beside the film.
+bool nameBelongsTo(const std::string& film, const fs::path& folder) {
+    const fs::path named(film);
+    const std::string name = folder.filename().string(), own = named.stem().string() + ".film";
+    const bool ours = name == own || (name.rfind(own + "-", 0) == 0 && name.size() > own.size() + 1 &&
+                                      name.find_first_not_of("0123456789", own.size() + 1) == std::string::npos);
     VideoFormat format{};
-    return !ec && named && filmParent == folder.parent_path() && videoFormatOf(r.film, format) &&
-           r.sidecar == fs::path(r.film).replace_extension(".json");
+    return ours && film.find('/') == std::string::npos && !named.stem().empty() && videoFormatOf(named, format);
 }
 
 }  // namespace
@@ -113,19 +111,19 @@ std::string framePlanName(int number) {
 void writeFilmRecord(const FilmRecord& r, const fs::path& dir) {
     ordered_json frames = ordered_json::array();
     for (const auto& f : r.frames) frames.push_back(frameJson(f));
-    const ordered_json j = {{"relief_film", kFilmRecordFormat},
+    ordered_json j = {{"relief_film", kFilmRecordFormat},
                             {"relief_version", kVersion},
                             {"scene", r.scene.string()},
                             {"scene_sha1", r.sceneSha1},
                             {"fps", r.fps},
-                            {"film", r.film.string()},
-                            {"sidecar", r.sidecar.string()},
-                            {"frames_dir", r.framesDir.string()},
+                            {"film", ""},
+                            {"frames_kept", !r.framesDir.empty()},
                             {"film_given", r.filmGiven},
                             {"terrains", r.terrains},
                             {"compile_seconds", r.compileSeconds},
                             {"limits", limitsJson(r.limits)},
                             {"frames", frames}};
+    putName(j, "film", r.film.filename().string());
     writeFileAtomically(dir / "film.json", j.dump(1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
 }
 
@@ -141,6 +139,7 @@ std::optional<FilmRecord> readFilmRecord(const fs::path& dir, Diagnostics& diags
         return std::nullopt;
     }
     FilmRecord r;
+    std::string film;
     try {
         const ordered_json j = ordered_json::parse(*text);
         if (j.at("relief_film").get<int>() != kFilmRecordFormat || j.at("relief_version").get<std::string>() != kVersion) {
@@ -150,9 +149,8 @@ std::optional<FilmRecord> readFilmRecord(const fs::path& dir, Diagnostics& diags
         r.scene = j.at("scene").get<std::string>();
         r.sceneSha1 = j.at("scene_sha1").get<std::string>();
         r.fps = j.at("fps").get<double>();
-        r.film = j.at("film").get<std::string>();
-        r.sidecar = j.at("sidecar").get<std::string>();
-        r.framesDir = j.at("frames_dir").get<std::string>();
+        film = nameAt(j, "film");
+        r.framesKept = j.at("frames_kept").get<bool>();
         r.filmGiven = j.at("film_given").get<bool>();
         r.terrains = j.at("terrains").get<int>();
         r.compileSeconds = j.at("compile_seconds").get<double>();
@@ -162,16 +160,19 @@ std::optional<FilmRecord> readFilmRecord(const fs::path& dir, Diagnostics& diags
         diags.error(at, "the film's record is damaged (not the JSON relief writes): make the film again");
         return std::nullopt;
     }
-    if (!framesInOrder(r.frames) || !(r.fps >= 1 && r.fps <= 120) || r.terrains < 0 || !r.film.is_absolute() || !r.sidecar.is_absolute() ||
-        (!r.framesDir.empty() && !r.framesDir.is_absolute())) {
-        diags.error(at, "the film's record is damaged (its frames or names are not a film's): make the film again");
+    if (!framesInOrder(r.frames) || !(r.fps >= 1 && r.fps <= 120) || r.terrains < 0) {
+        diags.error(at, "the film's record is damaged (its frames are not a film's): make the film again");
         return std::nullopt;
     }
-    if (!namesBelongTo(r, dir)) {
+    const fs::path folder = fs::absolute(dir).lexically_normal();
+    const fs::path own = folder.has_filename() ? folder : folder.parent_path();
+    if (!nameBelongsTo(film, own)) {
         diags.error(at, "the film's record names a film that is not this folder's (<film>.film beside the film, "
                         "its sidecar <film>.json): resume it where relief animate left it, or make the film again");
         return std::nullopt;
     }
+    r.film = own.parent_path() / film;
+    r.sidecar = fs::path(r.film).replace_extension(".json");
     return r;
 }
 

@@ -29,9 +29,15 @@ struct FilmRecord {
     std::filesystem::path scene;       ///< the scene file, as given
     std::string sceneSha1;
     double fps = 30;
-    std::filesystem::path film;        ///< absolute, as every path below
+    /// The film and its sidecar (absolute). film.json holds the film's file
+    /// name only: read back, both are beside the working folder.
+    std::filesystem::path film;
     std::filesystem::path sidecar;
-    std::filesystem::path framesDir;   ///< --frames; empty: none
+    /// --frames (absolute); empty: none. film.json names no folder outside its
+    /// own: it says only whether the frames were kept, and --resume is given
+    /// the folder again.
+    std::filesystem::path framesDir;
+    bool framesKept = false;
     bool filmGiven = false;            ///< -o named the film (its role in messages)
     int terrains = 0;                  ///< terrains compiled
     double compileSeconds = 0;
@@ -47,7 +53,7 @@ void writeFilmRecord(const FilmRecord& record, const std::filesystem::path& dir)
 
 /// The record in `dir`, or nullopt with an error naming film.json and what is
 /// wrong (missing, not a film's, damaged, frames out of order, limits out of
-/// the scene's ranges).
+/// the scene's ranges, a film's name that is not the folder's).
 std::optional<FilmRecord> readFilmRecord(const std::filesystem::path& dir, Diagnostics& diags);
 
 }  // namespace relief::film

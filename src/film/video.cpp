@@ -26,6 +26,21 @@ std::string frameFileName(int number) {
     return fmt::format("frame-{:05}.png", number);
 }
 
+namespace {
+
+const char* kFramesPattern = "frames/frame-%05d.png";
+
+// The film ffmpeg writes in the working folder.
+std::string encodedName(VideoFormat format) {
+    switch (format) {
+        case VideoFormat::WebM: return "film.webm";
+        case VideoFormat::Gif: return "film.gif";
+        default: return "film.mp4";
+    }
+}
+
+}  // namespace
+
 std::vector<std::string> ffmpegCommand(const VideoRequest& r) {
     // Even sizes for 4:2:0 (a pixel cropped, not a black line added); the
     // colour conversion bit-exact, so that every CPU gives the same bytes.
@@ -42,7 +57,7 @@ std::vector<std::string> ffmpegCommand(const VideoRequest& r) {
                                      "-start_number",
                                      "1",
                                      "-i",
-                                     (r.frames / "frame-%05d.png").string(),
+                                     kFramesPattern,
                                      "-frames:v",
                                      std::to_string(r.frameCount)};
     const auto add = [&](std::initializer_list<std::string> more) { argv.insert(argv.end(), more); };
@@ -98,17 +113,23 @@ std::vector<std::string> ffmpegCommand(const VideoRequest& r) {
                  "-loop", "0", "-f", "gif"});
             break;
     }
-    add({"-map_metadata", "-1", "-fflags", "+bitexact", "-flags:v", "+bitexact", r.output.string()});
+    add({"-map_metadata", "-1", "-fflags", "+bitexact", "-flags:v", "+bitexact", encodedName(r.format)});
     return argv;
 }
 
 std::string encodeVideo(const VideoRequest& r) {
     if (render::findOnPath("ffmpeg").empty())
         return "ffmpeg is not installed, and it encodes the film (Debian: apt-get install ffmpeg)";
-    const execute::CommandOutput out = execute::runCommand(ffmpegCommand(r));
-    if (out.status == 0) return "";
-    return fmt::format("ffmpeg failed{}: {}", out.status > 0 ? fmt::format(" (exit {})", out.status) : "",
-                       terminalText(execute::firstLine(out.output), 300));
+    const std::filesystem::path encoded = r.workDir / encodedName(r.format);
+    std::error_code ec;
+    std::filesystem::remove(encoded, ec);  // a run interrupted while encoding left it
+    const execute::CommandOutput out = execute::runCommand(ffmpegCommand(r), {r.workDir, 0});
+    if (out.status != 0)
+        return fmt::format("ffmpeg failed{}: {}", out.status > 0 ? fmt::format(" (exit {})", out.status) : "",
+                           terminalText(execute::firstLine(out.output), 300));
+    std::filesystem::rename(encoded, r.output, ec);
+    if (ec) std::filesystem::copy_file(encoded, r.output, std::filesystem::copy_options::overwrite_existing, ec);
+    return ec ? fmt::format("the film cannot be written: {}", ec.message()) : "";
 }
 
 std::string ffmpegVersion() {

@@ -17,18 +17,25 @@ enum class VideoFormat { Mp4, WebM, Gif };
 /// false for any other.
 bool videoFormatOf(const std::filesystem::path& output, VideoFormat& format);
 
+/// ffmpeg runs in the film's working folder and sees fixed names only: it
+/// reads frames/frame-00001.png, ... (a pattern: a % in a user's folder name
+/// would be taken for one) and writes film.mp4 (.webm, .gif) there, which is
+/// then moved to `output`. So the film's bytes are the same whatever the film,
+/// its folder or the frames' folder are called (the MP4 muxer's bytes depend
+/// on the length of the names it is given).
 struct VideoRequest {
-    std::filesystem::path frames;  ///< the folder holding frame-00001.png, frame-00002.png, ...
+    std::filesystem::path workDir;  ///< holds frames/ with frame-00001.png, frame-00002.png, ...
     int frameCount = 0;
     double fps = 30;
-    std::filesystem::path output;  ///< written by ffmpeg (the caller makes it atomic)
+    std::filesystem::path output;  ///< where the film goes (the caller makes it atomic)
     VideoFormat format = VideoFormat::Mp4;
 };
 
 /// The name of frame `number` (1-based) in the frames folder.
 std::string frameFileName(int number);
 
-/// ffmpeg's command line for `request`: what encodeVideo runs, and the sidecar records.
+/// ffmpeg's command line for `request`, run in its working folder: what
+/// encodeVideo runs, and the sidecar records.
 std::vector<std::string> ffmpegCommand(const VideoRequest& request);
 
 /// Runs ffmpeg; "" on success, else why it failed (ffmpeg missing names the package).

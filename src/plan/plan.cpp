@@ -4,13 +4,17 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <mutex>
+#include <set>
 
 #include <fmt/format.h>
 
 #include "core/atomic_file.h"
 #include "core/hash.h"
+#include "core/json_name.h"
 #include "core/input_file.h"
 #include "core/text_escape.h"
 #include "relief/version.h"
@@ -22,8 +26,14 @@ using nlohmann::ordered_json;
 
 namespace {
 
-constexpr int kPlanFormat = 5;
+constexpr int kPlanFormat = 6;
 constexpr std::uintmax_t kMaxPlanBytes = 64'000'000;
+// A template folder holds a template and its #include files: a few kB.
+constexpr size_t kMaxTemplateFiles = 64;
+constexpr std::uintmax_t kMaxTemplateFolderBytes = 16'000'000;
+// What ordered_json's dump writes for a byte that is not UTF-8 (U+FFFD): a
+// record is UTF-8 whatever names it holds.
+constexpr auto kReplace = nlohmann::json::error_handler_t::replace;
 
 ordered_json coloursJson(const std::vector<LinearRgb>& colours) {
     ordered_json a = ordered_json::array();
@@ -136,22 +146,42 @@ void readOverlay(const ordered_json& j, RenderPlan& p) {
     o.layerLegend = legendOf(f.at("layer_legend"));
 }
 
-ordered_json fileJson(const PlanFile& f) { return {{"name", f.name}, {"final", f.final.string()}, {"role", f.role}}; }
+ordered_json fileJson(const PlanFile& f) {
+    ordered_json j;
+    putName(j, "name", f.name);
+    j["role"] = f.role;
+    j["sha256"] = f.sha256;
+    return j;
+}
 PlanFile fileOf(const ordered_json& j) {
-    return {j.at("name").get<std::string>(), j.at("final").get<std::string>(), j.at("role").get<std::string>()};
+    return {nameAt(j, "name"), {}, j.at("role").get<std::string>(), j.at("sha256").get<std::string>()};
+}
+ordered_json filesJson(const std::vector<PlanFile>& files) {
+    ordered_json a = ordered_json::array();
+    for (const auto& f : files) a.push_back(fileJson(f));
+    return a;
+}
+std::vector<PlanFile> filesOf(const ordered_json& a) {
+    std::vector<PlanFile> out;
+    for (const auto& f : a) out.push_back(fileOf(f));
+    return out;
 }
 
-// Everything but the hash, in one order: what the hash is taken over, with the files.
+// Everything but the hash, in one order: what the hash is taken over. Each
+// file is in it by its SHA-256; the outputs by their file names only (a plan
+// read back writes them beside its folder); nothing says whether POV-Ray runs
+// sandboxed (the command that runs it does) or names a folder outside.
 ordered_json planJson(const RenderPlan& p) {
-    ordered_json reads = ordered_json::array(), extras = ordered_json::array();
-    for (const auto& f : p.reads) reads.push_back(fileJson(f));
-    for (const auto& f : p.extras) extras.push_back(fileJson(f));
+    ordered_json outputs;
+    putName(outputs, "still", p.still.filename().string());
+    putName(outputs, "sidecar", p.sidecar.filename().string());
     return {{"relief_plan", kPlanFormat},
             {"relief_version", p.reliefVersion},
             {"povray_version", p.povrayVersion},
             {"pov", fileJson(p.pov)},
-            {"reads", reads},
-            {"extras", extras},
+            {"reads", filesJson(p.reads)},
+            {"extras", filesJson(p.extras)},
+            {"templates", filesJson(p.templates)},
             {"render",
              {{"width", p.width},
               {"height", p.height},
@@ -160,34 +190,24 @@ ordered_json planJson(const RenderPlan& p) {
               {"antialias_threshold", p.antialiasThreshold},
               {"antialias_depth", p.antialiasDepth},
               {"alpha", p.alpha},
-              {"sandbox", p.sandbox},
               {"timeout_s", p.timeoutS},
-              {"dpi", p.dpi},
-              {"templates", p.templatesDir.string()}}},
-            {"still", p.still.string()},
-            {"sidecar", p.sidecar.string()},
+              {"dpi", p.dpi}}},
+            {"outputs", outputs},
             {"overlay", overlayJson(p)},
             {"sidecar_so_far", p.sidecar0}};
 }
 
-std::string hashOf(const RenderPlan& p, const ordered_json& fields, Diagnostics* diags) {
-    Sha256 h;
-    h.add(fields.dump());
-    std::vector<const PlanFile*> files{&p.pov};
-    for (const auto& f : p.reads) files.push_back(&f);
-    for (const auto& f : p.extras) files.push_back(&f);
-    for (const PlanFile* f : files) {
-        h.add(f->name);
-        if (!h.addFile(p.dir / f->name)) {
-            if (diags) diags->error({(p.dir / f->name).string(), 0, 0}, "the plan's file is missing or unreadable");
-            return {};
-        }
-    }
-    return h.hex();
+// Calls fn(file, its path) for each of the plan's files (const or not).
+template <class Plan, class Fn>
+void forEachFile(Plan& p, Fn fn) {
+    fn(p.pov, p.dir / p.pov.name);
+    for (auto& f : p.reads) fn(f, p.dir / f.name);
+    for (auto& f : p.extras) fn(f, p.dir / f.name);
+    for (auto& f : p.templates) fn(f, p.dir / "templates" / f.name);
 }
 
 bool plainName(const std::string& n) {
-    return !n.empty() && n != "." && n != ".." && n.find('/') == std::string::npos;
+    return !n.empty() && n != "." && n != ".." && n.find('/') == std::string::npos && n.find('\0') == std::string::npos;
 }
 
 std::string hostName() {
@@ -203,15 +223,52 @@ TileRows tileRows(int height, int tiles, int index) {
     return {static_cast<int>(first) + 1, static_cast<int>(next)};
 }
 
+std::string planFieldsHash(const ordered_json& fields) {
+    Sha256 h;
+    h.add(fields.dump(-1, ' ', false, kReplace));
+    return h.hex();
+}
+
+void copyTemplates(RenderPlan& plan, const fs::path& templatesDir) {
+    plan.templates.clear();
+    if (templatesDir.empty()) return;
+    makeOwnFolder(plan.dir / "templates");
+    std::error_code ec;
+    std::vector<fs::path> files;
+    for (const auto& e : fs::directory_iterator(templatesDir, ec))
+        if (e.is_regular_file(ec) && !e.is_symlink(ec)) files.push_back(e.path());
+    if (ec) throw OutputError(templatesDir, "cannot be listed as the templates folder: " + ec.message());
+    std::sort(files.begin(), files.end());
+    std::uintmax_t bytes = 0;
+    for (const auto& f : files) bytes += fs::file_size(f, ec);
+    if (files.size() > kMaxTemplateFiles || bytes > kMaxTemplateFolderBytes)
+        throw OutputError(templatesDir, fmt::format("holds {} files, {}: more than a template and its #include "
+                                                    "files ({} files, {}); give --templates a folder of them alone",
+                                                    files.size(), byteSize(bytes), kMaxTemplateFiles,
+                                                    byteSize(kMaxTemplateFolderBytes)));
+    for (const auto& f : files) {
+        fs::copy_file(f, plan.dir / "templates" / f.filename(), ec);
+        if (ec) throw OutputError(plan.dir / "templates" / f.filename(), "cannot be written: " + ec.message());
+        plan.templates.push_back({f.filename().string(), {}, "a template file", ""});
+    }
+}
+
 bool writePlan(RenderPlan& plan, Diagnostics& diags) {
     plan.reliefVersion = kVersion;
+    bool read = true;
+    forEachFile(plan, [&](PlanFile& f, const fs::path& at) {
+        std::string problem;
+        if (f.sha256.empty() && read) f.sha256 = fileSha256(at, problem);  // a film's shared files come hashed
+        if (!problem.empty()) diags.error({at.string(), 0, 0}, "the plan's file cannot be read: " + problem);
+        read = read && problem.empty();
+    });
+    if (!read) return false;
     const ordered_json fields = planJson(plan);
-    plan.hash = hashOf(plan, fields, &diags);
-    if (plan.hash.empty()) return false;
+    plan.hash = planFieldsHash(fields);
     ordered_json j = fields;
     j["hash"] = plan.hash;
     try {
-        writeFileAtomically(plan.dir / "plan.json", j.dump(1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
+        writeFileAtomically(plan.dir / "plan.json", j.dump(1, ' ', false, kReplace) + "\n");
     } catch (const OutputError& e) {
         diags.error(e.at(), e.problem());
         return false;
@@ -236,6 +293,85 @@ bool overlaySizesSane(const RenderPlan& p) {
 
 }  // namespace
 
+namespace {
+
+// plan.json's fields into `p` (throws nlohmann's exceptions on a wrong shape).
+void readFields(const ordered_json& j, RenderPlan& p) {
+    p.reliefVersion = j.at("relief_version").get<std::string>();
+    p.povrayVersion = j.at("povray_version").get<std::string>();
+    p.hash = j.at("hash").get<std::string>();
+    p.pov = fileOf(j.at("pov"));
+    p.reads = filesOf(j.at("reads"));
+    p.extras = filesOf(j.at("extras"));
+    p.templates = filesOf(j.at("templates"));
+    const auto& r = j.at("render");
+    p.width = r.at("width").get<int>();
+    p.height = r.at("height").get<int>();
+    p.tiles = r.at("tiles").get<int>();
+    p.antialias = r.at("antialias").get<bool>();
+    p.antialiasThreshold = r.at("antialias_threshold").get<double>();
+    p.antialiasDepth = r.at("antialias_depth").get<int>();
+    p.alpha = r.at("alpha").get<bool>();
+    p.timeoutS = r.at("timeout_s").get<double>();
+    p.dpi = r.at("dpi").get<double>();
+    // The outputs beside the plan's folder, whatever it was planned beside.
+    const fs::path beside = p.dir.parent_path();
+    p.still = beside / nameAt(j.at("outputs"), "still");
+    p.sidecar = beside / nameAt(j.at("outputs"), "sidecar");
+    p.pov.final = beside / p.pov.name;
+    for (auto* files : {&p.reads, &p.extras})
+        for (auto& f : *files) f.final = beside / f.name;
+    readOverlay(j.at("overlay"), p);
+    p.sidecar0 = j.at("sidecar_so_far");
+}
+
+// Names that are plain file names, each once, none of the plan's own (plan.json, tiles/, ...).
+bool namesSane(const RenderPlan& p) {
+    static const std::set<std::string> own{"plan.json", "lock", "tiles", "templates", "slurm"};
+    std::set<std::string> seen;
+    bool ok = true;
+    for (const auto* files : {&p.reads, &p.extras}) {
+        for (const auto& f : *files) ok = ok && plainName(f.name) && !own.count(f.name) && seen.insert(f.name).second;
+    }
+    ok = ok && plainName(p.pov.name) && !own.count(p.pov.name) && seen.insert(p.pov.name).second;
+    std::set<std::string> templates;
+    for (const auto& f : p.templates) ok = ok && plainName(f.name) && templates.insert(f.name).second;
+    const std::string still = asciiLower(p.still.extension().string());
+    const fs::path beside = p.dir.parent_path();
+    return ok && plainName(p.still.filename().string()) && plainName(p.sidecar.filename().string()) &&
+           p.still.parent_path() == beside && p.sidecar.parent_path() == beside && p.still != p.sidecar &&
+           (still == ".png" || still == ".pdf" || still == ".svg") && asciiLower(p.sidecar.extension().string()) == ".json";
+}
+
+// The still's size and POV-Ray's options within what a scene can give ([render]'s ranges).
+bool sizesSane(const RenderPlan& p) {
+    const auto within = [](double v, double lo, double hi) { return v >= lo && v <= hi; };  // false for NaN
+    return within(p.width, 16, 16384) && within(p.height, 16, 16384) && within(p.tiles, 1, p.height) &&
+           within(p.antialiasThreshold, 0, 3) && within(p.antialiasDepth, 1, 9) && within(p.timeoutS, 0, 1e7) &&
+           within(static_cast<int>(p.overlaySpec.enabled), 0, 2) && overlaySizesSane(p);
+}
+
+// Every file the plan lists: a plain file in its folder with the SHA-256 it was planned with.
+bool filesAsPlanned(const RenderPlan& p, Diagnostics& diags) {
+    bool ok = true;
+    forEachFile(p, [&](const PlanFile& f, const fs::path& at) {
+        if (!ok) return;
+        std::string problem;
+        const std::string sha = fileSha256(at, problem);
+        if (!problem.empty())
+            diags.error({at.string(), 0, 0}, problem == "no such file"
+                                                 ? "the plan's file is missing: make the plan again"
+                                                 : "the plan's file cannot be used: " + problem);
+        else if (sha != f.sha256)
+            diags.error({at.string(), 0, 0}, "differs from the file the plan was made with (its SHA-256 is not the one "
+                                             "plan.json holds): make the plan again");
+        ok = problem.empty() && sha == f.sha256;
+    });
+    return ok;
+}
+
+}  // namespace
+
 std::optional<RenderPlan> readPlan(const fs::path& dir, Diagnostics& diags) {
     const fs::path file = dir / "plan.json";
     const SourceLoc at{file.string(), 0, 0};
@@ -248,48 +384,48 @@ std::optional<RenderPlan> readPlan(const fs::path& dir, Diagnostics& diags) {
         return std::nullopt;
     }
     RenderPlan p;
-    p.dir = dir;
+    p.dir = fs::absolute(dir).lexically_normal();
+    if (!p.dir.has_filename()) p.dir = p.dir.parent_path();  // "x.plan/": the folder x.plan
     try {
-        const ordered_json j = ordered_json::parse(*text);
+        ordered_json j = ordered_json::parse(*text);
         if (j.at("relief_plan").get<int>() != kPlanFormat) {
             diags.error(at, "a render plan of another format: make it again with this relief");
             return std::nullopt;
         }
-        p.reliefVersion = j.at("relief_version").get<std::string>();
-        p.povrayVersion = j.at("povray_version").get<std::string>();
-        p.hash = j.at("hash").get<std::string>();
-        p.pov = fileOf(j.at("pov"));
-        for (const auto& f : j.at("reads")) p.reads.push_back(fileOf(f));
-        for (const auto& f : j.at("extras")) p.extras.push_back(fileOf(f));
-        const auto& r = j.at("render");
-        p.width = r.at("width").get<int>();
-        p.height = r.at("height").get<int>();
-        p.tiles = r.at("tiles").get<int>();
-        p.antialias = r.at("antialias").get<bool>();
-        p.antialiasThreshold = r.at("antialias_threshold").get<double>();
-        p.antialiasDepth = r.at("antialias_depth").get<int>();
-        p.alpha = r.at("alpha").get<bool>();
-        p.sandbox = r.at("sandbox").get<bool>();
-        p.timeoutS = r.at("timeout_s").get<double>();
-        p.dpi = r.at("dpi").get<double>();
-        p.templatesDir = r.at("templates").get<std::string>();
-        p.still = j.at("still").get<std::string>();
-        p.sidecar = j.at("sidecar").get<std::string>();
-        readOverlay(j.at("overlay"), p);
-        p.sidecar0 = j.at("sidecar_so_far");
+        if (const auto made = j.at("relief_version").get<std::string>(); made != kVersion) {
+            diags.error(at, fmt::format("a render plan made by relief {}, and this is relief {}: make it again with "
+                                        "this relief, or use the one that made it",
+                                        terminalText(made, 40), kVersion));
+            return std::nullopt;
+        }
+        readFields(j, p);
+        j.erase("hash");
+        if (planFieldsHash(j) != p.hash) {
+            diags.error(at, "the render plan was changed after relief wrote it (its fields do not give the hash it "
+                            "holds): make it again");
+            return std::nullopt;
+        }
     } catch (const nlohmann::json::exception&) {
         diags.error(at, "the render plan is damaged (not the JSON relief writes): make it again");
         return std::nullopt;
     }
-    // Names in the plan's folder only, whatever the file says.
-    bool names = plainName(p.pov.name);
-    for (const auto& f : p.reads) names = names && plainName(f.name);
-    for (const auto& f : p.extras) names = names && plainName(f.name);
-    if (!names || p.width < 1 || p.height < 1 || p.tiles < 1 || p.tiles > p.height || !overlaySizesSane(p)) {
+    if (!namesSane(p) || !sizesSane(p)) {
         diags.error(at, "the render plan is damaged (its files or sizes are not a plan's): make it again");
         return std::nullopt;
     }
+    if (!filesAsPlanned(p, diags)) return std::nullopt;
     return p;
+}
+
+bool checkRenderable(const RenderPlan& plan, Diagnostics& diags) {
+    const std::string here = povrayVersion();
+    if (here == plan.povrayVersion) return true;
+    diags.error({(plan.dir / "plan.json").string(), 0, 0},
+                fmt::format("the plan was made for POV-Ray {}, and {} has {}: install that POV-Ray here, or render "
+                            "the plan where it is",
+                            terminalText(plan.povrayVersion, 40), terminalText(hostName(), 60),
+                            here.empty() ? std::string("none") : "POV-Ray " + here));
+    return false;
 }
 
 fs::path tileImage(const RenderPlan& plan, int index) {
@@ -308,11 +444,13 @@ ordered_json tileRecordJson(const TileRecord& r) {
             {"host", r.host.empty() ? hostName() : r.host},
             {"seconds", {{"povray_parse", r.parseSeconds}, {"povray_trace", r.traceSeconds}, {"povray_wall", r.wallSeconds}}},
             {"povray_peak_memory_mb", r.peakMemoryMB},
-            {"povray_command", r.povrayCommand}};
+            {"povray_command", r.povrayCommand},
+            {"image_sha256", r.imageSha256}};
 }
 
 std::optional<TileRecord> readTileRecord(const RenderPlan& plan, int index, std::string& problem) {
-    const auto text = readInputFile(tileRecordPath(plan, index), 1'000'000, problem);
+    problem = plainFileProblem(tileRecordPath(plan, index));
+    const auto text = problem.empty() ? readInputFile(tileRecordPath(plan, index), 1'000'000, problem) : std::nullopt;
     if (!text) return std::nullopt;
     TileRecord r;
     try {
@@ -328,6 +466,7 @@ std::optional<TileRecord> readTileRecord(const RenderPlan& plan, int index, std:
         r.wallSeconds = j.at("seconds").at("povray_wall").get<double>();
         r.peakMemoryMB = j.at("povray_peak_memory_mb").get<double>();
         r.povrayCommand = j.at("povray_command").get<std::vector<std::string>>();
+        r.imageSha256 = j.at("image_sha256").get<std::string>();
     } catch (const nlohmann::json::exception&) {
         problem = "its record is damaged";
         return std::nullopt;
@@ -344,8 +483,15 @@ std::optional<TileRecord> readTileRecord(const RenderPlan& plan, int index, std:
     else if (r.povrayVersion != plan.povrayVersion)
         problem = fmt::format("it was rendered by POV-Ray {} on {}, the plan made for {}", terminalText(r.povrayVersion, 40),
                               terminalText(r.host, 60), plan.povrayVersion);
-    else if (inputFileProblem(tileImage(plan, index)) != "")
+    if (!problem.empty()) return std::nullopt;
+    std::string imageProblem;
+    const std::string image = fileSha256(tileImage(plan, index), imageProblem);
+    if (imageProblem == "no such file")
         problem = "its image is missing";
+    else if (!imageProblem.empty())
+        problem = "its image cannot be used: " + imageProblem;
+    else if (image != r.imageSha256)
+        problem = "its image is not the one rendered (its SHA-256 is not the record's): render the tile again";
     if (!problem.empty()) return std::nullopt;
     return r;
 }
@@ -360,13 +506,24 @@ std::vector<int> missingTiles(const RenderPlan& plan) {
 }
 
 std::optional<PlanLock> PlanLock::take(const fs::path& dir) {
+    Diagnostics unused;
+    return take(dir, unused);
+}
+
+std::optional<PlanLock> PlanLock::take(const fs::path& dir, Diagnostics& diags) {
     const int fd = ::open((dir / "lock").c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC, 0600);
-    if (fd < 0) return std::nullopt;
+    if (fd < 0) {
+        diags.error({(dir / "lock").string(), 0, 0},
+                    fmt::format("cannot be written: {}; relief writes its tiles and its lock in the folder",
+                                std::strerror(errno)));
+        return std::nullopt;
+    }
     struct flock l {};
     l.l_type = F_WRLCK;
     l.l_whence = SEEK_SET;
     if (::fcntl(fd, F_OFD_SETLK, &l) != 0) {
         ::close(fd);
+        diags.error({dir.string(), 0, 0}, "another relief is using this folder now: wait for it to end");
         return std::nullopt;
     }
     return PlanLock(fd);

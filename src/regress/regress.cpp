@@ -191,7 +191,6 @@ SceneJob caseJob(const TestCase& c, const RunOptions& o) {
     job.output = o.reportDir / "images" / (c.name + ".new.png");
     job.templatesDir = o.templatesDir;
     job.threads = 1;  // the refiner: cases compile side by side
-    job.sandbox = o.sandbox;
     job.stillOnly = true;  // the .pov and sidecar of a test render are not part of the report
     return job;
 }

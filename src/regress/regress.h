@@ -63,7 +63,6 @@ struct RunOptions {
     std::filesystem::path templatesDir;
     int jobs = 1;                           ///< renders in parallel
     bool update = false;                    ///< bless new images of failing or new cases
-    bool sandbox = true;                    ///< POV-Ray in bubblewrap
     std::string manifestArgument;           ///< as typed, for the bless command line
     execute::Options execution;             ///< where the cases render (local: `jobs` at once)
 };

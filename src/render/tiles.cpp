@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "core/atomic_file.h"
+#include "core/hash.h"
 #include "relief/version.h"
 
 namespace relief::render {
@@ -23,17 +24,23 @@ RenderResult renderTile(const plan::RenderPlan& plan, int index, const TileOptio
     req.antialiasThreshold = plan.antialiasThreshold;
     req.antialiasDepth = plan.antialiasDepth;
     req.alpha = plan.alpha;
-    req.templatesDir = plan.templatesDir;
+    if (!plan.templates.empty()) req.templatesDir = plan.dir / "templates";
     for (const auto& f : plan.reads) req.inputFiles.push_back(plan.dir / f.name);
     req.threads = options.threads;
-    req.sandbox = plan.sandbox;
+    req.sandbox = options.sandbox;
     req.timeoutSeconds = plan.timeoutS;
     if (plan.tiles > 1) req.rows = RowRange{rows.first, rows.last};
     else req.rawOutput = true;  // finishing re-encodes the still once
     req.cancelled = options.cancelled;
-    std::error_code ec;
-    fs::create_directories(plan.dir / "tiles", ec);
-    RenderResult result = renderPov(req, options.progress);
+    RenderResult result;
+    try {
+        makeOwnFolder(plan.dir / "tiles");
+    } catch (const OutputError& e) {
+        result.cannotWriteOutput = true;
+        result.error = e.what();
+        return result;
+    }
+    result = renderPov(req, options.progress);
     if (!result.ok) return result;
     plan::TileRecord record;
     record.index = index;
@@ -46,6 +53,8 @@ RenderResult renderTile(const plan::RenderPlan& plan, int index, const TileOptio
     record.wallSeconds = result.wallSeconds;
     record.peakMemoryMB = std::round(result.peakMemoryBytes / 1e5) / 10;  // to 0.1 MB
     record.povrayCommand = result.command;
+    std::string problem;
+    record.imageSha256 = fileSha256(req.png, problem);
     try {
         writeFileAtomically(plan::tileRecordPath(plan, index), plan::tileRecordJson(record).dump(1) + "\n");
     } catch (const std::runtime_error& e) {
@@ -64,14 +73,14 @@ std::optional<PngImage8> stitchTiles(const plan::RenderPlan& plan, std::string& 
             error = fmt::format("tile {} of {}: {}", k + 1, plan.tiles, problem);
             return std::nullopt;
         }
+        const plan::TileRows rows = plan::tileRows(plan.height, plan.tiles, k);
+        const PngSize size{plan.width, rows.last - rows.first + 1};
         PngImage8 tile;
-        if (std::string e = readPng8(plan::tileImage(plan, k), tile); !e.empty()) {
+        if (std::string e = readPng8(plan::tileImage(plan, k), tile, &size); !e.empty()) {
             error = fmt::format("tile {} of {}: {}", k + 1, plan.tiles, e);
             return std::nullopt;
         }
-        const plan::TileRows rows = plan::tileRows(plan.height, plan.tiles, k);
-        if (tile.width != plan.width || tile.height != rows.last - rows.first + 1 ||
-            (k > 0 && tile.channels != still.channels)) {
+        if (k > 0 && tile.channels != still.channels) {
             error = fmt::format("tile {} of {} is {} x {} with {} channels, not rows {}..{} of the plan's {} x {}", k + 1,
                                 plan.tiles, tile.width, tile.height, tile.channels, rows.first, rows.last, plan.width,
                                 plan.height);

@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Through the private Slurm cluster (cluster.sh; SLURM_CONF names it): a still as 7 tiles, a
 # sweep, a test suite and a film give the bytes they give on this machine alone; a task that fails names
-# its Slurm job, state and log; a task that cannot see its plan says so; without SLURM_CONF relief
-# says what is missing; Ctrl-C cancels the job array.
+# its Slurm job, state and log; a task that cannot see its plan says so; a task list or plan
+# changed after submission is refused; a plan in a folder named with % (sbatch's patterns) and
+# --slurm-args quoted as a shell quotes work; without SLURM_CONF, or with a controller that does
+# not answer, relief says what is missing within seconds; Ctrl-C cancels the job array.
 # Usage: slurm_render.sh RELIEF SOURCE_DIR WORK_DIR
 set -u
 relief=$1 src=$2 work=$3
@@ -76,18 +78,52 @@ grep -Eq "^task ([0-2]) \(Slurm job [0-9]+_\1, tile [1-3] of 3\) FAILED: tile [1
 log=$(sed -n 's/.*; its log: \(.*\)$/\1/p' failed.txt | head -1)
 [ -s "$log" ] || fail "a failing task: no log at '$log'"
 
-# 5. A task whose plan this machine does not see.
-printf '0\t%s\n' "$work/nowhere/x.plan" > tasks.txt
-"$relief" render-tile --tasks tasks.txt --index 0 2> nowhere.txt; code=$?
+# 5. A task whose plan this machine does not see; a task list or a plan changed after submission.
+printf '0\tsha256:0\t%s\n' "$work/nowhere/x.plan" > tasks.txt
+sum="sha256:$(sha256sum tasks.txt | cut -d' ' -f1)"
+"$relief" render-tile --tasks tasks.txt --tasks-sha256 "$sum" --index 0 2> nowhere.txt; code=$?
 [ "$code" = 3 ] || fail "a plan not seen: exit $code, expected 3"
 grep -q "^relief: error: $work/nowhere/x.plan/plan.json: no render plan here: the plan's folder must be on a filesystem this machine sees" nowhere.txt ||
   { fail "a plan not seen:"; cat nowhere.txt; }
+plan=$("$relief" plan -q "$small" --tiles 2 -o listed/x.png)
+hash=$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["hash"])' "$plan/plan.json")
+printf '0\t%s\t%s\n' "$hash" "$plan" > listed.txt
+sum="sha256:$(sha256sum listed.txt | cut -d' ' -f1)"
+"$relief" render-tile --tasks listed.txt --tasks-sha256 "$sum" --index 0 || fail "a listed task"
+printf '1\t%s\t%s\n' "$hash" "$plan" > listed.txt
+"$relief" render-tile --tasks listed.txt --tasks-sha256 "$sum" --index 0 2> changed-list.txt; code=$?
+[ "$code" = 3 ] && grep -q "listed.txt: the task list is not the one submitted (its SHA-256 changed since): submit the job again" changed-list.txt ||
+  { fail "a task list changed after submission: exit $code"; cat changed-list.txt; }
+printf '0\tsha256:%064d\t%s\n' 0 "$plan" > other-plan.txt
+sum="sha256:$(sha256sum other-plan.txt | cut -d' ' -f1)"
+"$relief" render-tile --tasks other-plan.txt --tasks-sha256 "$sum" --index 0 2> other-plan-err.txt; code=$?
+[ "$code" = 3 ] && grep -q "plan.json: the render plan is not the one submitted (another plan was made in its folder since)" other-plan-err.txt ||
+  { fail "a plan changed after submission: exit $code"; cat other-plan-err.txt; }
+
+# 5b. A plan in a folder whose name holds sbatch's patterns (%x, %a), --slurm-args quoted as a shell quotes.
+"$relief" render -q "$small" --tiles 2 --executor slurm --keep-plan --slurm-args "--comment='a still, named with spaces'" \
+  -o 'pct%x%a/x.png' 2> pct.txt || { fail "a plan in a folder named with %"; cat pct.txt; }
+ls 'pct%x%a/x.plan/slurm/logs/task-0.log' 'pct%x%a/x.plan/slurm/logs/task-1.log' >/dev/null || fail "the tasks' logs are not in the plan's folder"
+"$relief" render -q "$small" -o pct-local/x.png || fail "the local still of small"
+cmp -s 'pct%x%a/x.png' pct-local/x.png || fail "the still in a folder named with % differs from the local one"
+"$relief" render -q "$small" --executor slurm --slurm-args "--comment='unclosed" -o unclosed/x.png 2> unclosed.txt; code=$?
+[ "$code" = 2 ] && grep -q "relief: error: --slurm-args: .* cannot be split into words as a shell would .*: close its quotes" unclosed.txt ||
+  { fail "--slurm-args with an unclosed quote: exit $code"; cat unclosed.txt; }
 
 # 6. No SLURM_CONF: what is missing, said plainly.
 env -u SLURM_CONF "$relief" render -q "$small" --executor slurm -o noconf/x.png 2> noconf.txt; code=$?
 [ "$code" = 2 ] || fail "no SLURM_CONF: exit $code, expected 2"
 grep -q "relief: error: no Slurm cluster answers (sinfo: .*); SLURM_CONF is not set: point it at the cluster's slurm.conf" noconf.txt ||
   { fail "no SLURM_CONF:"; cat noconf.txt; }
+
+# 6b. A controller that does not answer: said within seconds, not after Slurm's 60 s.
+sed 's/^SlurmctldPort=.*/SlurmctldPort=1/' "$SLURM_CONF" > dead.conf
+grep -q '^SlurmctldPort=1$' dead.conf || echo 'SlurmctldPort=1' >> dead.conf
+t0=$(date +%s)
+SLURM_CONF=$work/dead.conf "$relief" render -q "$small" --executor slurm -o dead/x.png 2> dead.txt; code=$?
+took=$(( $(date +%s) - t0 ))
+[ "$code" = 2 ] && grep -q "relief: error: no Slurm cluster answers" dead.txt || { fail "a dead controller: exit $code"; cat dead.txt; }
+[ "$took" -le 20 ] || fail "a dead controller took $took s to be told"
 
 # 7. Ctrl-C cancels the array.
 "$relief" render -q "$src/scenes/mountain-sharp.toml" --tiles 4 --executor slurm -o cancelled/x.png 2> cancelled.txt &

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include "core/diagnostics.h"
@@ -43,6 +44,11 @@ void writeText(const std::filesystem::path& file, const std::string& text) {
     std::ofstream(file) << text;
 }
 
+std::string readText(const std::filesystem::path& file) {
+    std::ifstream in(file);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
 TEST(FilmRecord, ReadsBackWhatWasWritten) {
     const auto out = testing::freshTestDir("film-record");
     const auto dir = out / "orbit.film";
@@ -56,7 +62,11 @@ TEST(FilmRecord, ReadsBackWhatWasWritten) {
     EXPECT_EQ(read->sceneSha1, written.sceneSha1);
     EXPECT_EQ(read->fps, 24);
     EXPECT_EQ(read->film, written.film);
-    EXPECT_EQ(read->framesDir, written.framesDir);
+    EXPECT_EQ(read->sidecar, written.sidecar);
+    // The frames' folder is not in the record (a folder outside its own): only that they were kept.
+    EXPECT_TRUE(read->framesKept);
+    EXPECT_TRUE(read->framesDir.empty());
+    EXPECT_EQ(readText(dir / "film.json").find((out / "frames").string()), std::string::npos);
     EXPECT_TRUE(read->filmGiven);
     EXPECT_EQ(read->terrains, 2);
     // The limits --resume holds the rest to, and where the scene set them: its errors point there.
@@ -93,8 +103,8 @@ TEST(FilmRecord, ReadsBackWhatWasWritten) {
 }
 
 // A record is an input like any other: a damaged one, one of another film's
-// order, one naming its outputs by relative paths, or one naming another
-// film (an output to be written over) is refused, naming it.
+// order, or one naming another film, a path or not a video (an output to be
+// written over) is refused, naming it.
 TEST(FilmRecord, RefusesWhatIsNotAWholeRecord) {
     const auto out = testing::freshTestDir("film-record-bad");
     const auto dir = out / "orbit.film-2";
@@ -115,33 +125,30 @@ TEST(FilmRecord, RefusesWhatIsNotAWholeRecord) {
     writeFilmRecord(outOfOrder, dir);
     Diagnostics order;
     EXPECT_FALSE(readFilmRecord(dir, order));
-    EXPECT_NE(order.all().front().message.find("its frames or names are not a film's"), std::string::npos);
+    EXPECT_NE(order.all().front().message.find("its frames are not a film's"), std::string::npos);
 
-    FilmRecord relative = aRecord(out);
-    relative.film = "orbit.mp4";
-    writeFilmRecord(relative, dir);
-    Diagnostics names;
-    EXPECT_FALSE(readFilmRecord(dir, names));
-    EXPECT_EQ(names.errorCount(), 1);
-
-    // It names only its own film and sidecar: never a file elsewhere to be written over.
-    FilmRecord elsewhere = aRecord(out);
-    elsewhere.film = out.parent_path() / "orbit.mp4";
-    elsewhere.sidecar = out.parent_path() / "orbit.json";
+    // It names only its own film, by its file name: never a file elsewhere to be written over.
     FilmRecord otherFilm = aRecord(out);
     otherFilm.film = out / "other.mp4";
-    otherFilm.sidecar = out / "other.json";
     FilmRecord notVideo = aRecord(out);
     notVideo.film = out / "orbit.toml";
-    notVideo.sidecar = out / "orbit.json";
-    FilmRecord sidecar = aRecord(out);
-    sidecar.sidecar = out / "scene.toml";
-    for (const FilmRecord& r : {elsewhere, otherFilm, notVideo, sidecar}) {
+    for (const FilmRecord& r : {otherFilm, notVideo}) {
         writeFilmRecord(r, dir);
         Diagnostics foreign;
-        EXPECT_FALSE(readFilmRecord(dir, foreign)) << r.film << " " << r.sidecar;
+        EXPECT_FALSE(readFilmRecord(dir, foreign)) << r.film;
         ASSERT_EQ(foreign.errorCount(), 1);
         EXPECT_NE(foreign.all().front().message.find("not this folder's"), std::string::npos);
+    }
+    writeFilmRecord(aRecord(out), dir);
+    const std::string ownText = readText(dir / "film.json");
+    for (const char* film : {"../orbit.mp4", "/tmp/orbit.mp4", "x/orbit.mp4"}) {
+        std::string text = ownText;
+        text.replace(text.find("\"film\": \"orbit.mp4\""), 19, std::string("\"film\": \"") + film + "\"");
+        writeText(dir / "film.json", text);
+        Diagnostics path;
+        EXPECT_FALSE(readFilmRecord(dir, path)) << film;
+        ASSERT_EQ(path.errorCount(), 1);
+        EXPECT_NE(path.all().front().message.find("not this folder's"), std::string::npos) << film;
     }
     // Limits out of the scene's ranges, or a place that is none.
     FilmRecord negative = aRecord(out), nowhere = aRecord(out);
@@ -157,6 +164,22 @@ TEST(FilmRecord, RefusesWhatIsNotAWholeRecord) {
     writeFilmRecord(aRecord(out), dir);
     Diagnostics own;
     EXPECT_TRUE(readFilmRecord(dir, own));
+}
+
+// A Linux name is any bytes, JSON holds UTF-8: the film's real name comes back.
+TEST(FilmRecord, KeepsANameThatIsNotUtf8) {
+    const auto out = testing::freshTestDir("film-record-latin1");
+    const std::string name = "caf\xe9";
+    const auto dir = out / (name + ".film");
+    std::filesystem::create_directory(dir);
+    FilmRecord written = aRecord(out);
+    written.film = out / (name + ".mp4");
+    writeFilmRecord(written, dir);
+    Diagnostics diags;
+    const auto read = readFilmRecord(dir, diags);
+    ASSERT_TRUE(read) << (diags.all().empty() ? "" : diags.all().front().message);
+    EXPECT_EQ(read->film, written.film);
+    EXPECT_EQ(read->sidecar, out / (name + ".json"));
 }
 
 }  // namespace

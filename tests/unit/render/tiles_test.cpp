@@ -7,6 +7,10 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
+#include "core/atomic_file.h"
+#include "core/hash.h"
 #include "core/png_file.h"
 #include "unit/test_dirs.h"
 
@@ -33,6 +37,8 @@ plan::RenderPlan planWithTiles(const fs::path& dir) {
         plan::TileRecord record;
         record.index = k, record.rows = rows, record.planHash = plan.hash;
         record.reliefVersion = plan.reliefVersion, record.povrayVersion = plan.povrayVersion, record.host = "here";
+        std::string problem;
+        record.imageSha256 = fileSha256(plan::tileImage(plan, k), problem);
         std::ofstream(plan::tileRecordPath(plan, k)) << plan::tileRecordJson(record).dump();
     }
     return plan;
@@ -72,8 +78,16 @@ TEST(StitchTiles, ATileThatIsNotThePlansIsNamed) {
         const std::vector<std::uint8_t> pixels(5 * 4 * 3, 0);  // tile 3 is rows 5..7: 3 rows, not 4
         ASSERT_NO_THROW(writePngAtomically(plan::tileImage(plan, 2), {5, 4, 3, false, pixels.data()}));
         std::string error;
+        EXPECT_FALSE(stitchTiles(plan, error));  // not the image rendered
+        EXPECT_EQ(error, "tile 3 of 3: its image is not the one rendered (its SHA-256 is not the record's): render the "
+                         "tile again");
+        auto record = nlohmann::json::parse(readFile(plan::tileRecordPath(plan, 2)));
+        std::string problem;
+        record["image_sha256"] = fileSha256(plan::tileImage(plan, 2), problem);  // and its record forged
+        std::ofstream(plan::tileRecordPath(plan, 2)) << record.dump();
         EXPECT_FALSE(stitchTiles(plan, error));
-        EXPECT_EQ(error, "tile 3 of 3 is 5 x 4 with 3 channels, not rows 5..7 of the plan's 5 x 7");
+        EXPECT_EQ(error, "tile 3 of 3: cannot read " + plan::tileImage(plan, 2).string() +
+                             ": it is 5 x 4 pixels, not 5 x 3");
     }
 }
 
