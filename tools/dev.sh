@@ -7,6 +7,8 @@
 #                         command-line tests again and the readers under libFuzzer
 #   tools/dev.sh bench    install, build, run the benchmarks (Google Benchmark)
 #   tools/dev.sh build    install, build (Release)
+#   tools/dev.sh check    the quick loop: build (Release), the unit and command-line tests but the
+#                         longest (label slow): a few minutes after a change to one file
 # Each is idempotent and recovers from an interrupted or failed earlier run: packages are
 # installed only when missing (a half-installed one is finished first), builds are incremental,
 # and a build folder whose configure step never completed is configured again.
@@ -15,8 +17,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 mode=${1:-}
-case "$mode" in render|test|bench|build) ;; *)
-  echo "usage: tools/dev.sh render|test|bench|build" >&2; exit 2 ;;
+case "$mode" in render|test|bench|build|check) ;; *)
+  echo "usage: tools/dev.sh render|test|bench|build|check" >&2; exit 2 ;;
 esac
 
 # openimageio-tools: Debian 12's OpenImageIO CMake config names its command-line tools
@@ -34,11 +36,13 @@ esac
 # rasters of every size with (relief itself links libgdal).
 # ffmpeg: relief animate encodes its frames to MP4, WebM or GIF with it.
 # poppler-utils: pdftotext, pdffonts, pdfimages, pdfinfo, which the tests read PDF stills back with.
+# ccache: a compiler cache outside the clone, so that a second build on this machine (a clean clone
+# of CI's included) compiles only what changed.
 packages=(cmake make g++ pkg-config
           libgeographiclib-dev libgdal-dev libopenimageio-dev openimageio-tools libtomlplusplus-dev
           libcli11-dev libfmt-dev nlohmann-json3-dev libnanoflann-dev libeigen3-dev libsuitesparse-dev libpng-dev libssl-dev libcairo2-dev libpango1.0-dev libnova-dev libgtest-dev libbenchmark-dev
           povray bubblewrap chromium fonts-dejavu-core locales clang libfuzzer-14-dev libclang-rt-14-dev libomp-14-dev
-          slurm-wlm munge gdal-bin ffmpeg poppler-utils)
+          slurm-wlm munge gdal-bin ffmpeg poppler-utils ccache)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -55,13 +59,23 @@ if [ ${#missing[@]} -gt 0 ]; then
 fi
 
 jobs=$(nproc)
+# The compiler cache lives outside the clone (ccache's own ~/.cache/ccache unless CCACHE_DIR says),
+# and paths under the clone are hashed relative to it (CCACHE_BASEDIR; the unity builds' sources
+# too), so a clone elsewhere on the machine finds what this one compiled.
+launcher=()
+if command -v ccache >/dev/null; then
+  export CCACHE_BASEDIR="$PWD" CCACHE_NOHASHDIR=true CCACHE_MAXSIZE="${CCACHE_MAXSIZE:-10G}"
+  launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+fi
 build() {  # build DIR [cmake args...]; TARGETS="a b" builds only those
   local dir=$1; shift
   # CMake writes CMakeCache.txt before it checks anything, and the build system (Makefile) only
   # when configuring succeeded; without a Makefile the folder is half-configured: start afresh.
   if [ ! -f "$dir/Makefile" ]; then
     rm -rf "$dir"
-    cmake -S . -B "$dir" "$@" >/dev/null
+    cmake -S . -B "$dir" "${launcher[@]}" "$@" >/dev/null
+  elif [ ${#launcher[@]} -gt 0 ] && ! grep -q '^CMAKE_CXX_COMPILER_LAUNCHER:.*ccache' "$dir/CMakeCache.txt"; then
+    cmake -S . -B "$dir" "${launcher[@]}" >/dev/null  # a folder configured before the cache was
   fi
   local targets=()
   for t in ${TARGETS:-}; do targets+=(--target "$t"); done
@@ -70,6 +84,10 @@ build() {  # build DIR [cmake args...]; TARGETS="a b" builds only those
 
 case "$mode" in
   build) build build -DCMAKE_BUILD_TYPE=Release ;;
+  check)
+    build build -DCMAKE_BUILD_TYPE=Release
+    (cd build && ctest --output-on-failure --timeout 900 -j "$jobs" -L "unit|cli" -LE slow)
+    ;;
   render)
     build build -DCMAKE_BUILD_TYPE=Release
     ./build/relief render scenes/default.toml
