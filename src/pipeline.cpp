@@ -94,11 +94,9 @@ std::optional<LoadedScene> loadScene(const std::filesystem::path& named, Diagnos
                 why));
         return std::nullopt;
     }
-    const std::string made = kind == InputKind::Scene ? std::string() : sceneTextForData(scenePath);
-    auto spec = made.empty() ? scene::readScene(scenePath, diags, overrides)
-                             : scene::readSceneText(made, scenePath, diags, overrides);
+    auto spec = kind == InputKind::Scene ? scene::readScene(scenePath, diags, overrides)
+                                         : readSceneForData(scenePath, diags, overrides);
     if (!spec) return std::nullopt;
-    spec->madeForData = made;
     // The scene's own errors do not stop the scheme's checks: every problem is reported at once.
     auto resolved = subdiv::resolveScheme(spec->subdivision.scheme, diags);
     if (diags.hasErrors() || !resolved) return std::nullopt;

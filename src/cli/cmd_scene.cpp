@@ -270,6 +270,12 @@ int runInit(const DataOptions& o) {
                                  terminalText(out.string(), 500));
         return code(Exit::BadInput);
     }
+    // Before any work: a name TOML cannot hold is refused, not written with U+FFFD.
+    const std::filesystem::path input(o.input);
+    if (!relief::initCanNameData(input.has_filename() ? input : input.parent_path(), out, diags)) {
+        printDiagnostics(diags, false);
+        return code(Exit::BadInput);
+    }
     const auto plan = planned(o, diags);
     if (plan && plan->first.scene.madeForData.empty())
         diags.error({o.input, 0, 0},
