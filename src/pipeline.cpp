@@ -11,6 +11,7 @@
 #include "core/number_format.h"
 #include "core/png_file.h"
 #include "core/stopwatch.h"
+#include "core/utf8_record.h"
 #include "emit/adaptive_mesh.h"
 #include "emit/block_base.h"
 #include "emit/camera.h"
@@ -94,6 +95,9 @@ std::optional<LoadedScene> loadScene(const std::filesystem::path& named, Diagnos
                 why));
         return std::nullopt;
     }
+    checkUtf8(diags, {scenePath.string(), 0, 0}, scenePath.string(), "the file's name");
+    for (const auto& [key, value] : overrides)
+        checkUtf8(diags, {"--set " + key, 0, 0}, value, "the value");
     auto spec = kind == InputKind::Scene ? scene::readScene(scenePath, diags, overrides)
                                          : readSceneForData(scenePath, diags, overrides);
     if (!spec) return std::nullopt;

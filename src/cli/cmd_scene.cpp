@@ -252,9 +252,9 @@ std::optional<std::pair<relief::LoadedScene, relief::Surface>> planned(const Dat
 int runInfo(const DataOptions& o) {
     relief::Diagnostics diags;
     const auto plan = planned(o, diags);
+    const auto info = plan ? relief::sceneInfo(plan->first, plan->second, diags) : nlohmann::ordered_json();
     printDiagnostics(diags, plan.has_value());
     if (!plan) return code(Exit::BadInput);
-    const auto info = relief::sceneInfo(plan->first, plan->second);
     std::cout << (o.json ? info.dump(2) + "\n" : terminalText(relief::sceneInfoText(info), 100000, true));
     return code(Exit::Ok);
 }

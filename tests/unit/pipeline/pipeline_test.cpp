@@ -322,6 +322,45 @@ TEST(Pipeline, LatinOneMetadataIsReadAsLatinOne) {
     for (const auto& d : diags.all()) EXPECT_EQ(d.message.find("UTF-8"), std::string::npos) << d.message;
 }
 
+// A DEM whose file name is not UTF-8 (Latin-1, as a Linux name may be) is found by its bytes,
+// compiles, and its records write U+FFFD for them, with one warning.
+TEST(Pipeline, AFileNamedInLatinOneCompilesAndItsRecordsAreUtf8) {
+    const fs::path dir = freshDir("latin1-name");
+    const fs::path dem = dir / "caf\xe9.tif";
+    copyDemWith(dem, {{"TIFFTAG_DOCUMENTNAME", ""}});
+    SceneJob job = compileJob(dem, dir / "caf\xe9.pov");
+    job.overrides = {{"render.width", "160"}, {"render.height", "100"}};
+    Diagnostics diags;
+    const JobOutcome outcome = runSceneJob(job, diags, nullptr);
+    ASSERT_EQ(outcome.status, JobStatus::Ok) << firstWarning(diags);
+    EXPECT_EQ(outcome.compiled->scene.samples.path, dem);  // the bytes, not U+FFFD
+    EXPECT_EQ(outcome.compiled->scene.overlay.title, "caf\xEF\xBF\xBD");
+    EXPECT_TRUE(isUtf8(outcome.compiled->scene.madeForData));
+    std::vector<std::string> said;
+    for (const auto& d : diags.all())
+        if (d.message.find("not UTF-8") != std::string::npos) said.push_back(formatDiagnostic(d));
+    ASSERT_EQ(said.size(), 1u);  // the name, the title from it, the sidecar's paths: one warning
+    EXPECT_TRUE(said[0].starts_with(dem.string() + ": warning: the file's name is not UTF-8: ")) << said[0];
+    const std::string text = readFile(dir / "caf\xe9.json");
+    EXPECT_TRUE(isUtf8(text));
+    const auto sidecar = nlohmann::json::parse(text);
+    EXPECT_EQ(sidecar["inputs"]["scene"], (dir / "caf\xEF\xBF\xBD.tif").string());
+    EXPECT_EQ(sidecar["outputs"]["pov"], (dir / "caf\xEF\xBF\xBD.pov").string());
+    EXPECT_TRUE(fs::exists(dir / "caf\xe9.pov"));
+
+    // relief init cannot write that name in TOML: one error saying to rename it.
+    Diagnostics init;
+    EXPECT_FALSE(initCanNameData(dem, dir / "scene.toml", init));
+    ASSERT_EQ(init.all().size(), 1u);
+    EXPECT_EQ(formatDiagnostic(init.all()[0]),
+              dem.string() + ": error: the scene would say samples.path = \"caf\xe9.tif\", which is not UTF-8, and "
+                             "TOML holds only UTF-8: rename the file (or its folder) to a UTF-8 name and run relief "
+                             "init again (relief render reads the file as it is named)");
+    // A folder's name the scene does not write is no matter.
+    EXPECT_TRUE(initCanNameData(dir / "caf\xe9" / "dem.tif", dir / "caf\xe9" / "dem.toml", init));
+    EXPECT_EQ(init.all().size(), 1u);
+}
+
 TEST(Pipeline, DefaultDepthIsChosenForTheStill) {
     Diagnostics diags;
     const auto thumbnail = planForStill("160", "120", diags);
