@@ -447,6 +447,7 @@ std::optional<CompileResult> compileView(const LoadedScene& frame, const SharedT
     std::error_code ec;
     r.povBytes = std::filesystem::file_size(pov, ec);
     r.net = st.surface.net;
+    warnIfSidecarNotUtf8(r, options.povPath, diags);
     return r;
 }
 

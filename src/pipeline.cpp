@@ -11,6 +11,7 @@
 #include "core/number_format.h"
 #include "core/png_file.h"
 #include "core/stopwatch.h"
+#include "core/utf8_record.h"
 #include "emit/adaptive_mesh.h"
 #include "emit/block_base.h"
 #include "emit/camera.h"
@@ -94,11 +95,12 @@ std::optional<LoadedScene> loadScene(const std::filesystem::path& named, Diagnos
                 why));
         return std::nullopt;
     }
-    const std::string made = kind == InputKind::Scene ? std::string() : sceneTextForData(scenePath);
-    auto spec = made.empty() ? scene::readScene(scenePath, diags, overrides)
-                             : scene::readSceneText(made, scenePath, diags, overrides);
+    checkUtf8(diags, {scenePath.string(), 0, 0}, scenePath.string(), "the file's name");
+    for (const auto& [key, value] : overrides)
+        checkUtf8(diags, {"--set " + key, 0, 0}, value, "the value");
+    auto spec = kind == InputKind::Scene ? scene::readScene(scenePath, diags, overrides)
+                                         : readSceneForData(scenePath, diags, overrides);
     if (!spec) return std::nullopt;
-    spec->madeForData = made;
     // The scene's own errors do not stop the scheme's checks: every problem is reported at once.
     auto resolved = subdiv::resolveScheme(spec->subdivision.scheme, diags);
     if (diags.hasErrors() || !resolved) return std::nullopt;

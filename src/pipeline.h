@@ -339,7 +339,12 @@ JobOutcome resumePlan(const std::filesystem::path& planDir, const execute::Optio
 /// The JSON sidecar: inputs, parameters, net size, vertex and triangle
 /// counts, time per stage, what the compile made; finishPlan adds the
 /// render's (POV-Ray's seconds, every tile's record, what the overlays show).
+/// Every string UTF-8: a name that is not is written with U+FFFD.
 nlohmann::ordered_json sidecarJson(const CompileResult& compiled, const OutputPaths& paths);
+
+/// Warns (once a run) when the sidecar of `compiled`, its .pov at `pov`,
+/// will write a name or text with U+FFFD (not UTF-8), naming the first.
+void warnIfSidecarNotUtf8(const CompileResult& compiled, const std::filesystem::path& pov, Diagnostics& diags);
 
 /// The sidecar's text: the JSON, indented, a line feed at the end.
 std::string sidecarText(const nlohmann::ordered_json& sidecar);

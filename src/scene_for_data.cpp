@@ -11,17 +11,23 @@
 
 #include "core/input_file.h"
 #include "core/number_format.h"
+#include "core/text_escape.h"
 #include "geo/raster.h"
 #include "geo/raster_mosaic.h"
 #include "scene/enum_names.h"
+#include "scene/read_scene_table.h"
 
 namespace relief {
 
 namespace fs = std::filesystem;
 
 std::string tomlString(const std::string& text) {
+    // A basic string on one line: toml++ writes a string holding ' and a line break as a literal
+    // ('''...''') that a ''' inside it closes, and a multi-line one would carry the line breaks
+    // into the file. Escapes only ("\n", "\"", "\u0001") hold any text whole.
     std::ostringstream out;
-    out << toml::value<std::string>(text);
+    const toml::value<std::string> value(utf8Replaced(text));
+    out << toml::toml_formatter(value, toml::format_flags::allow_unicode_strings);
     return out.str();
 }
 
@@ -54,7 +60,10 @@ InputKind inputKindOf(const fs::path& path, std::string& why) {
     return InputKind::Neither;
 }
 
-std::string sceneTextForData(const fs::path& path) {
+namespace {
+
+// The scene relief makes for `path` (a file, or a folder of tiles), as a table.
+toml::table sceneTableForData(const fs::path& path) {
     // A folder of tiles is named by the folder, and summed up by its first tile.
     const fs::path data = path.has_filename() ? path : path.parent_path();
     std::error_code ec;
@@ -66,33 +75,67 @@ std::string sceneTextForData(const fs::path& path) {
     if (title.empty() && tiles.empty()) title = data.stem().string();
     if (title.empty()) title = data.filename().string();
     if (title == "." || title == "..") title = fs::weakly_canonical(data, ec).filename().string();  // its own name
+    toml::table scene{{"samples", toml::table{{"path", data.filename().string()}}},
+                      {"overlay", toml::table{{"title", title}}}};
     // Deeper than any dry land (the Dead Sea's shore, -430 m): a sea floor, in the topobathy ramp's blues.
-    const bool seaFloor = summary && summary->range && (*summary->range)[0] <= kSeaFloorM;
-    return fmt::format(
-        "# The scene relief makes for {} (relief init writes it out, every choice explained).\n"
-        "[samples]\npath = {}\n{}\n[overlay]\ntitle = {}\n",
-        data.filename().string(), tomlString(data.filename().string()),
-        seaFloor ? "\n[texture]\nramp = \"topobathy\"\n" : "", tomlString(title));
+    if (summary && summary->range && (*summary->range)[0] <= kSeaFloorM)
+        scene.insert("texture", toml::table{{"ramp", "topobathy"}});
+    return scene;
+}
+
+// The scene as the sidecar records it: TOML, with U+FFFD for bytes that are not UTF-8.
+std::string sceneRecord(const fs::path& data, toml::table scene) {
+    scene.for_each([](auto& section) {
+        if constexpr (toml::is_table<decltype(section)>)
+            section.for_each([](auto& value) {
+                if constexpr (toml::is_string<decltype(value)>) value = utf8Replaced(value.get());
+            });
+    });
+    std::ostringstream out;
+    out << "# The scene relief makes for " << oneLineText(data.filename().string())
+        << " (relief init writes it out, every choice explained).\n"
+        << toml::toml_formatter(scene, toml::format_flags::allow_unicode_strings) << '\n';
+    return out.str();
+}
+
+}  // namespace
+
+std::string sceneTextForData(const fs::path& path) { return sceneRecord(path, sceneTableForData(path)); }
+
+std::optional<scene::SceneSpec> readSceneForData(const fs::path& path, Diagnostics& diags,
+                                                 const scene::SceneOverrides& overrides) {
+    // Read as a table, never as TOML text: a file's name need not be UTF-8 (Linux allows any
+    // byte but '/' and NUL), TOML cannot hold one that is not, and the table keeps its bytes, so
+    // the file is found. Only the record (the sidecar's) shows them as U+FFFD.
+    toml::table scene = sceneTableForData(path);
+    std::string record = sceneRecord(path, scene);
+    auto spec = scene::readSceneTable(std::move(scene), record, path, diags, overrides);
+    if (spec) spec->madeForData = std::move(record);
+    return spec;
 }
 
 namespace {
 
 // A TOML file written a key at a time, each with the reason for its value.
+// Values are written by toml++ (tomlString); keys and sections are relief's
+// own bare names. A comment is relief's text, but may quote the data (a CRS's
+// name, a file's): always on one line, control characters as \xNN, so no
+// text of a file can end a comment and start a key.
 class CommentedScene {
 public:
     void section(std::string_view name, std::string_view about) {
         text_ += fmt::format("{}[{}]{}\n", text_.empty() ? "" : "\n", name,
-                             about.empty() ? "" : "  # " + std::string(about));
+                             about.empty() ? "" : "  # " + oneLineText(about));
     }
     void key(std::string_view name, const std::string& value, std::string_view why) {
         const std::string line = fmt::format("{} = {}", name, value);
-        text_ += why.empty() ? line + "\n" : fmt::format("{:<28}  # {}\n", line, why);
+        text_ += why.empty() ? line + "\n" : fmt::format("{:<28}  # {}\n", line, oneLineText(why));
     }
     void number(std::string_view name, double value, std::string_view why) { key(name, formatShortest(value), why); }
     void text(std::string_view name, const std::string& value, std::string_view why) {
         key(name, tomlString(value), why);
     }
-    void comment(std::string_view line) { text_ += fmt::format("# {}\n", line); }
+    void comment(std::string_view line) { text_ += fmt::format("# {}\n", oneLineText(line)); }
     const std::string& str() const { return text_; }
 
 private:
@@ -111,14 +154,9 @@ std::string zoneName(const geo::Frame& frame) {
 }
 
 void writeData(CommentedScene& out, const scene::SceneSpec& spec, const geo::ControlNet& net,
-               const fs::path& scenePath) {
+               const std::string& path) {
     out.section("samples", "");
-    const fs::path data = fs::absolute(spec.samples.path).lexically_normal();
-    const fs::path folder = fs::absolute(scenePath).parent_path().lexically_normal();
-    // Relative to this file, unless that climbs further than the path from the root.
-    const fs::path relative = data.lexically_relative(folder);
-    const bool climbs = std::distance(relative.begin(), relative.end()) > std::distance(data.begin(), data.end());
-    out.text("path", (climbs ? data : relative).generic_string(), climbs ? "" : "relative to this file");
+    out.text("path", path, fs::path(path).is_absolute() ? "" : "relative to this file");
     if (!net.attribution.empty()) out.comment("attribution: the raster's metadata gives the credit the still shows");
     out.text("resample", std::string(scene::nameOf(net.resample)),
              net.copiedCells ? "not needed: every node is a cell's centre, read as it is"
@@ -176,12 +214,34 @@ void writeLook(CommentedScene& out, const scene::SceneSpec& spec) {
 
 }  // namespace
 
+std::string samplesPathFromScene(const fs::path& dataPath, const fs::path& scenePath) {
+    const fs::path data = fs::absolute(dataPath).lexically_normal();
+    const fs::path folder = fs::absolute(scenePath).parent_path().lexically_normal();
+    const fs::path relative = data.lexically_relative(folder);
+    // Relative to the scene's file, unless that climbs further than the path from the root.
+    const bool climbs = std::distance(relative.begin(), relative.end()) > std::distance(data.begin(), data.end());
+    return (climbs ? data : relative).generic_string();
+}
+
+bool initCanNameData(const fs::path& data, const fs::path& scenePath, Diagnostics& diags) {
+    const std::string path = samplesPathFromScene(data, scenePath);
+    if (isUtf8(path)) return true;
+    diags.error({data.string(), 0, 0},
+                fmt::format("the scene would say samples.path = \"{}\", which is not UTF-8, and TOML holds only "
+                            "UTF-8: rename the file (or its folder) to a UTF-8 name and run relief init again "
+                            "(relief render reads the file as it is named)",
+                            path));
+    return false;
+}
+
 std::string initSceneText(const LoadedScene& loaded, const Surface& surface, const fs::path& scenePath) {
+    const fs::path& data = loaded.scene.samples.path;
+    const std::string path = samplesPathFromScene(data, scenePath);  // UTF-8: initCanNameData said so
     CommentedScene out;
     out.comment(fmt::format("The scene relief chose for {}: relief render of this file makes the still",
-                            loaded.scene.samples.path.filename().string()));
+                            data.filename().string()));
     out.comment("that relief render of the data alone does. Every key: docs/scene-format.md.");
-    writeData(out, loaded.scene, surface.net, scenePath);
+    writeData(out, loaded.scene, surface.net, path);
     writeSurface(out, loaded, surface);
     writeLook(out, loaded.scene);
     return out.str();

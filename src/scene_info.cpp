@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "core/number_format.h"
+#include "core/utf8_record.h"
 #include "scene/enum_names.h"
 
 namespace relief {
@@ -84,7 +85,7 @@ ordered_json exaggerationAdvice(const geo::ControlNet& net) {
 
 }  // namespace
 
-ordered_json sceneInfo(const LoadedScene& loaded, const Surface& s) {
+ordered_json sceneInfo(const LoadedScene& loaded, const Surface& s, Diagnostics& diags) {
     const scene::SceneSpec& spec = loaded.scene;
     ordered_json j;
     j["scene"] = spec.madeForData.empty() ? spec.sceneFile.string() : "made for the data (relief init writes it)";
@@ -101,6 +102,8 @@ ordered_json sceneInfo(const LoadedScene& loaded, const Surface& s) {
     j["still"] = {{"width", spec.render.width}, {"height", spec.render.height}};
     j["vertical"] = exaggerationAdvice(s.net);
     j["vertical"]["exaggeration"] = spec.look.vertical.exaggeration;
+    if (const std::string bad = replaceNotUtf8(j); !bad.empty())
+        warnNotUtf8(diags, {spec.sceneFile.string(), 0, 0}, bad);
     return j;
 }
 
@@ -116,7 +119,7 @@ std::string valueText(const ordered_json& v) {
     }
     if (v.is_object() && v.contains("estimate"))
         return fmt::format("{} (limit {})", valueText(v["estimate"]), valueText(v["limit"]));
-    return v.dump();
+    return v.dump(-1, ' ', false, ordered_json::error_handler_t::replace);
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 #include "sidecar.h"
 
 #include "core/text_escape.h"
+#include "core/utf8_record.h"
 
 #include <fmt/format.h>
 
@@ -53,9 +54,8 @@ void addFitToSidecar(ordered_json& j, const CompileResult& c) {
                        {"seconds", f.seconds}};
 }
 
-}  // namespace
-
-ordered_json sidecarJson(const CompileResult& c, const OutputPaths& paths) {
+// The sidecar as compiling made it, its strings as they came (a name may not be UTF-8).
+ordered_json sidecarFacts(const CompileResult& c, const OutputPaths& paths) {
     ordered_json j;
     j["relief_version"] = kVersion;
     j["inputs"] = {{"scene", c.scene.sceneFile.string()},
@@ -152,7 +152,23 @@ ordered_json sidecarJson(const CompileResult& c, const OutputPaths& paths) {
     return j;
 }
 
-void addRenderToSidecar(ordered_json& j, const RenderFacts& r) {
+}  // namespace
+
+ordered_json sidecarJson(const CompileResult& c, const OutputPaths& paths) {
+    ordered_json j = sidecarFacts(c, paths);
+    replaceNotUtf8(j);  // compileView has warned
+    return j;
+}
+
+void warnIfSidecarNotUtf8(const CompileResult& c, const std::filesystem::path& pov, Diagnostics& diags) {
+    ordered_json j = sidecarFacts(c, {{}, pov, {}});
+    if (const std::string bad = replaceNotUtf8(j); !bad.empty())
+        warnNotUtf8(diags, {c.scene.sceneFile.string(), 0, 0}, "the sidecar's " + bad);
+}
+
+namespace {
+
+void addRenderFacts(ordered_json& j, const RenderFacts& r) {
     double parse = 0, trace = 0;
     ordered_json tiles = ordered_json::array();
     for (const auto& t : r.tiles) {
@@ -191,6 +207,13 @@ void addRenderToSidecar(ordered_json& j, const RenderFacts& r) {
         labels.push_back(label);
     }
     j["overlay"]["labels"] = labels;
+}
+
+}  // namespace
+
+void addRenderToSidecar(ordered_json& j, const RenderFacts& r) {
+    addRenderFacts(j, r);
+    replaceNotUtf8(j);  // the labels are drawn text already (drawnText); the tiles' records are the plan's
 }
 
 std::string sidecarText(const ordered_json& sidecar) {

@@ -89,8 +89,10 @@ public:
     }
 
 private:
-    std::pair<double, double> laidOut(const std::string& s, double x, double y, double sizeUnits, bool bold,
+    std::pair<double, double> laidOut(const std::string& given, double x, double y, double sizeUnits, bool bold,
                                       double anchorX, double maxWidth, int maxLines, double anchorY, bool draw) {
+        // Pango takes UTF-8 only (it prints a warning and drops the rest); a plan's text may not be.
+        const std::string s = utf8Replaced(given);
         Owned<PangoLayout> layout(pango_cairo_create_layout(cr_));
         Owned<PangoFontDescription> font(pango_font_description_from_string(bold ? "DejaVu Sans Bold" : "DejaVu Sans"));
         // Never below 10 px: a label a reader cannot read is no label.
@@ -690,8 +692,12 @@ std::string writeDocument(const PngImage8& still, const DocumentRequest& request
         // No clock in the file: the same still gives the same bytes.
         cairo_pdf_surface_set_metadata(page.get(), CAIRO_PDF_METADATA_CREATE_DATE, kDocumentDate);
         cairo_pdf_surface_set_metadata(page.get(), CAIRO_PDF_METADATA_CREATOR, "relief");
-        if (!request.spec.title.empty())
-            cairo_pdf_surface_set_metadata(page.get(), CAIRO_PDF_METADATA_TITLE, request.spec.title.c_str());
+        // UTF-8, which cairo writes as the PDF's UTF-16: anything else fails the whole page ("input
+        // string not valid UTF-8").
+        if (!request.spec.title.empty()) {
+            const std::string title = utf8Replaced(request.spec.title);
+            cairo_pdf_surface_set_metadata(page.get(), CAIRO_PDF_METADATA_TITLE, title.c_str());
+        }
     } else {
         cairo_svg_surface_set_document_unit(page.get(), CAIRO_SVG_UNIT_PT);
     }

@@ -255,9 +255,9 @@ std::optional<std::pair<relief::LoadedScene, relief::Surface>> planned(const Dat
 int runInfo(const DataOptions& o) {
     relief::Diagnostics diags;
     const auto plan = planned(o, diags);
+    const auto info = plan ? relief::sceneInfo(plan->first, plan->second, diags) : nlohmann::ordered_json();
     printDiagnostics(diags, plan.has_value());
     if (!plan) return code(Exit::BadInput);
-    const auto info = relief::sceneInfo(plan->first, plan->second);
     std::cout << (o.json ? info.dump(2) + "\n" : terminalText(relief::sceneInfoText(info), 100000, true));
     return code(Exit::Ok);
 }
@@ -271,6 +271,12 @@ int runInit(const DataOptions& o) {
     if (std::filesystem::exists(out, ec) && !o.force) {
         std::cerr << fmt::format("relief: error: {} exists: give another -o, or --force to replace it\n",
                                  terminalText(out.string(), 500));
+        return code(Exit::BadInput);
+    }
+    // Before any work: a name TOML cannot hold is refused, not written with U+FFFD.
+    const std::filesystem::path input(o.input);
+    if (!relief::initCanNameData(input.has_filename() ? input : input.parent_path(), out, diags)) {
+        printDiagnostics(diags, false);
         return code(Exit::BadInput);
     }
     const auto plan = planned(o, diags);

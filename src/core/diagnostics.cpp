@@ -18,6 +18,10 @@ void Diagnostics::note(SourceLoc loc, std::string message) {
     items_.push_back({Severity::Note, std::move(loc), std::move(message)});
 }
 
+void Diagnostics::warningOnce(std::string_view topic, SourceLoc loc, std::string message) {
+    if (topicsWarned_.emplace(topic).second) warning(std::move(loc), std::move(message));
+}
+
 std::string formatDiagnostic(const Diagnostic& d) {
     std::string where;
     if (!d.loc.file.empty()) {

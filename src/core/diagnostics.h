@@ -3,7 +3,9 @@
 // reads `file:line:col: severity: message`, giving the bad value, the valid
 // range and the unit. Stages report everything they find, and the pipeline
 // stops between stages when there are errors.
+#include <set>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/source_loc.h"
@@ -23,6 +25,9 @@ public:
     void error(SourceLoc loc, std::string message);
     void warning(SourceLoc loc, std::string message);
     void note(SourceLoc loc, std::string message);
+    /// A warning said once a run however often its cause recurs (every name
+    /// that is not UTF-8): the first call for `topic` adds it, the rest nothing.
+    void warningOnce(std::string_view topic, SourceLoc loc, std::string message);
 
     bool hasErrors() const { return errors_ > 0; }
     int errorCount() const { return errors_; }
@@ -33,6 +38,7 @@ private:
     std::vector<Diagnostic> items_;
     int errors_ = 0;
     int warnings_ = 0;
+    std::set<std::string, std::less<>> topicsWarned_;
 };
 
 /// `file:line:col: error: message` (parts that are unknown are left out).

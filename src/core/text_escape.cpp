@@ -100,6 +100,36 @@ bool isUtf8(std::string_view text) {
     return true;
 }
 
+std::string utf8Replaced(std::string_view text) {
+    std::string out;
+    out.reserve(text.size());
+    for (size_t i = 0; i < text.size();) {
+        if (static_cast<unsigned char>(text[i]) < 0x80) {
+            out += text[i++];
+            continue;
+        }
+        const size_t n = utf8Length(text, i);
+        if (n == 0) out += kReplacement, ++i;
+        else out.append(text.substr(i, n)), i += n;
+    }
+    return out;
+}
+
+std::string latin1AsUtf8(std::string_view text) {
+    std::string out;
+    out.reserve(2 * text.size());
+    for (const char ch : text) {
+        const auto c = static_cast<unsigned char>(ch);
+        if (c < 0x80) {
+            out += ch;
+        } else {  // U+0080 to U+00FF: two bytes, 110000xx 10xxxxxx
+            out += static_cast<char>(0xC0 | (c >> 6));
+            out += static_cast<char>(0x80 | (c & 0x3F));
+        }
+    }
+    return out;
+}
+
 std::string markupText(std::string_view text) {
     std::string out;
     out.reserve(text.size());

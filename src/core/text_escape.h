@@ -52,6 +52,16 @@ std::optional<std::string> bytesOfHex(std::string_view hex);
 /// Whether `text` is well-formed UTF-8 (RFC 3629).
 bool isUtf8(std::string_view text);
 
+/// `text` as valid UTF-8 for a record (a JSON sidecar, a PDF's metadata, a
+/// text Pango lays out): each byte that is not part of a well-formed UTF-8
+/// sequence as U+FFFD, everything else (control characters too) as it is.
+std::string utf8Replaced(std::string_view text);
+
+/// `text` read as ISO-8859-1 (Latin-1, where every byte is the character of
+/// that number) and written as UTF-8: how relief reads a file's metadata that
+/// is not UTF-8, as old GeoTIFFs' often is not.
+std::string latin1AsUtf8(std::string_view text);
+
 /// An excerpt of a file for a message: at most `maxChars` characters,
 /// control and non-ASCII bytes as \xNN (a binary file must not fill the
 /// screen), "..." when cut.

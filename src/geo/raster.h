@@ -32,8 +32,9 @@ class FolderNames;  // gdal_setup.h
 bool isRasterDem(const std::filesystem::path& path, const FolderNames* siblings = nullptr);
 
 /// What a scene made for a raster takes from it before any work: the title
-/// its metadata gives it (TIFFTAG_DOCUMENTNAME, TITLE or DESCRIPTION, cut to
-/// what a still can show; "" when none), and band 1's range in metres (a
+/// its metadata gives it (TIFFTAG_DOCUMENTNAME, TITLE or DESCRIPTION, as
+/// UTF-8, read as Latin-1 when it is not, cut to what a still can show; ""
+/// when none), and band 1's range in metres (a
 /// unit the band does not name taken as metres), approximate (GDAL's
 /// overviews or a sample of its blocks); nullopt when the file is unreadable.
 struct RasterSummary {

@@ -56,11 +56,13 @@ Dataset openChecked(const std::filesystem::path& path, unsigned kind, std::strin
 namespace {
 
 // The first of the metadata items `keys` the raster has: a file's own text,
-// cut (at a character) to what a still can show.
+// as UTF-8 (text that is not is Latin-1, as an old GeoTIFF's tags often are:
+// every byte a character, so "Montaña" reads right), cut (at a character) to
+// what a still can show.
 std::string metadataText(GDALDatasetH ds, std::initializer_list<const char*> keys) {
     for (const char* key : keys)
         if (const char* v = GDALGetMetadataItem(ds, key, nullptr); v && *v) {
-            std::string text = v;
+            std::string text = isUtf8(v) ? std::string(v) : latin1AsUtf8(v);
             if (text.size() <= scene::kMaxTextBytes) return text;
             size_t cut = scene::kMaxTextBytes;
             while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0) == 0x80) --cut;

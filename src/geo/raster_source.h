@@ -35,8 +35,8 @@ Dataset openChecked(const std::filesystem::path& path, unsigned kind, std::strin
                     const FolderNames* siblings = nullptr, const char* const* openOptions = nullptr);
 
 /// The credit a raster's metadata carries (GeoTIFF's copyright tag, or a
-/// COPYRIGHT, LICENSE, LICENCE or ATTRIBUTION item), cut to what a still can
-/// show; "" when it has none.
+/// COPYRIGHT, LICENSE, LICENCE or ATTRIBUTION item), as UTF-8 (read as
+/// Latin-1 when it is not), cut to what a still can show; "" when it has none.
 std::string rasterCredit(GDALDatasetH ds);
 
 /// A CRS and its transformations to and from WGS84 lon, lat.

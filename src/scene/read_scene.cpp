@@ -13,6 +13,7 @@
 #include "core/input_file.h"
 #include "core/text_distance.h"
 #include "core/text_escape.h"
+#include "scene/read_scene_table.h"
 #include "scene/read_sections.h"
 #include "scene/section.h"
 
@@ -199,12 +200,18 @@ std::optional<SceneSpec> readSceneText(const std::string& text, const std::files
         diags.error(locOf(file, e.source()), fmt::format("invalid TOML: {}", e.description()));
         return std::nullopt;
     }
+    return readSceneTable(std::move(root), text, path, diags, overrides);
+}
+
+std::optional<SceneSpec> readSceneTable(toml::table root, const std::string& record, const std::filesystem::path& path,
+                                        Diagnostics& diags, const SceneOverrides& overrides) {
+    const std::string file = path.string();
     if (!applyOverrides(root, overrides, diags)) return std::nullopt;
 
     SceneSpec scene;
     scene.sceneFile = path;
     scene.overrides = overrides;
-    scene.sceneSha1 = sha1Hex(text);
+    scene.sceneSha1 = sha1Hex(record);
     checkSections(root, file, diags);
     const SceneFile sceneFile{path, file, root, diags};
     for (const auto& reader : sectionReaders()) {

@@ -8,6 +8,7 @@
 #include "core/number_format.h"
 #include "core/text_distance.h"
 #include "core/text_escape.h"
+#include "core/utf8_record.h"
 #include "scene/read_scene.h"
 
 namespace relief::scene {
@@ -113,6 +114,11 @@ std::optional<std::string> Section::text(const std::string& key) {
         error(key, fmt::format("{} is {} bytes long, more than the {} a text of the still may be", qualified(key),
                                s->size(), kMaxTextBytes));
         return std::nullopt;
+    }
+    // A TOML file's strings are UTF-8; --set's and a scene made for a file named in Latin-1 may not be.
+    if (s && !isUtf8(*s)) {
+        warnNotUtf8(diags_, keyLoc(key), qualified(key));
+        s = utf8Replaced(*s);
     }
     return s;
 }

@@ -48,6 +48,8 @@ public:
     /// A text drawn on the still or written in the .pov header and sidecar (a
     /// title, a credit line): at most kMaxTextBytes, since laying out megabytes
     /// of text costs minutes and gigabytes, and shows nothing a still can hold.
+    /// Valid UTF-8 (bytes that are not as U+FFFD, with a warning once a run):
+    /// Pango, PDF metadata and the sidecar take nothing else.
     std::optional<std::string> text(const std::string& key);
     /// A string that must be one of `choices`.
     std::optional<std::string> choice(const std::string& key, const std::vector<std::string>& choices);

@@ -98,6 +98,33 @@ TEST(TextEscape, OneLineAndExcerpts) {
     EXPECT_EQ(printableExcerpt(std::string(100, 'x'), 60), std::string(60, 'x') + "...");
 }
 
+// A record's text: every byte that is not UTF-8 one U+FFFD, the rest (controls too) as it was.
+TEST(TextEscape, Utf8ReplacedKeepsWhatIsUtf8) {
+    const std::string r = "\xEF\xBF\xBD";
+    EXPECT_EQ(utf8Replaced("caf\xe9.tif"), "caf" + r + ".tif");                 // a Latin-1 file name
+    EXPECT_EQ(utf8Replaced("\xc0\xaf"), r + r);                                 // overlong '/'
+    EXPECT_EQ(utf8Replaced("\xe2\x80"), r + r);                                 // cut short
+    EXPECT_EQ(utf8Replaced("\xed\xa0\x80"), r + r + r);                         // a surrogate
+    EXPECT_EQ(utf8Replaced("a\n\x01\x7f\xc3\xa9"), "a\n\x01\x7f\xc3\xa9");      // controls are the record's to escape
+    for (const std::string& s : kHostile) {
+        EXPECT_TRUE(isUtf8(utf8Replaced(s))) << s;
+        EXPECT_EQ(utf8Replaced(s) == s, isUtf8(s)) << s;
+    }
+}
+
+// Metadata in Latin-1: every byte the character of its number, written as UTF-8.
+TEST(TextEscape, Latin1AsUtf8) {
+    EXPECT_EQ(latin1AsUtf8("Monta\xf1" "a"), "Monta\xc3\xb1" "a");
+    EXPECT_EQ(latin1AsUtf8("\xa9 IGN"), "\xc2\xa9 IGN");
+    EXPECT_EQ(latin1AsUtf8("\x80\xff"), "\xc2\x80\xc3\xbf");
+    EXPECT_EQ(latin1AsUtf8("plain ASCII\n"), "plain ASCII\n");
+    std::string every;
+    for (int c = 1; c < 256; ++c) every += static_cast<char>(c);
+    const std::string utf8 = latin1AsUtf8(every);
+    EXPECT_TRUE(isUtf8(utf8));
+    EXPECT_EQ(utf8.size(), 127u + 2 * 128u);
+}
+
 // Every hostile title and label comes out of the SVG as the text it was.
 TEST(TextEscape, SvgTextStaysText) {
     for (const std::string& s : kHostile) {

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -14,7 +15,9 @@
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.h"
+#include "core/text_escape.h"
 #include "geo/gdal_setup.h"
+#include "scene/read_scene.h"
 #include "scene_for_data.h"
 #include "unit/test_dirs.h"
 
@@ -225,6 +228,137 @@ TEST(Pipeline, TheSceneForASeaFloorTakesTheTopobathyRamp) {
     const auto loaded = loadScene(kSource / "scenes/data/rasters/asia.tif", diags);
     ASSERT_TRUE(loaded) << (diags.all().empty() ? "" : formatDiagnostic(diags.all().back()));
     EXPECT_EQ(loaded->scene.look.texture.ramp.preset, "topobathy");
+}
+
+// A copy of the test DEM (Maungawhau, 20 m) with its metadata items set to `items` ("" removes one).
+void copyDemWith(const fs::path& to, const std::vector<std::pair<const char*, std::string>>& items) {
+    geo::setUpGdal();
+    GDALDatasetH src = GDALOpen((kSource / "tests/data/rasters/maungawhau-20m.tif").c_str(), GA_ReadOnly);
+    ASSERT_NE(src, nullptr);
+    GDALDatasetH mem = GDALCreateCopy(GDALGetDriverByName("MEM"), "", src, FALSE, nullptr, nullptr, nullptr);
+    for (const auto& [key, value] : items)
+        GDALSetMetadataItem(mem, key, value.empty() ? nullptr : value.c_str(), nullptr);
+    GDALClose(GDALCreateCopy(GDALGetDriverByName("GTiff"), to.c_str(), mem, FALSE, nullptr, nullptr, nullptr));
+    GDALClose(mem);
+    GDALClose(src);
+}
+
+// A title that closes TOML's strings and starts keys if pasted: quotes of every kind, line breaks,
+// a section, a key, control characters, a backslash.
+const std::string kHostileTitle = "Mt '''Eden\"\"\" 'x' \"y\"\n[render]\nwidth = 9999\r\n\x01\x1b[31m\ttab\x7f \\ end'";
+
+std::string firstWarning(const Diagnostics& diags) {
+    for (const auto& d : diags.all())
+        if (d.severity != Severity::Note) return formatDiagnostic(d);
+    return "";
+}
+
+// The title survives as data: in the scene relief makes for the DEM, and in relief init's scene
+// read back, byte for byte, with every other key relief's (the still's size its default).
+TEST(Pipeline, AHostileTitleStaysTheTitleThroughInit) {
+    const fs::path dir = freshDir("hostile-title");
+    copyDemWith(dir / "plain.tif", {{"TIFFTAG_DOCUMENTNAME", ""}});
+    copyDemWith(dir / "dem.tif", {{"TIFFTAG_DOCUMENTNAME", kHostileTitle}});
+    Diagnostics diags;
+    const auto plain = loadScene(dir / "plain.tif", diags);
+    const auto loaded = loadScene(dir / "dem.tif", diags);
+    ASSERT_TRUE(plain && loaded) << firstWarning(diags);
+    EXPECT_EQ(loaded->scene.overlay.title, kHostileTitle);
+    EXPECT_EQ(loaded->scene.render.width, plain->scene.render.width);
+    EXPECT_EQ(loaded->scene.render.height, plain->scene.render.height);
+    // The record (the sidecar's) reads back as the same scene.
+    const auto recorded = scene::readSceneText(loaded->scene.madeForData, dir / "dem.tif", diags);
+    ASSERT_TRUE(recorded) << firstWarning(diags);
+    EXPECT_EQ(recorded->overlay.title, kHostileTitle);
+    EXPECT_EQ(recorded->render.width, plain->scene.render.width);
+
+    const auto plainSurface = planSurface(*plain, diags, 1);
+    const auto surface = planSurface(*loaded, diags, 1);
+    ASSERT_TRUE(plainSurface && surface) << firstWarning(diags);
+    const std::string plainText = initSceneText(*plain, *plainSurface, dir / "plain.toml");
+    const std::string text = initSceneText(*loaded, *surface, dir / "scene.toml");
+    // As many lines as the plain DEM's scene: the title added none.
+    EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), std::count(plainText.begin(), plainText.end(), '\n'))
+        << text;
+    writeFileAtomically(dir / "scene.toml", text);
+    const auto back = scene::readScene(dir / "scene.toml", diags);
+    ASSERT_TRUE(back) << firstWarning(diags);
+    EXPECT_FALSE(diags.hasErrors()) << firstWarning(diags);
+    EXPECT_EQ(back->overlay.title, kHostileTitle);
+    EXPECT_EQ(back->render.width, plain->scene.render.width);
+    EXPECT_EQ(back->render.height, plain->scene.render.height);
+    EXPECT_EQ(back->samples.path, dir / "dem.tif");
+    for (const auto& d : diags.all()) EXPECT_EQ(d.message.find("UTF-8"), std::string::npos) << d.message;
+}
+
+// A value TOML writes on one line and reads back whole, whatever it holds.
+TEST(Pipeline, TomlStringHoldsAnyText) {
+    EXPECT_EQ(tomlString("a'''b"), "\"a'''b\"");
+    EXPECT_EQ(tomlString("x\ny"), "\"x\\ny\"");
+    EXPECT_EQ(tomlString("caf\xe9"), "\"caf\xEF\xBF\xBD\"");  // TOML holds only UTF-8
+    for (const std::string& s : {kHostileTitle, std::string("\"\"\""), std::string("Monta\xc3\xb1" "a")}) {
+        Diagnostics diags;
+        const std::string toml = "[overlay]\ntitle = " + tomlString(s) + "\n";
+        EXPECT_EQ(std::count(toml.begin(), toml.end(), '\n'), 2) << toml;
+        const auto spec = scene::readSceneText(toml, "t.toml", diags);  // and an error: no [samples]
+        ASSERT_TRUE(spec);
+        EXPECT_EQ(spec->overlay.title, s);
+    }
+}
+
+// A DEM's metadata in Latin-1 (as old GeoTIFFs have it) is read as Latin-1: the title and the
+// credit as they were meant, in UTF-8, and nothing to warn of.
+TEST(Pipeline, LatinOneMetadataIsReadAsLatinOne) {
+    const fs::path dir = freshDir("latin1-metadata");
+    copyDemWith(dir / "dem.tif", {{"TIFFTAG_DOCUMENTNAME", "Monta\xf1" "a del Fr\xedo"},
+                                  {"TIFFTAG_COPYRIGHT", "\xa9 Instituto Geogr\xe1" "fico"}});
+    Diagnostics diags;
+    const auto loaded = loadScene(dir / "dem.tif", diags);
+    ASSERT_TRUE(loaded) << firstWarning(diags);
+    EXPECT_EQ(loaded->scene.overlay.title, "Monta\xc3\xb1" "a del Fr\xc3\xad" "o");
+    const auto surface = planSurface(*loaded, diags, 1);
+    ASSERT_TRUE(surface) << firstWarning(diags);
+    EXPECT_EQ(surface->net.attribution, "\xc2\xa9 Instituto Geogr\xc3\xa1" "fico");
+    for (const auto& d : diags.all()) EXPECT_EQ(d.message.find("UTF-8"), std::string::npos) << d.message;
+}
+
+// A DEM whose file name is not UTF-8 (Latin-1, as a Linux name may be) is found by its bytes,
+// compiles, and its records write U+FFFD for them, with one warning.
+TEST(Pipeline, AFileNamedInLatinOneCompilesAndItsRecordsAreUtf8) {
+    const fs::path dir = freshDir("latin1-name");
+    const fs::path dem = dir / "caf\xe9.tif";
+    copyDemWith(dem, {{"TIFFTAG_DOCUMENTNAME", ""}});
+    SceneJob job = compileJob(dem, dir / "caf\xe9.pov");
+    job.overrides = {{"render.width", "160"}, {"render.height", "100"}};
+    Diagnostics diags;
+    const JobOutcome outcome = runSceneJob(job, diags, nullptr);
+    ASSERT_EQ(outcome.status, JobStatus::Ok) << firstWarning(diags);
+    EXPECT_EQ(outcome.compiled->scene.samples.path, dem);  // the bytes, not U+FFFD
+    EXPECT_EQ(outcome.compiled->scene.overlay.title, "caf\xEF\xBF\xBD");
+    EXPECT_TRUE(isUtf8(outcome.compiled->scene.madeForData));
+    std::vector<std::string> said;
+    for (const auto& d : diags.all())
+        if (d.message.find("not UTF-8") != std::string::npos) said.push_back(formatDiagnostic(d));
+    ASSERT_EQ(said.size(), 1u);  // the name, the title from it, the sidecar's paths: one warning
+    EXPECT_TRUE(said[0].starts_with(dem.string() + ": warning: the file's name is not UTF-8: ")) << said[0];
+    const std::string text = readFile(dir / "caf\xe9.json");
+    EXPECT_TRUE(isUtf8(text));
+    const auto sidecar = nlohmann::json::parse(text);
+    EXPECT_EQ(sidecar["inputs"]["scene"], (dir / "caf\xEF\xBF\xBD.tif").string());
+    EXPECT_EQ(sidecar["outputs"]["pov"], (dir / "caf\xEF\xBF\xBD.pov").string());
+    EXPECT_TRUE(fs::exists(dir / "caf\xe9.pov"));
+
+    // relief init cannot write that name in TOML: one error saying to rename it.
+    Diagnostics init;
+    EXPECT_FALSE(initCanNameData(dem, dir / "scene.toml", init));
+    ASSERT_EQ(init.all().size(), 1u);
+    EXPECT_EQ(formatDiagnostic(init.all()[0]),
+              dem.string() + ": error: the scene would say samples.path = \"caf\xe9.tif\", which is not UTF-8, and "
+                             "TOML holds only UTF-8: rename the file (or its folder) to a UTF-8 name and run relief "
+                             "init again (relief render reads the file as it is named)");
+    // A folder's name the scene does not write is no matter.
+    EXPECT_TRUE(initCanNameData(dir / "caf\xe9" / "dem.tif", dir / "caf\xe9" / "dem.toml", init));
+    EXPECT_EQ(init.all().size(), 1u);
 }
 
 TEST(Pipeline, DefaultDepthIsChosenForTheStill) {
