@@ -161,7 +161,7 @@ bool planFrame(const AnimateJob& job, const LoadedScene& scene, const SharedTerr
     options.povPath = plan.dir / "frame.pov";
     options.templatesDir = job.templatesDir;
     options.writeAt = [&](const fs::path& final, std::string_view role) {
-        plan.pov = {final.filename().string(), final, std::string(role)};
+        plan.pov = {final.filename().string(), final, std::string(role), ""};
         return final;
     };
     const auto compiled = compileView(scene, terrain, options, diags);

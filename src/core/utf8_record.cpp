@@ -57,27 +57,17 @@ void checkUtf8(Diagnostics& diags, SourceLoc at, std::string_view text, std::str
     if (!isUtf8(text)) warnNotUtf8(diags, std::move(at), what);
 }
 
-nlohmann::ordered_json pathRecord(const std::filesystem::path& path) {
-    const std::string& bytes = path.native();
-    if (isUtf8(bytes)) return bytes;
-    std::string hex;
-    for (const char c : bytes) hex += fmt::format("{:02x}", static_cast<unsigned char>(c));
-    return {{"bytes_hex", hex}};
+void putName(nlohmann::ordered_json& j, const std::string& key, const std::string& name) {
+    j[key] = utf8Replaced(name);
+    if (!isUtf8(name)) j[key + "_bytes"] = hexBytes(name);
 }
 
-std::filesystem::path pathOfRecord(const nlohmann::ordered_json& record) {
-    if (record.is_string()) return record.get<std::string>();
-    const std::string hex = record.at("bytes_hex").get<std::string>();
-    const auto digit = [&](char c) {
-        if (c >= '0' && c <= '9') return c - '0';
-        if (c >= 'a' && c <= 'f') return c - 'a' + 10;
-        throw nlohmann::ordered_json::other_error::create(501, "bytes_hex holds a character that is not hex", &record);
-    };
-    if (hex.size() % 2 != 0)
-        throw nlohmann::ordered_json::other_error::create(501, "bytes_hex holds half a byte", &record);
-    std::string bytes;
-    for (size_t i = 0; i < hex.size(); i += 2) bytes += static_cast<char>(digit(hex[i]) * 16 + digit(hex[i + 1]));
-    return bytes;
+std::string nameAt(const nlohmann::ordered_json& j, const std::string& key) {
+    const std::string bytesKey = key + "_bytes";
+    if (!j.contains(bytesKey)) return j.at(key).get<std::string>();
+    const auto name = bytesOfHex(j.at(bytesKey).get<std::string>());
+    if (!name) throw nlohmann::json::other_error::create(501, bytesKey + " is not two hex digits a byte", &j);
+    return *name;
 }
 
 }  // namespace relief

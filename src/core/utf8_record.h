@@ -25,13 +25,14 @@ void warnNotUtf8(Diagnostics& diags, SourceLoc at, std::string_view what);
 /// warnNotUtf8 when `text` is not UTF-8.
 void checkUtf8(Diagnostics& diags, SourceLoc at, std::string_view text, std::string_view what);
 
-/// A path in a record that must give the same path back (a render plan's
-/// still, a film's frames): its text when it is UTF-8, else
-/// {"bytes_hex": "<its bytes in hex>"}, which JSON can hold.
-nlohmann::ordered_json pathRecord(const std::filesystem::path& path);
+/// A name a record must give back whole (a render plan's files and outputs,
+/// a film's): j[key] = name when it is UTF-8; else what it shows as
+/// (U+FFFD for each byte that is not) and, beside it, j[key + "_bytes"] =
+/// its bytes in hex, which JSON can hold.
+void putName(nlohmann::ordered_json& j, const std::string& key, const std::string& name);
 
-/// The path pathRecord wrote. Throws nlohmann::json::exception when `record`
-/// is neither form (a damaged record).
-std::filesystem::path pathOfRecord(const nlohmann::ordered_json& record);
+/// The name putName wrote at `key`. Throws nlohmann::json::exception when it
+/// is not one (a damaged record).
+std::string nameAt(const nlohmann::ordered_json& j, const std::string& key);
 
 }  // namespace relief

@@ -8,7 +8,7 @@
 #include <stdexcept>
 
 #include "core/atomic_file.h"
-#include "core/json_name.h"
+#include "core/utf8_record.h"
 #include "core/input_file.h"
 #include "film/video.h"
 #include "relief/version.h"

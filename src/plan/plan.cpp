@@ -14,7 +14,7 @@
 
 #include "core/atomic_file.h"
 #include "core/hash.h"
-#include "core/json_name.h"
+#include "core/utf8_record.h"
 #include "core/input_file.h"
 #include "core/text_escape.h"
 #include "relief/version.h"

@@ -56,17 +56,23 @@ TEST(Utf8Record, TheWarningIsSaidOnceARun) {
     EXPECT_FALSE(diags.hasErrors());
 }
 
-// A path a record must give back (a plan's still): the same bytes, whatever they are.
-TEST(Utf8Record, PathsComeBackByteForByte) {
-    EXPECT_EQ(pathRecord("out/caf\xc3\xa9.png"), "out/caf\xc3\xa9.png");  // UTF-8: as text
-    const ordered_json latin1 = pathRecord("out/caf\xe9.png");
-    EXPECT_EQ(latin1, ordered_json({{"bytes_hex", "6f75742f636166e92e706e67"}}));
-    EXPECT_TRUE(isUtf8(latin1.dump()));
-    const std::string paths[] = {"out/caf\xe9.png", "a\nb/\x01\xff\xfe", "x.png"};
-    for (const std::string& p : paths)
-        EXPECT_EQ(pathOfRecord(ordered_json::parse(pathRecord(p).dump())).native(), p);
-    for (const char* damaged : {R"({"bytes_hex": "6"})", R"({"bytes_hex": "zz"})", R"({"other": 1})", "3"})
-        EXPECT_THROW((void)pathOfRecord(ordered_json::parse(damaged)), nlohmann::json::exception) << damaged;
+// A name a record must give back (a plan's still): the same bytes, whatever they are.
+TEST(Utf8Record, NamesComeBackByteForByte) {
+    ordered_json j;
+    putName(j, "still", "caf\xc3\xa9.png");  // UTF-8: as text
+    EXPECT_EQ(j, ordered_json({{"still", "caf\xc3\xa9.png"}}));
+    j = ordered_json::object();
+    putName(j, "still", "caf\xe9.png");
+    EXPECT_EQ(j, ordered_json({{"still", "caf\xef\xbf\xbd.png"}, {"still_bytes", "636166e92e706e67"}}));
+    EXPECT_TRUE(isUtf8(j.dump()));
+    for (const std::string name : {"caf\xe9.png", "a\nb\x01\xff\xfe", "x.png"}) {
+        ordered_json k;
+        putName(k, "name", name);
+        EXPECT_EQ(nameAt(ordered_json::parse(k.dump()), "name"), name);
+    }
+    for (const char* damaged : {R"({"name": "x", "name_bytes": "6"})", R"({"name": "x", "name_bytes": "zz"})",
+                                R"({"other": 1})", R"({"name": 3})"})
+        EXPECT_THROW((void)nameAt(ordered_json::parse(damaged), "name"), nlohmann::json::exception) << damaged;
 }
 
 }  // namespace
