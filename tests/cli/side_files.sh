@@ -4,11 +4,14 @@
 # as a flyover's track; an 8 GB sparse .prj (GDAL reads it whole) beside a shapefile and beside an
 # ESRI ASCII grid; a .shp.zip whose .prj inflates to 100 MB, and one whose .prj inflates past the
 # 145 bytes it declares. Each is refused at once: exit 2, one line naming the file and the fix,
-# nothing written (each run has 20 s, under a 2 GB address-space limit).
+# nothing written (each run has 20 s, under a 2 GB address-space limit). A layer in a geocentric
+# CRS (EPSG:4978) lands where the same layer in WGS84 does, with a warning that its heights are
+# not used; one without Z there is an error.
 # Usage: side_files.sh RELIEF SOURCE_DIR WORK_DIR
 . "$(dirname "$0")/lib.sh" "$@"
 enter_fresh_work
 cp "$src/tests/data/rasters/maungawhau-20m.tif" dem.tif
+cp "$src/tests/data/vectors/maungawhau-features.geojson" features.geojson
 ogr2ogr -f "ESRI Shapefile" walk.shp "$src/tests/data/vectors/maungawhau-walk.gpx" tracks 2> /dev/null &&
   gdal_translate -q -of AAIGrid dem.tif grid.asc &&
   [ -f walk.dbf ] && [ -f walk.prj ] && [ -f grid.prj ] || { fail "ogr2ogr or gdal_translate"; exit 1; }
@@ -101,6 +104,24 @@ $nothing" compile -q bomb.toml -o out/x.pov
 layer liar.toml liar.shp.zip
 expect zip-liar "liar.toml:5:8: error: layer.path: liar.shp.zip: its file walk.prj inflates to more than the 145 bytes it declares: the archive is damaged or forged; give the real files
 $nothing" compile -q liar.toml -o out/x.pov
+
+# A geocentric CRS: the features land where they do in WGS84 (the same point off the terrain, no
+# other), and a warning says their heights are not used; without Z, an error.
+ogr2ogr -f GPKG -t_srs EPSG:4978 -dim XYZ ecef.gpkg features.geojson 2> /dev/null &&
+  ogr2ogr -f GPKG -t_srs EPSG:4978 -dim XY ecef2d.gpkg features.geojson 2> /dev/null || fail "ogr2ogr to EPSG:4978"
+layer wgs84.toml features.geojson
+layer ecef.toml ecef.gpkg
+"$relief" compile -q wgs84.toml -o ok/wgs84.pov 2> wgs84.txt || { fail "the layer in WGS84:"; cat wgs84.txt; }
+"$relief" compile -q ecef.toml -o ok/ecef.pov 2> ecef.txt || { fail "the layer in EPSG:4978:"; cat ecef.txt; }
+grep -q "^ecef.toml:5:8: warning: layer 1 (ecef.gpkg): its CRS is geocentric (X, Y, Z from the Earth's centre): each vertex is placed from all three, and its height is not used (a layer lies on the surface)$" ecef.txt ||
+  { fail "no warning that the geocentric layer's heights are not used:"; cat ecef.txt; }
+[ "$(grep -c 'off the terrain' wgs84.txt)" = 1 ] && [ "$(grep -c 'off the terrain' ecef.txt)" = 1 ] ||
+  { fail "the geocentric layer is not where the WGS84 one is:"; cat wgs84.txt ecef.txt; }
+layer ecef2d.toml ecef2d.gpkg
+"$relief" compile -q ecef2d.toml -o out/x.pov 2> ecef2d.txt; code=$?
+[ "$code" = 2 ] || fail "a geocentric layer without Z: exit $code, expected 2"
+grep -q "ecef2d.toml:5:8: error: ecef2d.gpkg: feature 1 has no Z: in a geocentric CRS (X, Y, Z from the Earth's centre) a vertex needs all three to be a place; give the layer with its Z or in longitude and latitude$" ecef2d.txt ||
+  { fail "a geocentric layer without Z:"; cat ecef2d.txt; }
 
 [ "$status" = 0 ] && echo "the files GDAL reads beside a dataset or in an archive were checked first"
 exit $status
