@@ -141,10 +141,7 @@ struct FilmWork {
 // A compiled terrain's files, hard-linked into a frame's plan (no copy of a 100 MB mesh).
 void linkShared(const std::vector<plan::PlanFile>& shared, const fs::path& sharedDir, plan::RenderPlan& plan) {
     for (const auto& f : shared) {
-        std::error_code ec;
-        fs::create_hard_link(sharedDir / f.name, plan.dir / f.name, ec);
-        if (ec) fs::copy_file(sharedDir / f.name, plan.dir / f.name, ec);
-        if (ec) throw OutputError(shownPath(plan.dir / f.name), "cannot be written: " + ec.message());
+        linkOrCopy(sharedDir / f.name, plan.dir / f.name);
         plan.reads.push_back(f);
     }
 }
@@ -398,11 +395,7 @@ bool finishFrames(const film::FilmRecord& record, const FilmWork& work, OutputSe
         const fs::path png = work.dir / "frames" / name;
         writePngAtomically(png, {still->width, still->height, still->channels, false, still->pixels.data()});
         if (record.framesDir.empty()) continue;
-        const fs::path kept = outputs.staged(record.framesDir / name);
-        std::error_code ec;
-        fs::create_hard_link(png, kept, ec);
-        if (ec) fs::copy_file(png, kept, ec);
-        if (ec) throw OutputError(shownPath(record.framesDir / name), "cannot be written: " + ec.message());
+        linkOrCopy(png, outputs.staged(record.framesDir / name));
     }
     return true;
 }

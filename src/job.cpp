@@ -169,11 +169,7 @@ void compileIntoPlan(PlannedJob& p, const LoadedScene& loaded, Diagnostics& diag
 
 // A plan's file in the set: a hard link (no copy of a 100 MB .pov), else a copy.
 void stagePlanFile(const plan::RenderPlan& plan, const plan::PlanFile& f, OutputSet& outputs) {
-    const fs::path staged = outputs.contains(f.final) ? outputs.staged(f.final) : outputs.add(f.final, f.role);
-    std::error_code ec;
-    fs::create_hard_link(plan.dir / f.name, staged, ec);
-    if (ec) fs::copy_file(plan.dir / f.name, staged, ec);
-    if (ec) throw OutputError(shownPath(f.final), "cannot be written: " + ec.message());
+    linkOrCopy(plan.dir / f.name, outputs.contains(f.final) ? outputs.staged(f.final) : outputs.add(f.final, f.role));
 }
 
 // An output that cannot be made is reported at its file; any other I/O failure as it is.

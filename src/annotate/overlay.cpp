@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cerrno>
 #include <cstdint>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -17,6 +19,7 @@
 #include <pango/pangocairo.h>
 
 #include "core/number_format.h"
+#include "core/output_set.h"
 #include "core/text_escape.h"
 
 namespace relief::annotate {
@@ -663,6 +666,55 @@ std::string withTextLayer(const std::filesystem::path& svg, const std::vector<Dr
     return doc.insert(end, svgTextLayer(texts, pointsPerPixel));
 }
 
+// The file a document is written into, keeping the system's reason for a
+// failed write: cairo's own file writer says only "error while writing to
+// output stream", which hid a full disk.
+class DocumentFile {
+public:
+    explicit DocumentFile(const std::filesystem::path& path)
+        : file_(std::fopen(path.c_str(), "wbe")), err_(file_ ? 0 : errno) {}
+    ~DocumentFile() {
+        if (file_) std::fclose(file_);
+    }
+    DocumentFile(const DocumentFile&) = delete;
+    DocumentFile& operator=(const DocumentFile&) = delete;
+
+    /// Cairo's write function, `self` a DocumentFile.
+    static cairo_status_t write(void* self, const unsigned char* data, unsigned int length) {
+        return static_cast<DocumentFile*>(self)->append(data, length) ? CAIRO_STATUS_SUCCESS : CAIRO_STATUS_WRITE_ERROR;
+    }
+    bool append(const void* data, size_t length) {
+        if (err_ == 0 && std::fwrite(data, 1, length, file_) != length) err_ = errno != 0 ? errno : EIO;
+        return err_ == 0;
+    }
+    /// Closes the file: "" or "cannot be written: " and the system's reason,
+    /// or cairo's (`status`) when the system gave none.
+    std::string close(cairo_status_t status = CAIRO_STATUS_SUCCESS) {
+        if (file_ && std::fclose(file_) != 0 && err_ == 0) err_ = errno;
+        file_ = nullptr;
+        if (err_ != 0) return "cannot be written: " + writeFailureReason(err_);
+        if (status != CAIRO_STATUS_SUCCESS) return fmt::format("cannot be written: {}", cairo_status_to_string(status));
+        return "";
+    }
+
+private:
+    std::FILE* file_;
+    int err_;
+};
+
+// The SVG cairo drew, at `drawnAt`, with the text layer added, written to `path`.
+std::string finishSvg(const std::filesystem::path& drawnAt, const std::filesystem::path& path,
+                      const std::vector<DrawnText>& texts, double pointsPerPixel) {
+    std::string error;
+    const std::string svg = withTextLayer(drawnAt, texts, pointsPerPixel, error);
+    std::error_code ec;
+    std::filesystem::remove(drawnAt, ec);
+    if (!error.empty()) return error;
+    DocumentFile out(path);
+    out.append(svg.data(), svg.size());
+    return out.close();
+}
+
 }  // namespace
 
 std::string drawOverlays(PngImage8& image, const scene::OverlaySpec& spec, const OverlayFacts& facts,
@@ -683,11 +735,12 @@ std::string writeDocument(const PngImage8& still, const DocumentRequest& request
     const double widthPt = still.width * pointsPerPixel, heightPt = still.height * pointsPerPixel;
     const std::filesystem::path drawnAt =
         request.format == DocumentFormat::Svg ? std::filesystem::path(request.path.string() + ".cairo") : request.path;
-    Owned<cairo_surface_t> page(request.format == DocumentFormat::Pdf
-                                    ? cairo_pdf_surface_create(drawnAt.c_str(), widthPt, heightPt)
-                                    : cairo_svg_surface_create(drawnAt.c_str(), widthPt, heightPt));
-    if (cairo_surface_status(page.get()) != CAIRO_STATUS_SUCCESS)
-        return fmt::format("cannot be written: {}", cairo_status_to_string(cairo_surface_status(page.get())));
+    DocumentFile pageFile(drawnAt);  // declared first: the page, destroyed before it, may still write
+    Owned<cairo_surface_t> page(
+        request.format == DocumentFormat::Pdf
+            ? cairo_pdf_surface_create_for_stream(DocumentFile::write, &pageFile, widthPt, heightPt)
+            : cairo_svg_surface_create_for_stream(DocumentFile::write, &pageFile, widthPt, heightPt));
+    if (cairo_surface_status(page.get()) != CAIRO_STATUS_SUCCESS) return pageFile.close(cairo_surface_status(page.get()));
     if (request.format == DocumentFormat::Pdf) {
         // No clock in the file: the same still gives the same bytes.
         cairo_pdf_surface_set_metadata(page.get(), CAIRO_PDF_METADATA_CREATE_DATE, kDocumentDate);
@@ -715,18 +768,10 @@ std::string writeDocument(const PngImage8& still, const DocumentRequest& request
                                {true, pointsPerPixel});
     cairo_show_page(cr.get());
     cairo_surface_finish(page.get());
-    if (const cairo_status_t status = cairo_surface_status(page.get()); status != CAIRO_STATUS_SUCCESS)
-        return fmt::format("cannot be written: {}", cairo_status_to_string(status));
-    if (request.format == DocumentFormat::Svg) {
-        std::string error;
-        const std::string svg = withTextLayer(drawnAt, drawn.texts, pointsPerPixel, error);
-        std::error_code ec;
-        std::filesystem::remove(drawnAt, ec);
-        if (!error.empty()) return error;
-        std::ofstream out(request.path, std::ios::binary | std::ios::trunc);
-        out << svg;
-        if (!out.flush()) return "cannot be written";
-    }
+    if (std::string problem = pageFile.close(cairo_surface_status(page.get())); !problem.empty()) return problem;
+    if (request.format == DocumentFormat::Svg)
+        if (std::string problem = finishSvg(drawnAt, request.path, drawn.texts, pointsPerPixel); !problem.empty())
+            return problem;
     if (record) *record = drawn;
     return {};
 }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
@@ -31,34 +32,64 @@ const char* verdictName(Verdict v) {
 
 namespace {
 
-// An image's size from its header, held against what can be decoded: the
-// memory budget (the comparison works in floats, both images at once), and,
-// for a PNG, what its bytes can hold (deflate compresses at most 1032:1), so
-// that a 140 kB file claiming 12000 x 12000 pixels is refused before anything
-// is allocated for it.
-std::string sizeProblem(const std::filesystem::path& path, std::uintmax_t fileBytes) {
+// What comparing two images and making their difference image takes, a
+// pixel: both images as stored, their difference in floats (every channel),
+// its largest channel and that scaled, the heat map (three floats) and its
+// 8-bit copy as written.
+double bytesPerComparedPixel(int channels, size_t sampleBytes) {
+    return 2.0 * channels * double(sampleBytes) + 4.0 * channels + 4 + 4 + 12 + 3;
+}
+
+// What an image's header says, before anything is decoded.
+struct ImageHeader {
+    int width = 0, height = 0, channels = 1;
+    size_t sampleBytes = 1;
+    double pixels = 0;
+    std::string format;
+};
+
+std::optional<ImageHeader> headerOf(const std::filesystem::path& path) {
     auto in = OIIO::ImageInput::open(path.string());
     if (!in) {
         (void)OIIO::geterror();  // OpenImageIO's own message names no more than we do
-        return "cannot read as an image (not a format OpenImageIO reads, or damaged)";
+        return std::nullopt;
     }
     const OIIO::ImageSpec& spec = in->spec();
-    const double pixels = double(spec.width) * double(spec.height) * std::max(1, spec.depth);
-    const double values = pixels * std::max(1, spec.nchannels);
-    const double decodedBytes = values * std::max<size_t>(1, spec.format.size());
-    const std::string format = in->format_name();
+    ImageHeader h{spec.width, spec.height, std::max(1, spec.nchannels), std::max<size_t>(1, spec.format.size()),
+                  double(spec.width) * double(spec.height) * std::max(1, spec.depth), in->format_name()};
     in->close();
-    if (!(pixels > 0)) return "the image has no pixels";
+    return h;
+}
+
+// The size a header says, held against what can be decoded, before anything
+// is allocated for it: for a PNG, what its bytes can hold (deflate compresses
+// at most 1032:1: a 177-byte file claiming 12000 x 12000 pixels is damaged);
+// the pixel limit (a 140 kB PNG of 12000 x 12000 zeros is not damaged, but a
+// bomb); the memory budget for its channels.
+std::string headerProblem(const ImageHeader& h, std::uintmax_t fileBytes) {
+    if (!(h.pixels > 0)) return "the image has no pixels";
+    if (h.format == "png" && h.pixels * h.channels * double(h.sampleBytes) > 1032.0 * double(fileBytes) + 65536)
+        return fmt::format("it says it is {} x {} pixels, more than its {} can hold: the file is damaged", h.width,
+                           h.height, byteSize(fileBytes));
+    if (h.pixels > kMaxComparedPixels)
+        return fmt::format("it says it is {} x {} pixels ({:.0f} Mpixels), more than the {:.0f} Mpixels relief "
+                           "compares: compare smaller images, or crops of these",
+                           h.width, h.height, h.pixels / 1e6, kMaxComparedPixels / 1e6);
     const double budgetMB = subdiv::defaultMemoryBudgetMB();
-    if (2 * values * sizeof(float) / 1e6 > budgetMB)
-        return fmt::format("it says it is {} x {} pixels with {} channels: comparing two such images needs about "
-                           "{:.0f} MB, more than the {:.0f} MB relief may use",
-                           spec.width, spec.height, spec.nchannels, 2 * values * sizeof(float) / 1e6, budgetMB);
-    if (format == "png" && decodedBytes > 1032.0 * double(fileBytes) + 65536)
-        return fmt::format("it says it is {} x {} pixels, more than its {} can hold: the file is damaged",
-                           spec.width, spec.height, byteSize(fileBytes));
+    const double neededMB = h.pixels * bytesPerComparedPixel(h.channels, h.sampleBytes) / 1e6;
+    if (neededMB > budgetMB)
+        return fmt::format("it says it is {} x {} pixels with {} channels: comparing two such images and making their "
+                           "difference image needs about {:.0f} MB, more than the {:.0f} MB relief may use",
+                           h.width, h.height, h.channels, neededMB, budgetMB);
+    return "";
+}
+
+std::string sizeProblem(const std::filesystem::path& path, std::uintmax_t fileBytes) {
+    const auto header = headerOf(path);
+    if (!header) return "cannot read as an image (not a format OpenImageIO reads, or damaged)";
+    if (std::string problem = headerProblem(*header, fileBytes); !problem.empty()) return problem;
     // OpenImageIO lets libpng print its own messages on a damaged PNG: found first, quietly.
-    if (format == "png")
+    if (header->format == "png")
         if (const std::string problem = checkPng(path); !problem.empty())
             return fmt::format("it is a damaged or truncated PNG ({})", problem);
     return "";

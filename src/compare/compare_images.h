@@ -10,6 +10,15 @@
 
 namespace relief::compare {
 
+/// The most pixels (width x height) an image relief compares may have, read
+/// from its header before anything is decoded; the difference image has the
+/// images' size, so one limit holds both. 40 Mpixels: an A2 page at 300 dpi
+/// is 35. Comparing two RGBA images of that size and making their difference
+/// image takes 1.2 GB (8 bits a channel) to 1.7 GB (16 bits), as measured at
+/// 36 Mpixels; what the header's channels would take is held to the memory
+/// budget as well.
+inline constexpr double kMaxComparedPixels = 40e6;
+
 struct Thresholds {
     double fail = 1e-6;          ///< a pixel fails when any channel differs by more
     double failPercent = 0;      ///< the images fail when more than this % of pixels fail

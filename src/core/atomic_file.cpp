@@ -1,6 +1,7 @@
 #include "core/atomic_file.h"
 
 #include <fcntl.h>
+#include <sys/sendfile.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -11,6 +12,8 @@
 #include <stdexcept>
 
 #include <fmt/format.h>
+
+#include "core/file_descriptor.h"
 
 namespace relief {
 
@@ -67,6 +70,31 @@ void writeThroughTemporary(const std::filesystem::path& path,
     const std::filesystem::path staged = set.add(path, shown.string());
     if (std::string error = write(staged); !error.empty()) throw OutputError(shown, "cannot be written: " + error);
     set.commit();
+}
+
+std::string copyFileContents(const std::filesystem::path& from, const std::filesystem::path& to) {
+    const Fd in(::open(from.c_str(), O_RDONLY | O_CLOEXEC));
+    struct stat st {};
+    if (in.fd < 0 || ::fstat(in.fd, &st) != 0)
+        return fmt::format("{} cannot be read: {}", from.string(), std::strerror(errno));
+    const Fd out(::open(to.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, st.st_mode & 0777));
+    if (out.fd < 0) return writeFailureReason(errno);
+    for (off_t offset = 0; offset < st.st_size;) {
+        // A short count (the disk filled mid-way) is followed by the call that says why.
+        const ssize_t n = ::sendfile(out.fd, in.fd, &offset, static_cast<size_t>(st.st_size - offset));
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0) return writeFailureReason(errno);
+        if (n == 0) break;  // the file shrank while it was copied
+    }
+    return "";
+}
+
+void linkOrCopy(const std::filesystem::path& from, const std::filesystem::path& to) {
+    std::error_code ec;
+    std::filesystem::create_hard_link(from, to, ec);
+    if (!ec) return;
+    if (const std::string error = copyFileContents(from, to); !error.empty())
+        throw OutputError(shownPath(to), "cannot be written: " + error);
 }
 
 void createParentFolder(const std::filesystem::path& file) {

@@ -57,6 +57,17 @@ void writeFileAtomically(const std::filesystem::path& path, std::string_view byt
 void writeThroughTemporary(const std::filesystem::path& path,
                            const std::function<std::string(const std::filesystem::path&)>& write);
 
+/// Copies the file `from` into the new file `to` (created exclusively, never
+/// through a planted link); "" or why not, the system's reason worded as
+/// writeFailureReason words it ("the disk is full (No space left on device);
+/// ..."). std::filesystem::copy_file says "Input/output error" when the disk
+/// fills: libstdc++ takes a short count from sendfile for EIO.
+std::string copyFileContents(const std::filesystem::path& from, const std::filesystem::path& to);
+
+/// `to` made the file `from` is: a hard link (no copy of a 100 MB mesh), else
+/// copyFileContents. Throws OutputError at shownPath(to) when neither can be.
+void linkOrCopy(const std::filesystem::path& from, const std::filesystem::path& to);
+
 /// Creates the folder `file` goes in (and its parents). Throws OutputError at
 /// the folder with the system's reason.
 void createParentFolder(const std::filesystem::path& file);

@@ -38,6 +38,7 @@ std::string openProblem(int err) {
 }  // namespace
 
 std::string byteSize(std::uintmax_t bytes) {
+    if (bytes >= 1000000000) return fmt::format("{:.3g} GB", double(bytes) / 1e9);
     if (bytes >= 1000000) return fmt::format("{:.3g} MB", double(bytes) / 1e6);
     if (bytes >= 1000) return fmt::format("{:.3g} kB", double(bytes) / 1e3);
     return fmt::format("{} bytes", bytes);

@@ -46,7 +46,7 @@ std::optional<std::string> readInputHead(const std::filesystem::path& path, std:
 /// the path exists (a link out of the folder is outside it).
 bool pathInside(const std::filesystem::path& path, const std::filesystem::path& folder);
 
-/// "1.5 MB", "12 kB", "300 bytes": a size for a message.
+/// "8.59 GB", "1.5 MB", "12 kB", "300 bytes": a size for a message.
 std::string byteSize(std::uintmax_t bytes);
 
 }  // namespace relief

@@ -30,13 +30,15 @@ namespace {
 constexpr std::string_view kPrefix = ".relief-";
 constexpr std::string_view kOwnerTag = "relief private folder";
 
-// The system's reason a file cannot be written, and what the user can do about it.
-std::string reasonAndFix(int err) {
+}  // namespace
+
+std::string writeFailureReason(int err) {
     std::string text = std::strerror(err);
     switch (err) {
         case ENOSPC:
+            return "the disk is full (" + text + "); make room on that disk or write elsewhere";
         case EDQUOT:
-            return text + "; make room on that disk or write elsewhere";
+            return "your disk quota is used up (" + text + "); make room within it or write elsewhere";
         case EFBIG:
             return text + "; the file system or the file size limit (ulimit -f) refuses a file this big";
         case EACCES:
@@ -50,6 +52,8 @@ std::string reasonAndFix(int err) {
             return text;
     }
 }
+
+namespace {
 
 // This machine's name as a file name can hold it: a run on another machine
 // sharing the folder (a cluster's filesystem) is told apart by it.
@@ -289,7 +293,7 @@ OutputError::OutputError(fs::path file, std::string problem)
     : std::runtime_error(file.string() + ": " + problem), file_(std::move(file)), problem_(std::move(problem)) {}
 
 OutputError OutputError::system(const fs::path& file, int err) {
-    return OutputError(file, "cannot be written: " + reasonAndFix(err));
+    return OutputError(file, "cannot be written: " + writeFailureReason(err));
 }
 
 OutputSet::~OutputSet() = default;
@@ -361,7 +365,6 @@ fs::path OutputSet::staged(const fs::path& finalPath) const {
 }
 
 void OutputSet::keepPrevious() {
-    std::error_code ec;
     for (const auto& e : entries_) {
         struct stat st {};
         // Nothing there, or a folder in the way (the move will fail and say so): nothing to keep.
@@ -370,11 +373,10 @@ void OutputSet::keepPrevious() {
         // A hard link costs nothing; where there are none (or the kernel
         // refuses one of another user's file), a copy.
         if (::link(e.finalPath.c_str(), kept.c_str()) == 0) continue;
-        fs::copy_file(e.finalPath, kept, ec);
-        if (ec)
+        if (const std::string problem = copyFileContents(e.finalPath, kept); !problem.empty())
             throw OutputError(e.finalPath, fmt::format("cannot be written: the file it replaces cannot be kept until "
                                                        "the new one is in place ({})",
-                                                       ec.message()));
+                                                       problem));
     }
 }
 
@@ -401,7 +403,7 @@ void OutputSet::commit() {
     if (!seal_.empty()) fs::remove(seal_, ec);
     for (const auto& e : entries_) {
         fs::rename(staged(e.finalPath), e.finalPath, ec);
-        if (ec) moveBack(e, reasonAndFix(ec.value()));
+        if (ec) moveBack(e, writeFailureReason(ec.value()));
     }
     for (const auto& dir : folderDirs_) syncFolder(dir);
     committed_ = true;

@@ -22,6 +22,11 @@ namespace relief {
 /// An output that cannot be made, reported at its file: the file as the user
 /// knows it (shownPath) and the problem, with the fix where there is one.
 /// what() is "<file>: <problem>", for channels that carry text only.
+/// The system's reason a file cannot be written (errno `err`), and what the
+/// user can do about it: "the disk is full (No space left on device); make
+/// room on that disk or write elsewhere".
+std::string writeFailureReason(int err);
+
 class OutputError : public std::runtime_error {
 public:
     OutputError(std::filesystem::path file, std::string problem);

@@ -26,17 +26,22 @@ namespace {
 
 // libpng's own writer says only "Write Error": this one keeps the system's
 // reason (a full disk) for the message.
-void writeToFile(png_structp png, png_bytep data, png_size_t size) {
-    auto* file = static_cast<std::FILE*>(png_get_io_ptr(png));
-    if (std::fwrite(data, 1, size, file) != size) {
-        const int err = errno;
-        if (auto* error = static_cast<std::string*>(png_get_error_ptr(png)))
-            *error = err ? std::strerror(err) : "write error";
-        png_error(png, "write error");
-    }
+[[noreturn]] void onWriteFailure(png_structp png, int err) {
+    if (auto* error = static_cast<std::string*>(png_get_error_ptr(png)))
+        *error = err ? writeFailureReason(err) : "write error";
+    png_error(png, "write error");
 }
 
-void flushFile(png_structp png) { std::fflush(static_cast<std::FILE*>(png_get_io_ptr(png))); }
+void writeToFile(png_structp png, png_bytep data, png_size_t size) {
+    if (std::fwrite(data, 1, size, static_cast<std::FILE*>(png_get_io_ptr(png))) != size) onWriteFailure(png, errno);
+}
+
+// A flush that fails is a write that failed: the stream drops what it could
+// not write, and a later flush, with nothing left to write, would tell no
+// reason ("Input/output error" for a full disk).
+void flushFile(png_structp png) {
+    if (std::fflush(static_cast<std::FILE*>(png_get_io_ptr(png))) != 0) onWriteFailure(png, errno);
+}
 
 void onPngWarning(png_structp, png_const_charp) {}
 

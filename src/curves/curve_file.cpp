@@ -10,6 +10,37 @@
 
 namespace relief::curves {
 
+PointsFault readPoints(const nlohmann::json& points, const std::string& name, std::vector<Point2>& out,
+                       std::string& problem) {
+    out.clear();
+    if (!points.is_array()) {
+        problem = fmt::format("{} must be a list of points [[x, y], ...]", name);
+        return PointsFault::NotPoints;
+    }
+    for (size_t i = 0; i < points.size(); ++i) {
+        const nlohmann::json& p = points[i];
+        if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number()) {
+            problem = fmt::format("{}[{}] must be [x, y] with two numbers", name, i);
+            return PointsFault::NotPoints;
+        }
+        const Point2 q{p[0].get<double>(), p[1].get<double>()};
+        if (!std::isfinite(q.x) || !std::isfinite(q.y)) {
+            problem = fmt::format("{}[{}] is not finite", name, i);
+            return PointsFault::NotPoints;
+        }
+        // Distances square the coordinates and the exact Hausdorff distance
+        // solves polynomials in them: far below 1e308, whatever the input.
+        if (std::fabs(q.x) > kMaxCoordinate || std::fabs(q.y) > kMaxCoordinate) {
+            problem = fmt::format("{}[{}] = [{}, {}] is beyond the {:.0e} a coordinate may be (in metres, 1e15 is a "
+                                  "thousand times the distance to the Sun)",
+                                  name, i, formatShortest(q.x), formatShortest(q.y), kMaxCoordinate);
+            return PointsFault::BeyondRange;
+        }
+        out.push_back(q);
+    }
+    return PointsFault::None;
+}
+
 std::optional<CurveFile> readCurveFile(const std::filesystem::path& path, Diagnostics& diags) {
     const std::string file = path.string();
     std::string problem;
@@ -66,28 +97,10 @@ std::optional<CurveFile> readCurveFile(const std::filesystem::path& path, Diagno
         diags.error({file, 0, 0}, "missing \"points\": [[x, y], ...]");
         return std::nullopt;
     }
-    size_t index = 0;
-    for (const auto& p : j["points"]) {
-        if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number()) {
-            diags.error({file, 0, 0}, fmt::format("points[{}] must be [x, y] with two numbers", index));
-            return std::nullopt;
-        }
-        const Point2 q{p[0].get<double>(), p[1].get<double>()};
-        if (!std::isfinite(q.x) || !std::isfinite(q.y)) {
-            diags.error({file, 0, 0}, fmt::format("points[{}] is not finite", index));
-            return std::nullopt;
-        }
-        // Distances square the coordinates and the exact Hausdorff distance
-        // solves polynomials in them: far below 1e308, whatever the input.
-        if (std::fabs(q.x) > kMaxCoordinate || std::fabs(q.y) > kMaxCoordinate) {
-            diags.error({file, 0, 0}, fmt::format("points[{}] = [{}, {}] is beyond the {:.0e} a coordinate may be "
-                                                  "(in metres, 1e15 is a thousand times the distance to the Sun): "
-                                                  "give the curve in smaller units",
-                                                  index, formatShortest(q.x), formatShortest(q.y), kMaxCoordinate));
-            return std::nullopt;
-        }
-        c.points.push_back(q);
-        ++index;
+    if (const PointsFault fault = readPoints(j["points"], "points", c.points, problem); fault != PointsFault::None) {
+        diags.error({file, 0, 0}, fault == PointsFault::BeyondRange ? problem + ": give the curve in smaller units"
+                                                                     : problem);
+        return std::nullopt;
     }
     if (c.type == "bezier" && c.points.size() > kMaxBezierDegree + 1) {
         diags.error({file, 0, 0}, fmt::format("a bezier curve of {} points is of degree {}, more than the {} relief "

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json_fwd.hpp>
+
 #include "core/diagnostics.h"
 
 namespace relief::curves {
@@ -51,6 +53,17 @@ struct CurveFile {
 /// its root finding short.
 inline constexpr double kMaxCoordinate = 1e15;
 inline constexpr size_t kMaxBezierDegree = 20;
+
+/// What is wrong with a list of points, if anything.
+enum class PointsFault { None, NotPoints, BeyondRange };
+
+/// Reads `points`, a JSON array [[x, y], ...], into `out` as a curve file
+/// holds them: two finite numbers each, within kMaxCoordinate. Otherwise the
+/// fault, and `problem` naming the point by `name`, the array's name in the
+/// file ("points" gives "points[3] = [1e+300, 0] is beyond the 1e+15 ...").
+/// Shared with every file of curves relief reads (relief test's kept geometry).
+PointsFault readPoints(const nlohmann::json& points, const std::string& name, std::vector<Point2>& out,
+                       std::string& problem);
 
 /// Reads and checks a curve file: valid JSON, a known type, finite numbers
 /// within kMaxCoordinate, enough points for the type, a Bézier of at most

@@ -1,6 +1,6 @@
 // What GDAL may open for a scene (gdal_setup.h): the named file, checked, and
-// the files beside it, checked; a VRT only if it is made of elements that
-// name nothing but plain files in its own folder.
+// the files beside it or in it (an archive), checked; a VRT only if it is made
+// of elements that name nothing but plain files in its own folder.
 #include "geo/gdal_setup.h"
 
 #include <algorithm>
@@ -13,6 +13,8 @@
 
 #include <cpl_error.h>
 #include <cpl_minixml.h>
+#include <cpl_string.h>
+#include <cpl_vsi.h>
 #include <gdal.h>
 #include <fmt/format.h>
 
@@ -164,10 +166,54 @@ std::string vrtProblem(const fs::path& vrt, VrtWalk& walk) {
     return p.empty() ? "" : "it holds " + p;
 }
 
-// GDAL opens files beside a raster by the raster's name (dem.tif.ovr,
-// dem.tif.msk, dem.prj, dem.tfw, ...): each must be a regular file too (a FIFO
-// would block GDAL, a link to /dev/zero fill memory), and one that is a VRT is
-// checked as one.
+// The side files GDAL reads whole (CSLLoad, CPLParseXMLFile, VSIIngestFile):
+// a CRS, a shapefile's code page, a raster's header or statistics or colours,
+// metadata (.aux.xml and the imagery vendors' .xml, .imd, .rpb, .pvl), a
+// CSV's column types. The others (.dbf, .shx, .qix, .ovr, .msk, a
+// GeoPackage's -wal, ...) it reads a piece at a time, as it needs them.
+constexpr std::string_view kReadWholeSuffixes[] = {".prj", ".cpg", ".xml", ".hdr", ".stx", ".clr", ".csvt",
+                                                  ".rdc", ".sgrd", ".imd", ".rpb", ".pvl", ".wld"};
+
+// A world file of the dataset `mainName`, as GDAL looks for one: for dem.tif,
+// dem.tfw (the extension's first and last letters and a w) or dem.tifw.
+bool isWorldFileOf(const std::string& mainName, const std::string& sideName) {
+    const std::string main = asciiLower(mainName), side = asciiLower(sideName);
+    const size_t dot = main.rfind('.');
+    if (dot == std::string::npos || dot + 1 == main.size()) return false;
+    const std::string ext = main.substr(dot + 1);
+    return side.ends_with(fmt::format(".{}{}w", ext.front(), ext.back())) || side.ends_with("." + ext + "w");
+}
+
+bool readWhole(const std::string& mainName, const std::string& sideName) {
+    const std::string side = asciiLower(sideName);
+    return std::any_of(std::begin(kReadWholeSuffixes), std::end(kReadWholeSuffixes),
+                       [&](std::string_view suffix) { return side.ends_with(suffix); }) ||
+           isWorldFileOf(mainName, sideName);
+}
+
+constexpr std::string_view kRemoveOrReplace = "remove it, or put the real file there";
+
+// A file GDAL would read with `mainName`: a regular file (a FIFO would block
+// GDAL, a link to /dev/zero fill memory), within kMaxSideTextBytes when GDAL
+// reads it whole, and checked as a VRT when it is one.
+std::string sideFileProblem(const fs::path& file, const std::string& mainName) {
+    const std::string name = file.filename().string(), shown = printableExcerpt(name, 80);
+    if (std::string problem = inputFileProblem(file); !problem.empty())
+        return fmt::format("the file beside it that GDAL would read with it, {}, is not a plain file ({}); {}", shown,
+                           problem, kRemoveOrReplace);
+    if (readWhole(mainName, name))
+        if (std::string problem = inputFileProblem(file, kMaxSideTextBytes); !problem.empty())
+            return fmt::format("the file beside it that GDAL would read whole with it, {}: {}; {}", shown, problem,
+                               kRemoveOrReplace);
+    VrtWalk walk;
+    if (looksLikeVrt(file))
+        if (std::string problem = vrtProblem(file, walk); !problem.empty())
+            return fmt::format("the file beside it that GDAL would read with it, {}, is a VRT, and {}", shown, problem);
+    return "";
+}
+
+// GDAL opens files beside a dataset by its name (dem.tif.ovr, dem.tif.msk,
+// dem.prj, dem.tfw, walk.dbf, walk.cpg, ...): each is checked as above.
 std::string sidecarProblem(const fs::path& path, const SiblingFiles& beside) {
     std::error_code ec;
     const fs::path folder = fs::absolute(path, ec).parent_path();
@@ -175,17 +221,102 @@ std::string sidecarProblem(const fs::path& path, const SiblingFiles& beside) {
     for (const std::string& other : beside.names()) {
         const fs::path file = folder / other;
         if (other == name || fs::is_directory(file, ec)) continue;
-        const std::string shown = printableExcerpt(other, 80);
-        if (std::string problem = inputFileProblem(file); !problem.empty())
-            return fmt::format("the file beside it that GDAL would read with it, {}, is not a plain file ({})", shown,
-                               problem);
-        VrtWalk walk;
-        if (looksLikeVrt(file))
-            if (std::string problem = vrtProblem(file, walk); !problem.empty())
-                return fmt::format("the file beside it that GDAL would read with it, {}, is a VRT, and {}", shown,
-                                   problem);
+        if (std::string problem = sideFileProblem(file, name); !problem.empty()) return problem;
     }
     return "";
+}
+
+struct StringListDeleter {
+    void operator()(char** list) const { CSLDestroy(list); }
+};
+
+// A file of an archive, as GDAL's /vsizip/ names it, and the size its headers declare.
+struct ArchivedFile {
+    std::string vsiPath, name;
+    std::uintmax_t declaredBytes = 0;
+};
+
+// Whether `file` inflates to more bytes than it declares. GDAL 3.6's /vsizip/
+// inflates a file until its deflate stream ends, whatever its headers say (a
+// file declared 1,000 bytes reads back as 100 MB): only reading tells.
+bool inflatesPastDeclared(const ArchivedFile& file) {
+    VSILFILE* f = VSIFOpenL(file.vsiPath.c_str(), "rb");
+    if (!f) return false;  // GDAL cannot open it either
+    std::vector<char> buffer(1 << 16);
+    std::uintmax_t inflated = 0;
+    while (inflated <= file.declaredBytes) {
+        const size_t n = VSIFReadL(buffer.data(), 1, buffer.size(), f);
+        if (n == 0) break;
+        inflated += n;
+    }
+    VSIFCloseL(f);
+    return inflated > file.declaredBytes;
+}
+
+// The files at the top of the archive `root` (a /vsizip/ path; GDAL's
+// shapefile driver reads no deeper); nullopt, with `problem` set, when there
+// are more than kMaxArchiveFiles or one GDAL reads whole declares more than
+// kMaxSideTextBytes.
+std::optional<std::vector<ArchivedFile>> archivedFiles(const std::string& root, std::string& problem) {
+    const std::unique_ptr<char*, StringListDeleter> names(VSIReadDirEx(root.c_str(), kMaxArchiveFiles + 1));
+    std::vector<ArchivedFile> files;
+    if (!names) return files;  // not an archive GDAL lists, so not one it reads files from
+    if (CSLCount(names.get()) > kMaxArchiveFiles) {
+        problem = fmt::format("it is an archive of more than {} files: unzip it and name the file to read",
+                              kMaxArchiveFiles);
+        return std::nullopt;
+    }
+    for (char** name = names.get(); *name; ++name) {
+        ArchivedFile file{root + "/" + *name, printableExcerpt(*name, 80), 0};
+        VSIStatBufL st;
+        if (VSIStatL(file.vsiPath.c_str(), &st) != 0 || VSI_ISDIR(st.st_mode)) continue;
+        file.declaredBytes = static_cast<std::uintmax_t>(st.st_size);
+        if (readWhole("", *name) && file.declaredBytes > kMaxSideTextBytes) {
+            problem = fmt::format("its file {}, which GDAL reads whole, inflates to {}, more than the {} such a file "
+                                  "may be; remove it from the archive, or give the real files",
+                                  file.name, byteSize(file.declaredBytes), byteSize(kMaxSideTextBytes));
+            return std::nullopt;
+        }
+        files.push_back(std::move(file));
+    }
+    return files;
+}
+
+// What the files of an archive declare, held to kMaxArchiveBytes before
+// anything is inflated; then each inflated once, to one buffer past what it
+// declares at most, to show that it holds no more.
+std::string inflationProblem(const std::vector<ArchivedFile>& files) {
+    std::uintmax_t declared = 0;
+    for (const auto& f : files) declared += f.declaredBytes;
+    if (declared > kMaxArchiveBytes)
+        return fmt::format("its files inflate to {}, more than the {} relief lets GDAL inflate from an archive: "
+                           "unzip it and name the file to read",
+                           byteSize(declared), byteSize(kMaxArchiveBytes));
+    for (const auto& f : files)
+        if (inflatesPastDeclared(f))
+            return fmt::format("its file {} inflates to more than the {} it declares: the archive is damaged or "
+                               "forged; give the real files",
+                               f.name, byteSize(f.declaredBytes));
+    return "";
+}
+
+// An archive GDAL opens as a dataset (a shapefile's .shp.zip or .shz), read
+// through GDAL's own /vsizip/, as GDAL will read it.
+std::string archiveProblem(const fs::path& path) {
+    std::error_code ec;
+    const std::string root = "/vsizip/" + fs::absolute(path, ec).string();
+    CPLPushErrorHandler(CPLQuietErrorHandler);
+    std::string problem;
+    if (const auto files = archivedFiles(root, problem)) problem = inflationProblem(*files);
+    CPLPopErrorHandler();
+    return problem;
+}
+
+// GDAL's shapefile driver opens a .shp.zip or .shz as the archive it is; its
+// raster drivers open no archive by its name (3.6).
+bool isArchiveName(const fs::path& path) {
+    const std::string name = asciiLower(path.filename().string());
+    return name.ends_with(".zip") || name.ends_with(".shz");
 }
 
 }  // namespace
@@ -220,25 +351,28 @@ SiblingFiles::SiblingFiles(const FolderNames& folder, const std::string& name) :
     list_.push_back(nullptr);
 }
 
-std::string gdalInputProblem(const fs::path& path, const FolderNames* siblings) {
+std::string gdalInputProblem(const fs::path& path, const FolderNames* siblings, DatasetKind kind) {
     if (std::string problem = inputFileProblem(path); !problem.empty()) return problem;
     setUpGdal();
+    if (kind == DatasetKind::Vector && isArchiveName(path))
+        if (std::string problem = archiveProblem(path); !problem.empty()) return problem;
     std::optional<FolderNames> listedHere;
     const FolderNames& names = siblings ? *siblings : listedHere.emplace(FolderNames::of(path));
     const SiblingFiles beside(names, path.filename().string());
     CPLPushErrorHandler(CPLQuietErrorHandler);
-    GDALDriverH driver = GDALIdentifyDriverEx(path.c_str(), GDAL_OF_RASTER, nullptr, beside.forGdal());
+    GDALDriverH driver = GDALIdentifyDriverEx(path.c_str(), kind == DatasetKind::Vector ? GDAL_OF_VECTOR : GDAL_OF_RASTER,
+                                              nullptr, beside.forGdal());
     CPLPopErrorHandler();
     if ((driver && std::string_view(GDALGetDriverShortName(driver)) == "VRT") || looksLikeVrt(path)) {
         VrtWalk walk;
         if (const std::string problem = vrtProblem(path, walk); !problem.empty()) return "it is a VRT, and " + problem;
     }
-    if (!driver) return "";  // a file GDAL does not take for a raster brings no sidecars
+    if (!driver) return "";  // a file GDAL does not take for a dataset of that kind brings no sidecars
     // Told of no side file, GDAL would lose a .prj or a .tfw without a word; left to look for them
     // by name, it would read them unchecked.
     if (!names.listed())
-        return "its folder cannot be listed, so the files GDAL reads beside it (.prj, .tfw, .ovr, ...) cannot be "
-               "checked: let relief read the folder (chmod +r), or copy the raster and its side files elsewhere";
+        return "its folder cannot be listed, so the files GDAL reads beside it (.prj, .tfw, .ovr, .dbf, ...) cannot "
+               "be checked: let relief read the folder (chmod +r), or copy the file and its side files elsewhere";
     return sidecarProblem(path, beside);
 }
 

@@ -12,7 +12,10 @@
 //    network is off;
 //  - CRS text from a scene is read without files or network (crsFromText,
 //    geo/gdal_crs.h, the one header here that speaks GDAL's types);
+//  - the files GDAL reads beside a dataset, or inside an archive it opens
+//    (a .shp.zip), are checked before it opens the dataset (gdalInputProblem);
 //  - GDAL's own messages never reach the terminal: relief words its errors.
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <utility>
@@ -67,12 +70,27 @@ private:
     std::vector<const char*> list_;
 };
 
-/// Why GDAL must not open `path` for a scene, as the end of a sentence, or
-/// "": it is not a regular file (inputFileProblem), or "it is a VRT, and it
-/// holds ..." a file outside its folder, a network or virtual path, or a raw,
-/// derived, warped or pansharpened band or dataset; or a file beside it that
-/// GDAL would read with it is. `siblings`: the names in `path`'s folder,
-/// listed here when not given.
-std::string gdalInputProblem(const std::filesystem::path& path, const FolderNames* siblings = nullptr);
+/// The most bytes a file beside a dataset may have when GDAL reads it whole
+/// (a .prj, .cpg, world file, ENVI or EHdr header, .aux.xml or other
+/// metadata: a few kB in use), in a folder or inflated from an archive.
+inline constexpr std::uintmax_t kMaxSideTextBytes = 16'000'000;
+/// What GDAL may inflate from an archive it opens as a dataset (a .shp.zip or
+/// .shz), all its files together, and how many files it may hold.
+inline constexpr std::uintmax_t kMaxArchiveBytes = 1'000'000'000;
+inline constexpr int kMaxArchiveFiles = 1000;
+
+/// What a scene asks GDAL to open a file as.
+enum class DatasetKind { Raster, Vector };
+
+/// Why GDAL must not open `path` for a scene as `kind`, as the end of a sentence, or "": it is not a regular file
+/// (inputFileProblem), or "it is a VRT, and it holds ..." a file outside its
+/// folder, a network or virtual path, or a raw, derived, warped or
+/// pansharpened band or dataset; or a file beside it that GDAL would read
+/// with it is not a plain file, or is too big to be read whole; or it is an
+/// archive (.zip, .shz) whose files inflate past what they declare or the
+/// caps above. `siblings`: the names in `path`'s folder, listed here when not
+/// given.
+std::string gdalInputProblem(const std::filesystem::path& path, const FolderNames* siblings = nullptr,
+                             DatasetKind kind = DatasetKind::Raster);
 
 }  // namespace relief::geo

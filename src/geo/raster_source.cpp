@@ -40,7 +40,7 @@ Dataset openChecked(const std::filesystem::path& path, unsigned kind, std::strin
                     const FolderNames* siblings, const char* const* openOptions) {
     std::optional<FolderNames> listedHere;
     if (!siblings) siblings = &listedHere.emplace(FolderNames::of(path));
-    problem = gdalInputProblem(path, siblings);
+    problem = gdalInputProblem(path, siblings, (kind & GDAL_OF_VECTOR) ? DatasetKind::Vector : DatasetKind::Raster);
     if (!problem.empty()) return Dataset();
     // Absolute: a relative name is never taken for a driver's prefix ("NETCDF:...").
     std::error_code ec;

@@ -49,7 +49,8 @@ bool verticesInWgs84(OGRLayerH layer, OGRGeometryH line, std::vector<GeoPoint>& 
     for (int i = 0; i < n; ++i) {
         double x = OGR_G_GetX(line, i), y = OGR_G_GetY(line, i), z = OGR_G_GetZ(line, i);
         const auto t = static_cast<OGRCoordinateTransformationH>(toWgs84.get());
-        if (t && !OCTTransform(t, 1, &x, &y, nullptr)) return false;
+        // With its z: in a geocentric CRS (X, Y, Z from the Earth's centre) a vertex's place needs all three.
+        if (t && !OCTTransform(t, 1, &x, &y, &z)) return false;
         if (!(std::isfinite(x) && std::isfinite(y) && std::fabs(x) <= 180 && std::fabs(y) <= 90)) return false;
         out.push_back({x, y, std::isfinite(z) ? z : 0.0});
     }

@@ -28,7 +28,8 @@ std::string layerNamesOf(GDALDatasetH ds);
 /// The vertices of the first line in `path` (a LineString, or a
 /// MultiLineString's first part) of the layer named `layer`, or of the first
 /// layer holding one when `layer` is "", as WGS84 lon, lat and the file's z
-/// (0 without one). A file without a CRS is taken as lon, lat. Nullopt, after
+/// carried with them (0 without one; in a geocentric CRS, the height above
+/// the ellipsoid). A file without a CRS is taken as lon, lat. Nullopt, after
 /// an error at `at` naming the file (and its layers), when GDAL cannot read it,
 /// the layer does not exist, or no line is there.
 std::optional<std::vector<GeoPoint>> firstLineOf(const std::filesystem::path& path, const std::string& layer,

@@ -42,9 +42,26 @@ OGRLayerH findLayer(GDALDatasetH ds, const std::string& name) {
     return name.empty() && GDALDatasetGetLayerCount(ds) > 0 ? GDALDatasetGetLayer(ds, 0) : nullptr;
 }
 
+// A layer's coordinates carried to WGS84 lon, lat; `geocentric`: its CRS's
+// X, Y, Z are from the Earth's centre, so a vertex needs all three to be a place.
+struct LayerCrs {
+    Transform toWgs84;
+    bool geocentric = false;
+};
+
+// A layer lies on the surface: its heights are never used. In a geocentric
+// CRS, though, the Z of a vertex is a third of its place, not a height: it is
+// used to place it, and the warning says its height is not.
+void warnGeocentric(const scene::LayerSpec& spec, Diagnostics& diags) {
+    diags.warning(spec.locs.at("layer.path"),
+                  fmt::format("layer {} ({}): its CRS is geocentric (X, Y, Z from the Earth's centre): each vertex is "
+                              "placed from all three, and its height is not used (a layer lies on the surface)",
+                              spec.number, printableExcerpt(spec.pathAsWritten, 200)));
+}
+
 // Whose coordinates: the file's own CRS, else the scene's `crs`, else WGS84
 // lon, lat (nullptr: no transformation). Sets `problem` when it cannot be placed.
-Transform toWgs84Of(OGRLayerH layer, const scene::LayerSpec& spec, Diagnostics& diags, std::string& problem) {
+LayerCrs toWgs84Of(OGRLayerH layer, const scene::LayerSpec& spec, Diagnostics& diags, std::string& problem) {
     OGRSpatialReferenceH own = OGR_L_GetSpatialRef(layer);
     Srs srs;
     if (own) {
@@ -58,17 +75,22 @@ Transform toWgs84Of(OGRLayerH layer, const scene::LayerSpec& spec, Diagnostics& 
     } else {
         return {};
     }
-    OSRSetAxisMappingStrategy(static_cast<OGRSpatialReferenceH>(srs.get()), OAMS_TRADITIONAL_GIS_ORDER);
-    Transform t = std::move(wgs84Transforms(static_cast<OGRSpatialReferenceH>(srs.get())).second);
-    if (!t) problem = "its CRS has no transformation to WGS84";
-    return t;
+    const auto h = static_cast<OGRSpatialReferenceH>(srs.get());
+    OSRSetAxisMappingStrategy(h, OAMS_TRADITIONAL_GIS_ORDER);
+    LayerCrs crs{std::move(wgs84Transforms(h).second), OSRIsGeocentric(h) != 0};
+    if (!crs.toWgs84) problem = "its CRS has no transformation to WGS84";
+    else if (crs.geocentric) warnGeocentric(spec, diags);
+    return crs;
 }
 
 // Reads every feature's geometry and label into `out`, within the limit.
 class FeatureReader {
 public:
-    FeatureReader(OGRCoordinateTransformationH toWgs84, int labelField, long long maxVertices)
-        : toWgs84_(toWgs84), labelField_(labelField), maxVertices_(maxVertices) {}
+    FeatureReader(const LayerCrs& crs, int labelField, long long maxVertices)
+        : toWgs84_(static_cast<OGRCoordinateTransformationH>(crs.toWgs84.get())),
+          geocentric_(crs.geocentric),
+          labelField_(labelField),
+          maxVertices_(maxVertices) {}
 
     // False, with `problem` set, at the first vertex that cannot be placed or past the limit.
     bool read(OGRFeatureH f, const std::string& fixedLabel, VectorLayer& out, std::string& problem) {
@@ -122,11 +144,18 @@ private:
             overLimit_ = true;
             return false;
         }
+        if (geocentric_ && !OGR_G_Is3D(g)) {
+            problem = fmt::format("feature {} has no Z: in a geocentric CRS (X, Y, Z from the Earth's centre) a "
+                                  "vertex needs all three to be a place; give the layer with its Z or in longitude "
+                                  "and latitude",
+                                  f.fid);
+            return false;
+        }
         std::vector<GeoPoint>& part = f.parts.emplace_back();
         part.reserve(static_cast<size_t>(n));
         for (int i = 0; i < n; ++i) {
-            double x = OGR_G_GetX(g, i), y = OGR_G_GetY(g, i);
-            if (toWgs84_ && !OCTTransform(toWgs84_, 1, &x, &y, nullptr)) x = NAN;
+            double x = OGR_G_GetX(g, i), y = OGR_G_GetY(g, i), z = OGR_G_GetZ(g, i);
+            if (toWgs84_ && !OCTTransform(toWgs84_, 1, &x, &y, &z)) x = NAN;
             if (!(std::isfinite(x) && std::isfinite(y) && std::fabs(x) <= 180 && std::fabs(y) <= 90)) {
                 problem = fmt::format("feature {} has a vertex ({}, {}) that is not a longitude and latitude{}",
                                       f.fid, formatShortest(OGR_G_GetX(g, i)), formatShortest(OGR_G_GetY(g, i)),
@@ -139,6 +168,7 @@ private:
     }
 
     OGRCoordinateTransformationH toWgs84_;
+    bool geocentric_;
     int labelField_;
     long long maxVertices_;
     bool overLimit_ = false;
@@ -184,14 +214,14 @@ std::optional<VectorLayer> readVectorLayer(const scene::LayerSpec& spec, long lo
     const auto labelField = labelFieldOf(layer, spec, diags);
     if (!labelField) return std::nullopt;
     std::string problem;
-    const Transform toWgs84 = toWgs84Of(layer, spec, diags, problem);
+    const LayerCrs crs = toWgs84Of(layer, spec, diags, problem);
     if (!problem.empty()) {
         diags.error(spec.locs.at("layer.crs"), fmt::format("{}: {}", shown, problem));
         return std::nullopt;
     }
     VectorLayer out;
     out.name = OGR_L_GetName(layer);
-    FeatureReader reader(static_cast<OGRCoordinateTransformationH>(toWgs84.get()), *labelField, maxVertices);
+    FeatureReader reader(crs, *labelField, maxVertices);
     OGR_L_ResetReading(layer);
     while (Feature f{OGR_L_GetNextFeature(layer)}) {
         if (reader.read(static_cast<OGRFeatureH>(f.get()), spec.labelText, out, problem)) continue;

@@ -247,8 +247,8 @@ void copyTemplates(RenderPlan& plan, const fs::path& templatesDir) {
                                                     files.size(), byteSize(bytes), kMaxTemplateFiles,
                                                     byteSize(kMaxTemplateFolderBytes)));
     for (const auto& f : files) {
-        fs::copy_file(f, plan.dir / "templates" / f.filename(), ec);
-        if (ec) throw OutputError(plan.dir / "templates" / f.filename(), "cannot be written: " + ec.message());
+        if (const std::string error = copyFileContents(f, plan.dir / "templates" / f.filename()); !error.empty())
+            throw OutputError(plan.dir / "templates" / f.filename(), "cannot be written: " + error);
         plan.templates.push_back({f.filename().string(), {}, "a template file", ""});
     }
 }

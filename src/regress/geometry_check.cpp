@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <limits>
+#include <stdexcept>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -12,6 +13,7 @@
 #include "core/input_file.h"
 #include "core/number_format.h"
 #include "core/text_escape.h"
+#include "curves/curve_file.h"
 #include "measure/surface_curves.h"
 #include "pipeline.h"
 #include "plot/svg.h"
@@ -50,11 +52,6 @@ json pointsJson(const std::vector<curves::Point2>& points) {
     for (const auto& p : points) a.push_back({p.x, p.y});
     return a;
 }
-std::vector<curves::Point2> pointsOf(const json& a) {
-    std::vector<curves::Point2> out;
-    for (const auto& p : a) out.push_back({p.at(0).get<double>(), p.at(1).get<double>()});
-    return out;
-}
 
 json curvesJson(const measure::SurfaceCurves& c, double peakLossM) {
     json profiles = json::array(), levels = json::array();
@@ -68,24 +65,73 @@ json curvesJson(const measure::SurfaceCurves& c, double peakLossM) {
             {"profiles", profiles}, {"levels", levels}};
 }
 
-// The kept curves, or nullopt (with `problem`) when there are none or they are not a geometry file.
-std::optional<std::pair<measure::SurfaceCurves, double>> keptCurves(const fs::path& file, std::string& problem) {
-    const auto text = readInputFile(file, 256 << 20, problem);
-    if (!text) return std::nullopt;
-    try {
-        const json j = json::parse(*text);
-        if (j.at("relief_geometry").get<int>() != kGeometryFormat) throw std::invalid_argument("format");
-        measure::SurfaceCurves c;
-        c.frame = j.at("frame").get<std::string>();
-        for (const auto& p : j.at("profiles")) c.profiles.push_back({p.at("name").get<std::string>(), pointsOf(p.at("points"))});
-        for (const auto& l : j.at("levels")) {
-            measure::SurfaceCurves::Level level{l.at("level").get<double>(), {}};
-            for (const auto& line : l.at("lines")) level.lines.push_back(pointsOf(line));
-            c.levels.push_back(std::move(level));
+struct KeptCurves {
+    measure::SurfaceCurves curves;
+    double peakLossM = 0;
+};
+
+// A kept line, read as a curve file's points are (curves/curve_file.h): at
+// least one, finite, within kMaxCoordinate. Nullopt with `problem` set.
+std::optional<std::vector<curves::Point2>> keptLine(const json& points, const std::string& name,
+                                                    std::string& problem) {
+    std::vector<curves::Point2> line;
+    if (curves::readPoints(points, name, line, problem) != curves::PointsFault::None) return std::nullopt;
+    if (line.empty()) {
+        problem = name + " holds no point";
+        return std::nullopt;
+    }
+    return line;
+}
+
+const json& arrayAt(const json& j, const char* key) {
+    const json& a = j.at(key);
+    if (!a.is_array()) throw std::invalid_argument(key);
+    return a;
+}
+
+// The curves of a geometry file's JSON; nullopt with `problem` set for a
+// point that is not one, and json::exception for any other shape.
+std::optional<KeptCurves> keptCurvesOf(const json& j, std::string& problem) {
+    if (j.at("relief_geometry").get<int>() != kGeometryFormat) throw std::invalid_argument("format");
+    KeptCurves k;
+    k.curves.frame = j.at("frame").get<std::string>();
+    const json& profiles = arrayAt(j, "profiles");
+    for (size_t i = 0; i < profiles.size(); ++i) {
+        auto line = keptLine(profiles.at(i).at("points"), fmt::format("profiles[{}].points", i), problem);
+        if (!line) return std::nullopt;
+        k.curves.profiles.push_back({profiles.at(i).at("name").get<std::string>(), std::move(*line)});
+    }
+    const json& levels = arrayAt(j, "levels");
+    for (size_t i = 0; i < levels.size(); ++i) {
+        measure::SurfaceCurves::Level level{levels.at(i).at("level").get<double>(), {}};
+        const json& lines = arrayAt(levels[i], "lines");
+        for (size_t n = 0; n < lines.size(); ++n) {
+            auto line = keptLine(lines.at(n), fmt::format("levels[{}].lines[{}]", i, n), problem);
+            if (!line) return std::nullopt;
+            level.lines.push_back(std::move(*line));
         }
-        return std::pair{c, j.at("peak_loss_m").get<double>()};
+        k.curves.levels.push_back(std::move(level));
+    }
+    k.peakLossM = j.at("peak_loss_m").get<double>();
+    return k;
+}
+
+// The kept curves, read as curve files are (the size cap, coordinates within
+// kMaxCoordinate). Nullopt with `problem` "no such file" when none are kept;
+// with another problem when the file is not a geometry file relief reads (a
+// FIFO, too big, not JSON, another shape, a point beyond the limits).
+std::optional<KeptCurves> keptCurves(const fs::path& file, std::string& problem) {
+    const auto text = readInputFile(file, kMaxCurveBytes, problem);
+    if (!text) return std::nullopt;
+    const json j = json::parse(*text, nullptr, false);  // no exceptions: a number past 1e308 is discarded too
+    if (j.is_discarded()) {
+        problem = "it is not JSON";
+        return std::nullopt;
+    }
+    try {
+        return keptCurvesOf(j, problem);
     } catch (const std::exception&) {
-        problem = "not the geometry file relief test writes (--update keeps the new curves)";
+        problem = "it is not the geometry file relief test writes";
         return std::nullopt;
     }
 }
@@ -195,6 +241,15 @@ GeometryChecks readGeometryChecks(const toml::table& t, const std::string& file,
 std::string checkGeometry(const fs::path& scenePath, const std::vector<std::pair<std::string, std::string>>& overrides,
                           const GeometryChecks& checks, const fs::path& referenceDir, const fs::path& newCurves,
                           const fs::path& plotDir, const std::string& caseName, std::vector<GeometryResult>& results) {
+    // No kept curves: the case is new, and --update keeps the new ones. Kept
+    // curves that cannot be read are an error, never taken for none: --update
+    // would replace them unseen.
+    std::string problem;
+    const fs::path keptFile = referenceDir / kGeometryFile;
+    const auto kept = keptCurves(keptFile, problem);
+    if (!kept && problem != "no such file")
+        return fmt::format("{}: {}; remove it, and relief test --update keeps the new curves there", keptFile.string(),
+                           problem);
     Diagnostics diags;
     const auto loaded = loadScene(scenePath, diags, overrides);
     auto surface = loaded ? buildSurface(*loaded, diags, 1) : std::nullopt;
@@ -207,21 +262,16 @@ std::string checkGeometry(const fs::path& scenePath, const std::vector<std::pair
         return "the surface cannot be measured";
     }
     writeFileAtomically(newCurves, curvesJson(*now, surface->peakLoss.lossM).dump(1) + "\n");
-    // Kept curves that cannot be read are none: the case is New, and --update keeps these.
-    std::string problem;
-    const auto kept = keptCurves(referenceDir / kGeometryFile, problem);
-    checkCurves(*now, kept ? &kept->first : nullptr, checks, plotDir, caseName, results);
+    checkCurves(*now, kept ? &kept->curves : nullptr, checks, plotDir, caseName, results);
     if (checks.peakLossToleranceM) {
         GeometryResult r{"peak loss", kept.has_value(), 0, *checks.peakLossToleranceM, false, "", {}};
         if (kept) {
-            r.distanceM = std::abs(surface->peakLoss.lossM - kept->second);
+            r.distanceM = std::abs(surface->peakLoss.lossM - kept->peakLossM);
             r.pass = r.distanceM <= r.toleranceM;
-            r.where = fmt::format("now {:.3f} m, kept {:.3f} m", surface->peakLoss.lossM, kept->second);
+            r.where = fmt::format("now {:.3f} m, kept {:.3f} m", surface->peakLoss.lossM, kept->peakLossM);
         }
         results.push_back(r);
     }
-    if (!kept && problem != "no such file")
-        for (auto& r : results) r.where = fmt::format("{}: {}", (referenceDir / kGeometryFile).string(), problem);
     return "";
 }
 

@@ -49,7 +49,9 @@ GeometryChecks readGeometryChecks(const toml::table& t, const std::string& file,
 /// The case's surface (the scene, with the case's size) measured and held to
 /// the kept curves in `referenceDir`; the new curves written to `newCurves`
 /// (what --update keeps) and a plot a check into `plotDir`. "" or why the
-/// surface could not be measured.
+/// surface could not be measured, or why the kept curves cannot be read (a
+/// geometry.json that is damaged, a FIFO, too big, or holds a coordinate
+/// beyond curves::kMaxCoordinate: read as curve files are).
 std::string checkGeometry(const std::filesystem::path& scene, const std::vector<std::pair<std::string, std::string>>& overrides,
                           const GeometryChecks& checks, const std::filesystem::path& referenceDir,
                           const std::filesystem::path& newCurves, const std::filesystem::path& plotDir,

@@ -401,11 +401,7 @@ std::vector<CaseResult> runCases(const Manifest& m, const RunOptions& o, const C
             // written whole first, the other references removed only then.
             const fs::path ref = r.testCase->referenceDir / "ref.png";
             try {
-                writeThroughTemporary(ref, [&](const fs::path& staged) {
-                    std::error_code ec;
-                    fs::copy_file(r.newImage, staged, ec);
-                    return ec ? ec.message() : std::string();
-                });
+                writeThroughTemporary(ref, [&](const fs::path& staged) { return copyFileContents(r.newImage, staged); });
             } catch (const OutputError& e) {
                 r.message += "; not blessed: " + std::string(e.what());
                 continue;
@@ -418,9 +414,7 @@ std::vector<CaseResult> runCases(const Manifest& m, const RunOptions& o, const C
                 const fs::path kept = r.testCase->referenceDir / kGeometryFile;
                 try {
                     writeThroughTemporary(kept, [&](const fs::path& staged) {
-                        std::error_code copied;
-                        fs::copy_file(r.newGeometry, staged, copied);
-                        return copied ? copied.message() : std::string();
+                        return copyFileContents(r.newGeometry, staged);
                     });
                     r.message += fmt::format(", its curves as {}", kept.string());
                 } catch (const OutputError& e) {

@@ -381,11 +381,7 @@ std::string deliver(const std::filesystem::path& raw, const RenderRequest& req) 
     if (!req.rows && !req.rawOutput) return writeCanonicalPng(raw, req.png);
     try {
         if (!req.rows) {
-            writeThroughTemporary(req.png, [&](const std::filesystem::path& staged) {
-                std::error_code ec;
-                std::filesystem::copy_file(raw, staged, ec);
-                return ec ? ec.message() : std::string();
-            });
+            writeThroughTemporary(req.png, [&](const std::filesystem::path& staged) { return copyFileContents(raw, staged); });
             return "";
         }
         PngImage8 image;

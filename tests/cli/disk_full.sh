@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# A full disk and an output folder that cannot be made: clear errors, exit 2, nothing
-# half-written. The disk is a 1 MB tmpfs mounted in a private mount namespace (needs root or
+# A full disk and an output folder that cannot be made: clear errors naming the disk full, exit 2,
+# nothing half-written. The disk is a 1 MB tmpfs mounted in a private mount namespace (needs root or
 # user namespaces; skipped where neither is allowed).
 # Usage: disk_full.sh RELIEF SOURCE_DIR WORK_DIR
 set -u
@@ -19,7 +19,7 @@ check() {  # name, expected exit code, files that may stay (a regex; "" none), c
   "$@" > "$disk/../$name.out" 2> "$disk/../$name.err"
   local code=$?
   [ "$code" = "$want" ] || { echo "FAIL: $name: exit $code, expected $want"; cat "$disk/../$name.err"; status=1; }
-  grep -q "No space left on device" "$disk/../$name.err" ||
+  grep -q "the disk is full (No space left on device); make room on that disk or write elsewhere" "$disk/../$name.err" ||
     { echo "FAIL: $name: the error does not say the disk is full:"; cat "$disk/../$name.err"; status=1; }
   [ "$(wc -l < "$disk/../$name.err")" -le 2 ] || { echo "FAIL: $name: more than an error line and the count"; status=1; }
   leftovers=$(find "$disk" -type f | { if [ -n "$may" ]; then grep -Ev "$may"; else cat; fi })
@@ -33,6 +33,18 @@ check height-field 2 "" "$relief" compile -q "$src/scenes/default.toml" --set ge
 # A still: the .pov fits (and stays, whole, as after any failed render), the PNG does not.
 check still 2 '/still\.(pov|json)$' "$relief" render -q "$src/scenes/mt-eden-lidar.toml" --set render.width=1600 --set render.height=1200 \
   --set geometry.kind=adaptive --set geometry.tolerance_px=20 -o "$disk/out/still.png"
+# A PDF that does not fit where its tile did (a 2 MB disk): the disk named full, where cairo's own
+# writer said only "error while writing to output stream"; the render's plan kept for --resume.
+mount -o remount,size=2m "$disk" || exit 77
+rm -rf "${disk:?}"/*
+"$relief" render -q "$src/scenes/mt-eden-lidar.toml" --set render.width=1600 --set render.height=1200 \
+  --set geometry.kind=adaptive --set geometry.tolerance_px=20 -o "$disk/out/still.pdf" 2> "$disk/../pdf.err"
+code=$?
+echo "pdf: exit $code: $(head -1 "$disk/../pdf.err")"
+[ "$code" = 2 ] || { echo "FAIL: pdf: exit $code, expected 2"; status=1; }
+[ "$(head -1 "$disk/../pdf.err")" = "$disk/out/still.pdf: error: cannot be written: the disk is full (No space left on device); make room on that disk or write elsewhere" ] ||
+  { echo "FAIL: pdf: the error does not say the disk is full:"; cat "$disk/../pdf.err"; status=1; }
+[ -z "$(find "$disk" -type f | grep -v '/still\.plan/')" ] || { echo "FAIL: pdf: files left beside the plan"; status=1; }
 exit $status
 INSIDE
 unshare $flag bash "$work/inside.sh" "$relief" "$src" "$work/disk"

@@ -3,8 +3,9 @@
 # until --update keeps its curves beside its image; then it passes. A scheme parameter changed so
 # little that the still passes at --fail 0.04 moves a profile by more than its tolerance: the case
 # fails by its geometry (exit 1), and the report, summary.json and junit.xml say which check, by how
-# much, against what tolerance, with a plot of both curves. Bad geometry keys are errors at their
-# lines (exit 2).
+# much, against what tolerance, with a plot of both curves. A kept geometry.json that cannot be
+# read (huge coordinates, not JSON, a FIFO, too big) makes the case an error, which --update leaves
+# alone. Bad geometry keys are errors at their lines (exit 2).
 # Usage: geometry_checks.sh RELIEF SOURCE_DIR WORK_DIR
 . "$(dirname "$0")/lib.sh" "$@"
 needs_povray
@@ -36,6 +37,43 @@ grep -q "NEW .*geometry: no kept curves" r1.txt || { fail "the new case does not
 [ -f suite/ref/ref.png ] && [ -f suite/ref/geometry.json ] || fail "--update kept $(ls suite/ref 2>/dev/null | tr '\n' ' ')"
 "$relief" test suite/manifest.toml --report r3 > r3.txt 2>&1 || { fail "the blessed case does not pass:"; cat r3.txt; }
 grep -q "PASS .*geometry: 4 checks within their tolerances" r3.txt || { fail "no geometry verdict:"; cat r3.txt; }
+
+# Kept curves that cannot be read are an error naming the file, never "no curves kept": the case
+# errs (exit 1, not NEW), and --update leaves the file and the image as they are (shown for two). A
+# coordinate of 1e300 (which crashed relief test), a file that is not JSON, one of another shape, a
+# FIFO (taken for no curves, and replaced by --update), one over the 64 MB a curve file may be.
+kept=suite/ref/geometry.json
+cp "$kept" kept.json && cp suite/ref/ref.png kept.png
+python3 - kept.json huge.json <<'PY' || fail "the geometry file with a coordinate of 1e300"
+import json, sys
+j = json.load(open(sys.argv[1]))
+j['profiles'][0]['points'][3] = [1e300, 0]
+json.dump(j, open(sys.argv[2], 'w'))
+PY
+damaged() {  # damaged NAME EXPECTED_PROBLEM [--update]: the case with the kept file the caller made
+  local name=$1 want=$2 line
+  line="[1/1] ERROR   maungawhau: geometry: $kept: $want; remove it, and relief test --update keeps the new curves there"
+  for update in "" ${3:-}; do
+    timeout 60 "$relief" test suite/manifest.toml $update --report "d-$name" > "d-$name.txt" 2>&1; local code=$?
+    [ $code = "$([ -z "$update" ] && echo 1 || echo 0)" ] || fail "$name $update: exit $code"
+    [ "$(grep maungawhau "d-$name.txt" | sed 's/ ([0-9.]* s):/:/')" = "$line" ] ||
+      { fail "$name $update: the case is not an error naming the file:"; cat "d-$name.txt"; }
+  done
+  cmp -s suite/ref/ref.png kept.png || fail "$name: --update replaced the image"
+}
+cp huge.json "$kept"
+damaged huge-coordinate "profiles[0].points[3] = [1e+300, 0] is beyond the 1e+15 a coordinate may be (in metres, 1e15 is a thousand times the distance to the Sun)" --update
+cmp -s huge.json "$kept" || fail "huge-coordinate: --update replaced the kept curves"
+head -c 100 kept.json > "$kept"
+damaged not-json "it is not JSON"
+echo '{"relief_geometry": 1, "frame": "utm", "profiles": {}, "levels": [], "peak_loss_m": 0}' > "$kept"
+damaged other-shape "it is not the geometry file relief test writes"
+rm "$kept" && mkfifo "$kept"
+damaged fifo "it is a FIFO (a named pipe), not a file" --update
+[ -p "$kept" ] || fail "fifo: --update replaced the FIFO"
+rm "$kept" && truncate -s 65000001 "$kept"
+damaged too-big "it is 65 MB, more than the 64 MB such a file may be"
+cp kept.json "$kept"
 
 # omega 1/32 -> 0.034: the still within --fail 0.04, the profile moved by more than 5 cm.
 sed -i 's/^omega = 0.03125/omega = 0.034/' suite/scene.toml

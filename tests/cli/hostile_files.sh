@@ -2,7 +2,8 @@
 # Every file relief reads may be a FIFO that never ends, a device, a folder or far too large:
 # each reader (scene, template, samples, palette, drape image, curve, manifest, images to compare,
 # a test's references) refuses it at once, in one line naming the file and what it is, with exit
-# code 2 (4 for relief diff) and nothing written; no reader blocks (each run has 20 s).
+# code 2 (4 for relief diff) and nothing written; no reader blocks (each run has 20 s). An image to
+# compare is held to the pixel limit from its header: a PNG bomb is refused before it is decoded.
 # Usage: hostile_files.sh RELIEF SOURCE_DIR WORK_DIR
 . "$(dirname "$0")/lib.sh" "$@"
 enter_fresh_work
@@ -69,6 +70,21 @@ limit=(bash -c 'ulimit -v 2000000; exec "$0" "$@"')
 "${limit[@]}" "$relief" diff --help >/dev/null 2>&1 || limit=()
 expect diff-huge-header 4 "relief: error: $src/tests/data/images/huge-header.png: it says it is 12000 x 12000 pixels, more than its 177 bytes can hold: the file is damaged" \
   "${limit[@]}" "$relief" diff "$src/tests/data/images/huge-header.png" "$src/tests/data/images/huge-header.png"
+# A decompression bomb: a 12000 x 12000 PNG of zeros in about 140 kB, which its bytes can hold.
+# Refused from its header by the pixel limit, before either image or the difference image is
+# allocated (it passed the memory budget and died of SIGFPE after 20 s), under the same limit.
+python3 - bomb.png <<'PY' || fail "the bomb"
+import struct, sys, zlib
+def chunk(kind, data):
+    return struct.pack('>I', len(data)) + kind + data + struct.pack('>I', zlib.crc32(kind + data))
+width = height = 12000
+deflate = zlib.compressobj(9)
+rows = b''.join(deflate.compress(bytes(width + 1)) for _ in range(height)) + deflate.flush()
+header = struct.pack('>IIBBBBB', width, height, 8, 0, 0, 0, 0)  # 8-bit grey
+open(sys.argv[1], 'wb').write(b'\x89PNG\r\n\x1a\n' + chunk(b'IHDR', header) + chunk(b'IDAT', rows) + chunk(b'IEND', b''))
+PY
+expect diff-bomb 4 "relief: error: bomb.png: it says it is 12000 x 12000 pixels (144 Mpixels), more than the 40 Mpixels relief compares: compare smaller images, or crops of these" \
+  "${limit[@]}" "$relief" diff bomb.png bomb.png --diff-image out/heat.png
 # A truncated PNG: one line of relief's, none of libpng's.
 expect diff-truncated 4 "relief: error: $src/tests/data/images/truncated.png: it is a damaged or truncated PNG (Read Error)" \
   "$relief" diff "$src/tests/data/images/truncated.png" "$src/tests/data/images/a.png"

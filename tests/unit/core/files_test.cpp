@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <fstream>
 #include <stdexcept>
 #include <string>
@@ -81,6 +82,23 @@ TEST(AtomicFile, AFileNotCommittedLeavesNothing) {
     }
     EXPECT_EQ(read(dir / "x.json"), "old");
     EXPECT_EQ(names(dir), (std::vector<std::string>{"x.json"}));
+}
+
+TEST(AtomicFile, CopiesIntoANewFileAndWordsWhyNot) {
+    const fs::path dir = freshTestDir("atomic-copy");
+    const std::string bytes(300000, 'x');
+    write(dir / "a.png", bytes);
+    EXPECT_EQ(copyFileContents(dir / "a.png", dir / "b.png"), "");
+    EXPECT_EQ(read(dir / "b.png"), bytes);
+    // Never through a name taken, by a link or a file.
+    fs::create_symlink(dir / "a.png", dir / "planted.png");
+    EXPECT_EQ(copyFileContents(dir / "b.png", dir / "planted.png"), "File exists");
+    EXPECT_EQ(copyFileContents(dir / "none.png", dir / "c.png"),
+              (dir / "none.png").string() + " cannot be read: No such file or directory");
+    EXPECT_EQ(writeFailureReason(ENOSPC),
+              "the disk is full (No space left on device); make room on that disk or write elsewhere");
+    EXPECT_EQ(writeFailureReason(EDQUOT),
+              "your disk quota is used up (Disk quota exceeded); make room within it or write elsewhere");
 }
 
 TEST(OutputSet, RefusesTwoOutputsOfOneNameAndAnInputAsAnOutput) {

@@ -1,6 +1,9 @@
 #include "curves/hausdorff.h"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "curves/curve_file.h"
 
 #include <cmath>
 #include <algorithm>
@@ -239,6 +242,27 @@ TEST(Hausdorff, DegenerateInputs) {
                 1.0, 1e-9);
     EXPECT_NEAR(hausdorff(curve("bezier", false, shifted(a, 1e-6, 0)), curve("polyline", false, shifted(b, 1e-6, 0))).H,
                 1e-6, 1e-16);
+}
+
+// Every file of curves relief reads (curve files, relief test's kept
+// geometry) holds its points so: two finite numbers each, within 1e15.
+TEST(CurveFile, PointsAreReadWithinTheLimits) {
+    using nlohmann::json;
+    std::vector<Point2> points;
+    std::string problem;
+    EXPECT_EQ(readPoints(json::parse("[[1, 2], [3e14, -1e15]]"), "points", points, problem), PointsFault::None);
+    ASSERT_EQ(points.size(), 2u);
+    EXPECT_EQ(points[1].y, -1e15);
+    EXPECT_EQ(readPoints(json::parse("[[1, 2], [1e300, 0]]"), "levels[0].lines[1]", points, problem),
+              PointsFault::BeyondRange);
+    EXPECT_EQ(problem, "levels[0].lines[1][1] = [1e+300, 0] is beyond the 1e+15 a coordinate may be (in metres, "
+                       "1e15 is a thousand times the distance to the Sun)");
+    EXPECT_EQ(readPoints(json::parse("[[1, 2, 3]]"), "points", points, problem), PointsFault::NotPoints);
+    EXPECT_EQ(problem, "points[0] must be [x, y] with two numbers");
+    EXPECT_EQ(readPoints(json::parse("[[\"1\", 2]]"), "points", points, problem), PointsFault::NotPoints);
+    EXPECT_EQ(readPoints(json::parse("{}"), "points", points, problem), PointsFault::NotPoints);
+    EXPECT_EQ(problem, "points must be a list of points [[x, y], ...]");
+    EXPECT_TRUE(points.empty());
 }
 
 }  // namespace

@@ -283,10 +283,11 @@ TEST(UntrustedGdal, FilesBesideARasterAreCheckedToo) {
         return alone;
     };
     EXPECT_EQ(problems(), "");
+    const std::string fix = "; remove it, or put the real file there";
     ASSERT_EQ(::mkfifo((dir / "dem.tif.ovr").c_str(), 0600), 0);
     EXPECT_EQ(problems(),
               "the file beside it that GDAL would read with it, dem.tif.ovr, is not a plain "
-              "file (it is a FIFO (a named pipe), not a file)");
+              "file (it is a FIFO (a named pipe), not a file)" + fix);
     fs::remove(dir / "dem.tif.ovr");
     write(dir / "dem.tif.ovr", vrtWith("<VRTRasterBand dataType=\"Byte\" band=\"1\" subClass=\"VRTRawRasterBand\">"
                                       "<SourceFilename>/etc/passwd</SourceFilename></VRTRasterBand>"));
@@ -297,13 +298,29 @@ TEST(UntrustedGdal, FilesBesideARasterAreCheckedToo) {
     fs::create_symlink("/dev/zero", dir / "dem.prj");
     EXPECT_EQ(problems(),
               "the file beside it that GDAL would read with it, dem.prj, is not a plain file "
-              "(it is a device, not a file)");
+              "(it is a device, not a file)" + fix);
     fs::remove(dir / "dem.prj");
+    // The side files GDAL reads whole are held to kMaxSideTextBytes (sparse: no disk is written);
+    // those it reads a piece at a time are not.
+    for (const char* whole : {"dem.prj", "dem.tfw", "dem.tifw", "dem.wld", "dem.tif.aux.xml", "dem.hdr"}) {
+        write(dir / whole, "");
+        fs::resize_file(dir / whole, kMaxSideTextBytes + 1);
+        EXPECT_EQ(problems(), fmt::format("the file beside it that GDAL would read whole with it, {}: it is 16 MB, "
+                                          "more than the 16 MB such a file may be{}",
+                                          whole, fix));
+        fs::resize_file(dir / whole, kMaxSideTextBytes);
+        EXPECT_EQ(problems(), "") << whole;
+        fs::remove(dir / whole);
+    }
+    write(dir / "dem.tif.ovr", "");
+    fs::resize_file(dir / "dem.tif.ovr", 4 * kMaxSideTextBytes);
+    EXPECT_EQ(problems(), "");
+    fs::remove(dir / "dem.tif.ovr");
     // GDAL looks for side files in any case (DEM.TIF.OVR for dem.tif): so does the check.
     fs::create_symlink("/dev/zero", dir / "DEM.TIF.OVR");
     EXPECT_EQ(problems(),
               "the file beside it that GDAL would read with it, DEM.TIF.OVR, is not a plain file "
-              "(it is a device, not a file)");
+              "(it is a device, not a file)" + fix);
     EXPECT_EQ(FolderNames(dir).beside("dem.tif"), (std::vector<std::string>{"dem.tif", "DEM.TIF.OVR"}));
 }
 
