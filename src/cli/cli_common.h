@@ -16,7 +16,7 @@
 #include "core/atomic_file.h"
 #include "core/diagnostics.h"
 #include "execute/execute.h"
-#include "pipeline.h"
+#include "pipeline/progress.h"
 #include "scene/read_scene.h"
 
 namespace relief::cli {

@@ -17,7 +17,7 @@
 #include "core/number_format.h"
 #include "measure/compare_geometry.h"
 #include "measure/profile.h"
-#include "pipeline.h"
+#include "pipeline/surface.h"
 
 namespace relief::cli {
 

@@ -13,7 +13,7 @@
 #include "core/stopwatch.h"
 #include "core/text_escape.h"
 #include "figures/sweep.h"
-#include "pipeline.h"
+#include "pipeline/job.h"
 #include "regress/regress.h"
 
 namespace relief::cli {
@@ -225,7 +225,7 @@ int runSweep(const SweepOptions& o) {
         if (e.kind == Kind::Started) {
             progress.show(still);
         } else if (e.kind == Kind::Rendering) {
-            progress.show(fmt::format("renders: {}", e.render->text), e.render->percent);
+            progress.show(e.render->text, e.render->percent);
         } else {
             progress.done();
             const bool ok = e.outcome->status == relief::JobStatus::Ok;

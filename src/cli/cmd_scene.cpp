@@ -9,10 +9,10 @@
 
 #include "core/text_escape.h"
 #include "core/atomic_file.h"
-#include "animate_job.h"
-#include "pipeline.h"
-#include "scene_for_data.h"
-#include "scene_info.h"
+#include "pipeline/film.h"
+#include "pipeline/job.h"
+#include "pipeline/load.h"
+#include "pipeline/record.h"
 
 namespace relief::cli {
 

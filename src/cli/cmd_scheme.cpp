@@ -12,7 +12,7 @@
 #include "core/number_format.h"
 #include "curves/curve_file.h"
 #include "figures/curve_figure.h"
-#include "pipeline.h"
+#include "pipeline/surface.h"
 #include "subdiv/analysis.h"
 #include "subdiv/resolve.h"
 #include "subdiv/refine.h"

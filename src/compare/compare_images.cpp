@@ -15,7 +15,7 @@
 #include "core/atomic_file.h"
 #include "core/input_file.h"
 #include "core/png_file.h"
-#include "subdiv/budget.h"
+#include "core/memory_budget.h"
 
 namespace relief::compare {
 
@@ -75,7 +75,7 @@ std::string headerProblem(const ImageHeader& h, std::uintmax_t fileBytes) {
         return fmt::format("it says it is {} x {} pixels ({:.0f} Mpixels), more than the {:.0f} Mpixels relief "
                            "compares: compare smaller images, or crops of these",
                            h.width, h.height, h.pixels / 1e6, kMaxComparedPixels / 1e6);
-    const double budgetMB = subdiv::defaultMemoryBudgetMB();
+    const double budgetMB = defaultMemoryBudgetMB();
     const double neededMB = h.pixels * bytesPerComparedPixel(h.channels, h.sampleBytes) / 1e6;
     if (neededMB > budgetMB)
         return fmt::format("it says it is {} x {} pixels with {} channels: comparing two such images and making their "

@@ -175,4 +175,15 @@ std::string readPng8(const std::filesystem::path& path, PngImage8& image, const 
     return {};
 }
 
+std::string writeCanonicalPng(const std::filesystem::path& in, const std::filesystem::path& out) {
+    PngImage8 image;
+    if (std::string error = readPng8(in, image); !error.empty()) return error;
+    try {
+        writePngAtomically(out, {image.width, image.height, image.channels, false, image.pixels.data()});
+    } catch (const OutputError& e) {
+        return e.what();
+    }
+    return "";
+}
+
 }  // namespace relief

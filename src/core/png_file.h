@@ -36,6 +36,11 @@ struct PngSize {
 /// anything is allocated for its pixels. Returns "" or the error, naming `path`.
 std::string readPng8(const std::filesystem::path& path, PngImage8& image, const PngSize* expected = nullptr);
 
+/// Re-encodes a PNG with its pixels only (no date, software or comment
+/// chunks: POV-Ray's own PNG has its render date), so identical pixels give
+/// identical bytes; `out` written atomically. "" or the reason.
+std::string writeCanonicalPng(const std::filesystem::path& in, const std::filesystem::path& out);
+
 /// Decodes a whole PNG a row at a time and keeps nothing: "" when it is
 /// whole, else why not (a truncated or damaged file), quietly. For readers
 /// that would print libpng's own messages on a damaged file (OpenImageIO's).

@@ -12,7 +12,7 @@
 #include "core/input_file.h"
 #include "core/text_escape.h"
 #include "execute/local.h"
-#include "render/tiles.h"
+#include "plan/tiles.h"
 
 namespace relief::execute {
 
@@ -77,12 +77,12 @@ std::string runListedTask(const ListedTask& task, const std::function<bool()>& c
         return diags.all().front().loc.file + ": " + diags.all().front().message;
     if (tile < 0 || tile >= plan->tiles) return fmt::format("the plan {} has no tile {}", plan->dir.string(), tile);
     // The CPUs Slurm gave the task (sbatch --cpus-per-task, through --slurm-args), one by default.
-    render::TileOptions options;
+    plan::TileOptions options;
     const char* cpus = std::getenv("SLURM_CPUS_PER_TASK");
     options.threads = cpus ? std::max(1, std::atoi(cpus)) : 1;
     options.sandbox = task.sandbox;
     options.cancelled = cancelled;
-    const render::RenderResult r = render::renderTile(*plan, tile, options);
+    const render::RenderResult r = plan::renderTile(*plan, tile, options);
     return r.ok ? "" : fmt::format("tile {} of {}: {}", tile + 1, plan->tiles, r.error);
 }
 

@@ -10,7 +10,7 @@
 #include <fmt/format.h>
 
 #include "core/stopwatch.h"
-#include "render/tiles.h"
+#include "plan/tiles.h"
 
 namespace relief::execute {
 
@@ -19,7 +19,7 @@ Result runLocal(const std::vector<Task>& tasks, const std::vector<const plan::Re
     Result result;
     const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     const int jobs = std::clamp(options.jobs > 0 ? options.jobs : cores, 1, std::max<int>(1, static_cast<int>(tasks.size())));
-    render::TileOptions tile;
+    plan::TileOptions tile;
     tile.threads = std::max(1, cores / jobs);
     tile.sandbox = options.sandbox;
     std::atomic<bool> stop{false};
@@ -32,9 +32,9 @@ Result runLocal(const std::vector<Task>& tasks, const std::vector<const plan::Re
     auto worker = [&] {
         for (size_t i = next++; i < tasks.size() && !tile.cancelled(); i = next++) {
             const plan::RenderPlan& plan = *plans[i];
-            render::TileOptions one = tile;
+            plan::TileOptions one = tile;
             if (tasks.size() == 1) one.progress = options.povray;  // a still in one piece: POV-Ray's own progress
-            const render::RenderResult r = render::renderTile(plan, tasks[i].tile, one);
+            const render::RenderResult r = plan::renderTile(plan, tasks[i].tile, one);
             std::string error;
             if (!r.ok && !r.cancelled) error = plan.tiles == 1 ? r.error  // one piece: POV-Ray's words are the whole story
                                                                : fmt::format("tile {} of {} (rows {}..{} of {}): {}",

@@ -166,30 +166,24 @@ public:
 
     // All the plans' tiles at once, here or on Slurm.
     bool renderAll(SweepResult& result) {
-        std::vector<execute::Task> tasks;
-        for (const auto& p : planned_)
-            for (const auto& t : tasksOf(*p.plan)) tasks.push_back(t);
+        std::vector<const plan::RenderPlan*> plans;
+        for (const auto& p : planned_) plans.push_back(&*p.plan);
         execute::Options e = request_.execution;
         // Slurm's job folder (script, task list, logs) beside the sheet: kept when a task fails,
         // since the message names its log, and removed once every still is rendered.
         const bool ownJobDir = e.jobDir.empty();
         if (ownJobDir) e.jobDir = request_.sheet.parent_path() / (request_.sheet.stem().string() + ".slurm");
-        const execute::Result rendered = execute::run(tasks, e, [&](const execute::Progress& p) {
-            const ProgressEvent tiles{ProgressEvent::Stage::Tiles,
-                                      fmt::format("{} of {} rendered, {:.0f} s", p.done, p.total, p.seconds),
-                                      static_cast<int>(100 * p.done / std::max<size_t>(1, p.total))};
-            SweepEvent event{SweepEvent::Kind::Rendering, p.done, p.total, "renders"};
-            event.render = &tiles;
+        const auto told = [&](const ProgressEvent& line) {
+            SweepEvent event{SweepEvent::Kind::Rendering, 0, plans.size(), "renders"};
+            event.render = &line;
             emit(event);
-        });
-        if (!rendered.ok) {
+        };
+        Diagnostics diags;
+        const PlansRendered rendered = renderPlans(plans, e, {told, "stills"}, diags);
+        if (rendered.status != JobStatus::Ok) {
             JobOutcome failed;
-            failed.status = rendered.cancelled  ? JobStatus::Cancelled
-                            : rendered.badInput ? JobStatus::BadInput
-                                                : JobStatus::ToolFailed;
+            failed.status = rendered.status;
             failed.render.error = rendered.error;
-            Diagnostics diags;
-            if (rendered.badInput) diags.error(rendered.at, rendered.error);
             return reportStop(0, "renders", failed, diags, failed.status, result);
         }
         std::error_code ec;

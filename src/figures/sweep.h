@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "core/diagnostics.h"
-#include "pipeline.h"
+#include "pipeline/job.h"
 
 namespace relief::figures {
 

@@ -17,7 +17,7 @@
 // every step that reads one verifies it whole (readPlan), and nothing in it
 // can turn the sandbox off, name a file outside its folder or a folder to
 // bind, or write anywhere but beside it (docs/security.md).
-// The steps that use it: render/tiles.h (a tile, and the tiles stitched),
+// The steps that use it: plan/tiles.h (a tile, and the tiles stitched),
 // execute/ (many tiles at once, here or on Slurm), pipeline.h (finish).
 #include <filesystem>
 #include <optional>

@@ -15,7 +15,7 @@
 #include "core/text_escape.h"
 #include "curves/curve_file.h"
 #include "measure/surface_curves.h"
-#include "pipeline.h"
+#include "pipeline/surface.h"
 #include "plot/svg.h"
 
 namespace relief::regress {

@@ -19,7 +19,7 @@
 #include "core/stopwatch.h"
 #include "core/text_escape.h"
 #include "core/text_distance.h"
-#include "pipeline.h"
+#include "pipeline/job.h"
 
 namespace relief::regress {
 
@@ -359,18 +359,17 @@ std::vector<CaseResult> runCases(const Manifest& m, const RunOptions& o, const C
     std::vector<PlannedJob> planned = planCases(m, o, results, finished);
     // The cases' renders, a task each, here or on Slurm; each case finished
     // and compared as soon as its render is in.
-    std::vector<execute::Task> tasks;
+    std::vector<const plan::RenderPlan*> plans;
     std::vector<size_t> caseOf;
     for (size_t i = 0; i < planned.size(); ++i)
-        if (planned[i].plan)
-            for (const auto& t : tasksOf(*planned[i].plan)) tasks.push_back(t), caseOf.push_back(i);
+        if (planned[i].plan) plans.push_back(&*planned[i].plan), caseOf.push_back(i);
     execute::Options e = o.execution;
     e.jobs = e.executor == execute::Executor::Local ? o.jobs : e.jobs;
     e.stopOnFailure = false;
     if (e.jobDir.empty()) e.jobDir = o.reportDir / "slurm";
-    e.onTaskDone = [&](size_t task, const std::string& error) {
-        const size_t i = caseOf[task];
-        if (!planned[i].plan) return;  // decided already (a case is one task: never twice)
+    PlansProgress told;
+    told.onPlanDone = [&](size_t plan, const std::string& error) {
+        const size_t i = caseOf[plan];
         CaseResult& r = results[i];
         Diagnostics diags;
         if (!error.empty()) {
@@ -386,12 +385,13 @@ std::vector<CaseResult> runCases(const Manifest& m, const RunOptions& o, const C
         dropPlan(planned[i]);
         finished(i);
     };
-    const execute::Result run = execute::run(tasks, e, {});
-    if (!run.ok && tasks.size() > 0 && run.taskErrors.empty())  // nothing ran: Slurm missing, say
-        for (size_t i : caseOf) {
+    Diagnostics unused;  // a failure before any case ran (Slurm missing, say) is each case's message
+    const PlansRendered run = renderPlans(plans, e, told, unused);
+    for (size_t i : caseOf)
+        if (planned[i].plan) {  // its render never ended
             dropPlan(planned[i]);
             results[i].status = CaseStatus::Error;
-            results[i].message = run.error;
+            results[i].message = run.error.empty() ? "not rendered" : run.error;
             finished(i);
         }
     if (o.update)

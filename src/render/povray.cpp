@@ -25,7 +25,6 @@
 #include "core/output_set.h"
 #include "core/png_file.h"
 #include "core/stopwatch.h"
-#include "render/png.h"
 
 extern char** environ;
 

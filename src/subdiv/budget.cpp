@@ -1,12 +1,11 @@
 #include "subdiv/budget.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <bit>
 
 #include <fmt/format.h>
 
+#include "core/memory_budget.h"
 #include "core/number_format.h"
 #include "core/types.h"
 
@@ -52,9 +51,17 @@ OutputEstimate withBuiltMesh(OutputEstimate e, double vertices, double triangles
     return e;
 }
 
-double defaultMemoryBudgetMB() {
-    const double bytes = static_cast<double>(::sysconf(_SC_PHYS_PAGES)) * static_cast<double>(::sysconf(_SC_PAGE_SIZE));
-    return bytes > 0 ? 0.75 * bytes / 1e6 : 1e6;
+Budget Budget::of(const scene::LimitsSpec& limits) {
+    return {limits.maxTriangles, limits.maxSdlMB, limits.maxParseS,
+            limits.maxMemoryMB > 0 ? limits.maxMemoryMB : defaultMemoryBudgetMB()};
+}
+
+OutputEstimate linesOnSurface(double ribbonTriangles, double sdlBytes, long long meshTriangles) {
+    OutputEstimate e;
+    e.triangles = ribbonTriangles + double(meshTriangles);
+    e.parseSeconds = e.triangles * kParseSecondsPerTriangle;
+    e.sdlBytes = sdlBytes;
+    return e;
 }
 
 bool withinBudget(const OutputEstimate& est, const Budget& budget) {

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "core/diagnostics.h"
+#include "scene/scene_spec.h"
 #include "subdiv/scheme.h"
 
 namespace relief::subdiv {
@@ -30,10 +31,11 @@ struct Budget {
     double maxSdlMB;
     double maxParseS;
     double maxMemoryMB;
+    /// A scene's [limits], the memory three quarters of this machine's
+    /// (core/memory_budget.h) unless it says: what a job is held to, made once
+    /// when the scene is loaded (LoadedScene::budget).
+    static Budget of(const scene::LimitsSpec& limits);
 };
-
-/// Three quarters of this machine's physical memory, in MB: the default memory budget.
-double defaultMemoryBudgetMB();
 
 inline constexpr double kParseSecondsPerTriangle = 4e-6;
 // Measured on the writer's output (emit/write_scene.cpp) for the default scene: a vertex line plus
@@ -72,6 +74,10 @@ int deepestWithinBudget(const Scheme& scheme, int rows, int cols, const Budget& 
 /// The figures of the estimate over the budget, each against its key
 /// ("2.1e+07 triangles > limits.max_triangles = 2e+07; ..."), "" when within.
 std::string overBudget(const OutputEstimate& est, const Budget& budget);
+
+/// What lines lying on the surface add to POV-Ray's parse beside the surface's
+/// `meshTriangles`: their ribbons' triangles and SDL (contours and marks alike).
+OutputEstimate linesOnSurface(double ribbonTriangles, double sdlBytes, long long meshTriangles);
 
 /// Reports an error at `where` when the estimate exceeds the budget, naming
 /// each exceeded figure and the ways out (`adaptive`: the built adaptive mesh,

@@ -1,4 +1,7 @@
-#include "pipeline.h"
+#include "pipeline/job.h"
+#include "pipeline/load.h"
+#include "pipeline/record.h"
+#include "pipeline/surface.h"
 
 #include <gtest/gtest.h>
 
@@ -18,7 +21,6 @@
 #include "core/text_escape.h"
 #include "geo/gdal_setup.h"
 #include "scene/read_scene.h"
-#include "scene_for_data.h"
 #include "unit/test_dirs.h"
 
 namespace relief {

@@ -9,6 +9,7 @@
 
 #include "reference/naive_four_point.h"
 #include "reference/naive_schemes.h"
+#include "core/memory_budget.h"
 #include "subdiv/budget.h"
 #include "subdiv/row_kernels.h"
 
@@ -292,7 +293,7 @@ TEST(Budget, MemoryIsEstimatedAndRefused) {
     EXPECT_EQ(formatDiagnostic(diags.all()[0]),
               "s.toml:4:1: error: depth 1 refines the net to 7201 x 7201 vertices: 1815 MB of memory > "
               "limits.max_memory_mb = 1000; lower subdivision.depth, use a coarser net, or raise [limits]");
-    EXPECT_GT(defaultMemoryBudgetMB(), 100);
+    EXPECT_GT(relief::defaultMemoryBudgetMB(), 100);
 }
 
 }  // namespace

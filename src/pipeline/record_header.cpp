@@ -1,6 +1,6 @@
 // The .pov's header (and the sidecar's "parameters"): every input and choice
 // that made the scene, as key and value, one line each.
-#include "scene_header.h"
+#include "pipeline/record.h"
 
 #include <fmt/format.h>
 

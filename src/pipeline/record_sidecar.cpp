@@ -1,5 +1,5 @@
 // The JSON sidecar: what made the still, what it cost, what it shows.
-#include "sidecar.h"
+#include "pipeline/record.h"
 
 #include "core/text_escape.h"
 #include "core/utf8_record.h"
@@ -8,7 +8,7 @@
 
 #include "emit/geometry_kind.h"
 #include "scene/enum_names.h"
-#include "measure/auto_depth.h"
+#include "pipeline/depth.h"
 #include "relief/version.h"
 
 namespace relief {
@@ -99,7 +99,7 @@ ordered_json sidecarFacts(const CompileResult& c, const OutputPaths& paths) {
                                   {"curve", l.curve},
                                   {"where_m", {l.x, l.y, l.z}},
                                   {"seconds", l.seconds}};
-            const double rate = measure::observedRate(*c.autoDepth, i, arity);
+            const double rate = observedRate(*c.autoDepth, i, arity);
             if (std::isfinite(rate)) level["rate"] = rate;
             levels.push_back(level);
         }

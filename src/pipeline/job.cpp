@@ -11,9 +11,11 @@
 #include "core/png_file.h"
 #include "core/stopwatch.h"
 #include "core/text_escape.h"
-#include "pipeline.h"
-#include "render/tiles.h"
-#include "sidecar.h"
+#include "pipeline/job.h"
+#include "pipeline/record.h"
+#include "pipeline/run_plans.h"
+#include "pipeline/working_folder.h"
+#include "plan/tiles.h"
 
 namespace relief {
 
@@ -207,46 +209,14 @@ bool writeStill(const plan::RenderPlan& plan, OutputSet& outputs, RenderFacts& f
 
 }  // namespace
 
-std::optional<fs::path> nameWorkingFolder(const fs::path& building, const fs::path& asked,
-                                         const WorkingFolderKind& kind, Diagnostics& diags) {
-    std::error_code ec;
-    for (int attempt = 0; attempt < 10; ++attempt) {
-        std::optional<fs::path> dir;
-        for (int n = 1; n < 100 && !dir; ++n) {
-            const fs::path at = n == 1 ? asked : fs::path(asked.string() + "-" + std::to_string(n));
-            if (!fs::exists(fs::symlink_status(at, ec))) {
-                dir = at;
-                break;
-            }
-            // Only a folder that reads as a whole one of this relief's is ever removed: a folder
-            // of the user's that happens to hold a plan.json is in the way, never deleted.
-            if (!fs::is_directory(fs::symlink_status(at, ec)) || !kind.ours(at)) {
-                diags.error({at.string(), 0, 0}, fmt::format("in the way of {}: it is not {} of this relief's; "
-                                                             "remove it or {}",
-                                                             kind.what, kind.aKind, kind.fix));
-                return std::nullopt;
-            }
-            if (auto lock = plan::PlanLock::take(at)) {
-                fs::remove_all(at, ec);
-                if (!ec) dir = at;
-            }
-        }
-        if (!dir) {
-            diags.error({asked.string(), 0, 0}, fmt::format("no folder for {} is free here or beside it (-2 to -99 "
-                                                            "tried): let the renders using them end, or {}",
-                                                            kind.what, kind.fix));
-            return std::nullopt;
-        }
-        fs::rename(building, *dir, ec);
-        if (!ec) return fs::absolute(*dir);
-        if (ec != std::errc::directory_not_empty && ec != std::errc::file_exists) {
-            diags.error({dir->string(), 0, 0}, fmt::format("{} cannot be written here: {}", kind.what, ec.message()));
-            return std::nullopt;
-        }
-    }
-    diags.error({asked.string(), 0, 0}, fmt::format("{} cannot be named here: other renders keep taking the name; "
-                                                    "{}", kind.what, kind.fix));
-    return std::nullopt;
+OutputPaths outputPathsFor(const std::filesystem::path& still) {
+    OutputPaths p;
+    p.still = still;
+    p.pov = still;
+    p.pov.replace_extension(".pov");
+    p.sidecar = still;
+    p.sidecar.replace_extension(".json");
+    return p;
 }
 
 void describeRender(plan::RenderPlan& plan, const CompileResult& compiled, const OutputPaths& paths, int tiles) {
@@ -273,7 +243,7 @@ void describeRender(plan::RenderPlan& plan, const CompileResult& compiled, const
 
 std::optional<PngImage8> stitchedStill(const plan::RenderPlan& plan, Diagnostics& diags) {
     std::string error;
-    auto still = render::stitchTiles(plan, error);
+    auto still = plan::stitchTiles(plan, error);
     if (!still) diags.error({(plan.dir / "plan.json").string(), 0, 0}, error);
     return still;
 }
@@ -317,11 +287,6 @@ PlannedJob planJob(const SceneJob& job, Diagnostics& diags, const ProgressFn& pr
     return p;
 }
 
-std::vector<execute::Task> tasksOf(const plan::RenderPlan& plan) {
-    std::vector<execute::Task> tasks;
-    for (int k : plan::missingTiles(plan)) tasks.push_back({plan.dir, k});
-    return tasks;
-}
 
 bool finishPlan(const plan::RenderPlan& plan, OutputSet& outputs, bool stillOnly, bool commit, bool keepPlan,
                 JobOutcome& outcome, Diagnostics& diags) {
@@ -372,29 +337,12 @@ namespace {
 // The tiles rendered (POV-Ray sandboxed unless `execution` says not); the outcome says how, when not all were.
 bool renderTiles(const plan::RenderPlan& plan, const execute::Options& execution, JobOutcome& outcome,
                  Diagnostics& diags, const ProgressFn& progress) {
-    execute::Options options = execution;
-    if (options.jobDir.empty()) options.jobDir = plan.dir / "slurm";
-    options.povray = [&](const render::RenderProgress& r) {
-        if (progress) progress({ProgressEvent::Stage::Rendering, r.text, r.percent});
-    };
-    const auto tasks = tasksOf(plan);
-    outcome.tiles = static_cast<int>(tasks.size());
-    const auto t0 = Clock::now();
-    const execute::Result r = execute::run(tasks, options, [&](const execute::Progress& p) {
-        if (!progress || plan.tiles == 1) return;
-        const std::string left = p.done > 0 && p.done < p.total
-                                     ? fmt::format(", about {:.0f} s left", p.seconds / double(p.done) * double(p.total - p.done))
-                                     : "";
-        progress({ProgressEvent::Stage::Tiles,
-                  fmt::format("tiles: {} of {} rendered, {:.0f} s{}", p.done, p.total, p.seconds, left),
-                  static_cast<int>(100 * p.done / std::max<size_t>(1, p.total))});
-    });
-    outcome.render.wallSeconds = secondsSince(t0);
-    if (r.ok) return true;
-    outcome.status = r.cancelled ? JobStatus::Cancelled : r.badInput ? JobStatus::BadInput : JobStatus::ToolFailed;
+    const PlansRendered r = renderPlans({&plan}, execution, {progress, "tiles"}, diags);
+    outcome.tiles = r.tiles;
+    outcome.render.wallSeconds = r.wallSeconds;
+    outcome.status = r.status;
     outcome.render.error = r.error;
-    if (r.badInput) diags.error(r.at, r.error);
-    return false;
+    return r.status == JobStatus::Ok;
 }
 
 }  // namespace

@@ -3,11 +3,11 @@
 #include <gtest/gtest.h>
 
 #include "geo/samples.h"
-#include "measure/auto_depth.h"
-#include "pipeline.h"
+#include "pipeline/depth.h"
+#include "pipeline/surface.h"
 #include "subdiv/analysis.h"
 
-namespace relief::measure {
+namespace relief {
 namespace {
 
 // Rows z = c (x - xc)^2 with an even number of nodes, the classic 4-point
@@ -100,4 +100,4 @@ TEST(AutoDepth, MountainRatesMatchSmoothness) {
 }
 
 }  // namespace
-}  // namespace relief::measure
+}  // namespace relief

@@ -1,14 +1,32 @@
 #pragma once
-// Elevation data named where a scene file goes (relief render dem.tif, relief
-// info, relief init): what the file is, the scene relief makes for it, and
-// that scene written out with every choice relief made and why.
+// The pipeline's first room: the scene loaded, from a scene file (TOML) or
+// from elevation data named where a scene goes (relief render dem.tif:
+// the scene relief makes for it), validated and its scheme resolved.
 #include <filesystem>
 #include <optional>
 #include <string>
 
-#include "pipeline.h"
+#include "core/diagnostics.h"
+#include "scene/scene_spec.h"
+#include "subdiv/budget.h"
+#include "subdiv/resolve.h"
 
 namespace relief {
+
+/// Stage 1 and the scheme: everything the scene file says, checked.
+struct LoadedScene {
+    scene::SceneSpec scene;
+    subdiv::ResolvedScheme resolved;
+    /// What the job is held to ([limits], the memory this machine's unless
+    /// they say): made once here, read by every stage after.
+    subdiv::Budget budget;
+    double seconds = 0;
+};
+
+/// Reads and validates the scene file and resolves its scheme, reporting every
+/// problem at once. Nothing is written.
+std::optional<LoadedScene> loadScene(const std::filesystem::path& scenePath, Diagnostics& diags,
+                                     const scene::SceneOverrides& overrides = {});
 
 /// What a file named in place of a scene is.
 enum class InputKind {
@@ -28,32 +46,12 @@ inline constexpr double kSeaFloorM = -500;
 /// the file, from its folder), the topobathy ramp for a raster reaching
 /// kSeaFloorM, and a title from the raster's metadata or the file's name.
 /// Every other choice is relief's default: the net and the depth for the
-/// still. Its `madeForData` is sceneTextForData's.
+/// still. Its `madeForData` is the scene's record (TOML, for the sidecar).
 std::optional<scene::SceneSpec> readSceneForData(const std::filesystem::path& data, Diagnostics& diags,
                                                  const scene::SceneOverrides& overrides = {});
 
 /// That scene's record, as the sidecar keeps it: TOML text, with U+FFFD for
 /// the bytes of a name that are not UTF-8.
 std::string sceneTextForData(const std::filesystem::path& data);
-
-/// `relief init`: the scene as a TOML file at `scenePath`, every choice
-/// written with the value relief made and a comment saying why, in the
-/// order of docs/scene-format.md. Rendering it gives the still that
-/// rendering `loaded`'s scene does.
-/// The data's path must be UTF-8 (initCanNameData).
-std::string initSceneText(const LoadedScene& loaded, const Surface& surface, const std::filesystem::path& scenePath);
-
-/// The path a scene at `scenePath` names `data` by: relative to the scene's
-/// folder, unless that climbs further than the path from the root.
-std::string samplesPathFromScene(const std::filesystem::path& data, const std::filesystem::path& scenePath);
-
-/// Whether relief init's scene at `scenePath` can name `data`: TOML holds only
-/// UTF-8, and a Linux name may be any bytes. If not, an error at the file
-/// saying to rename it.
-bool initCanNameData(const std::filesystem::path& data, const std::filesystem::path& scenePath, Diagnostics& diags);
-
-/// A TOML basic string on one line (quoted, every control character, quote
-/// and line break escaped) holding `text`; bytes that are not UTF-8 as U+FFFD.
-std::string tomlString(const std::string& text);
 
 }  // namespace relief

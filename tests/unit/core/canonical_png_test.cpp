@@ -1,4 +1,4 @@
-#include "render/png.h"
+#include "core/png_file.h"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 #include "core/atomic_file.h"
 #include "unit/test_dirs.h"
 
-namespace relief::render {
+namespace relief {
 namespace {
 
 namespace fs = std::filesystem;
@@ -51,4 +51,4 @@ TEST(CanonicalPng, SamePixelsGiveSameBytes) {
 }
 
 }  // namespace
-}  // namespace relief::render
+}  // namespace relief

@@ -1,6 +1,6 @@
 // The [[layer]]s and the graticule: read, placed, budgeted, written, and
 // described for each view (labels, legend entries, the sidecar's counts).
-#include "surface_marks.h"
+#include "pipeline/marks.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +10,6 @@
 #include "core/number_format.h"
 #include "core/text_escape.h"
 #include "geo/vector_layer.h"
-#include "pipeline.h"
 #include "subdiv/budget.h"
 
 namespace relief {
@@ -21,13 +20,12 @@ constexpr double kGraticuleLabelPx = 12;
 
 }  // namespace
 
-bool surfaceMarksWithinLimits(const SurfaceMarks& m, const scene::SceneSpec& spec, long long beside,
-                              Diagnostics& diags) {
-    subdiv::OutputEstimate est;
-    est.triangles = double(m.triangles() + beside);
-    est.parseSeconds = est.triangles * subdiv::kParseSecondsPerTriangle;
-    est.sdlBytes = m.layers.sdlBytes() + (m.graticule ? m.graticule->ribbons.sdlBytes() : 0);
-    const std::string over = subdiv::overBudget(est, budgetOf(spec.limits));
+bool surfaceMarksWithinLimits(const SurfaceMarks& m, const scene::SceneSpec& spec, const subdiv::Budget& budget,
+                              long long beside, Diagnostics& diags) {
+    const auto est = subdiv::linesOnSurface(double(m.triangles()),
+                                            m.layers.sdlBytes() + (m.graticule ? m.graticule->ribbons.sdlBytes() : 0),
+                                            beside);
+    const std::string over = subdiv::overBudget(est, budget);
     // Without marks the surface alone is over: its own check (the budget of the depth) says so.
     if (over.empty() || (!m.graticule && m.layers.lines.empty())) return true;
     // The layer drawing the most (its ribbons' triangles and its markers') is named.

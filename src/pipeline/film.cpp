@@ -2,7 +2,7 @@
 // the frames it serves, a render plan a frame, the tiles rendered (one frame
 // first, to tell how long the rest will take), the frames finished as
 // stills, the film encoded, all written as one set.
-#include "animate_job.h"
+#include "pipeline/film.h"
 
 #include <algorithm>
 #include <map>
@@ -11,7 +11,9 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "animate_flyover.h"
+#include "pipeline/film_flyover.h"
+#include "pipeline/run_plans.h"
+#include "pipeline/working_folder.h"
 #include "core/atomic_file.h"
 #include "core/hash.h"
 #include "core/number_format.h"
@@ -234,31 +236,18 @@ void numberKeptFrames(std::vector<FilmFrame>& frames) {
     for (auto& f : frames) f.fileNumber = f.night ? 0 : ++n;
 }
 
-// The tiles of `plans` from..to-1 rendered; the outcome says why not.
-bool renderPlans(const std::vector<plan::RenderPlan>& plans, size_t from, size_t to, const execute::Options& execution,
-                 AnimateOutcome& outcome, Diagnostics& diags, const ProgressFn& progress) {
-    std::vector<execute::Task> tasks;
-    for (size_t i = from; i < to; ++i)
-        for (const auto& t : tasksOf(plans[i])) tasks.push_back(t);
-    if (tasks.empty()) return true;
+// The tiles of the frames' plans from..to-1 rendered (the film's Slurm job in its working folder); the
+// outcome says why not.
+bool renderFrames(const std::vector<plan::RenderPlan>& plans, size_t from, size_t to, const execute::Options& execution,
+                  AnimateOutcome& outcome, Diagnostics& diags, const ProgressFn& progress) {
+    std::vector<const plan::RenderPlan*> these;
+    for (size_t i = from; i < to; ++i) these.push_back(&plans[i]);
     execute::Options options = execution;
     if (options.jobDir.empty()) options.jobDir = plans[from].dir.parent_path() / "slurm";
-    const size_t perFrame = std::max<size_t>(1, tasks.size() / std::max<size_t>(1, to - from));
-    const execute::Result r = execute::run(tasks, options, [&](const execute::Progress& p) {
-        if (!progress) return;
-        const size_t done = from + p.done / perFrame;
-        const std::string left =
-            p.done > 0 && p.done < p.total
-                ? fmt::format(", about {:.0f} s left", p.seconds / double(p.done) * double(p.total - p.done))
-                : "";
-        progress({ProgressEvent::Stage::Tiles,
-                  fmt::format("frames: {} of {} rendered, {:.0f} s{}", done, plans.size(), p.seconds, left),
-                  static_cast<int>(100 * done / std::max<size_t>(1, plans.size()))});
-    });
-    if (r.ok) return true;
-    outcome.status = r.cancelled ? JobStatus::Cancelled : r.badInput ? JobStatus::BadInput : JobStatus::ToolFailed;
+    const PlansRendered r = renderPlans(these, options, {progress, "frames", from, plans.size()}, diags);
+    if (r.status == JobStatus::Ok) return true;
+    outcome.status = r.status;
     outcome.toolError = r.error;
-    if (r.badInput) diags.error(r.at, r.error);
     return false;
 }
 
@@ -332,7 +321,7 @@ bool withinFilmLimits(const FilmEstimate& e, double probeSeconds, const scene::L
                                           "render.width), or share them out (--jobs, --executor slurm)"));
         return false;
     }
-    const double budgetMB = limits.maxMemoryMB > 0 ? limits.maxMemoryMB : subdiv::defaultMemoryBudgetMB();
+    const double budgetMB = subdiv::Budget::of(limits).maxMemoryMB;  // the job's own figure
     if (execution.executor == execute::Executor::Local && e.atOnce > 1 && e.povrayPeakMB * e.atOnce > budgetMB) {
         diags.error(limits.locs.at("limits.max_memory_mb"),
                     fmt::format("{} POV-Rays at once would hold about {:.0f} MB (a frame's POV-Ray {:.0f} MB) > "
@@ -479,7 +468,7 @@ void makeFilm(const film::FilmRecord& record, FilmWork& work, const execute::Opt
         if (probe > 0 && progress)
             progress({ProgressEvent::Stage::Rendering,
                       fmt::format("{} of {} frames were rendered before", probe, work.plans.size()), -1});
-        if (!renderPlans(work.plans, probe, probe + 1, execution, outcome, diags, progress)) return;
+        if (!renderFrames(work.plans, probe, probe + 1, execution, outcome, diags, progress)) return;
         outcome.probeSeconds = secondsSince(r0);
         estimate = estimateFilm(work.plans, probe, outcome.probeSeconds, execution);
         if (progress && estimate.framesLeft > 0)
@@ -492,7 +481,7 @@ void makeFilm(const film::FilmRecord& record, FilmWork& work, const execute::Opt
             fs::remove_all(work.dir, ec);
             return;
         }
-        if (!renderPlans(work.plans, probe + 1, work.plans.size(), execution, outcome, diags, progress)) return;
+        if (!renderFrames(work.plans, probe + 1, work.plans.size(), execution, outcome, diags, progress)) return;
     }
     outcome.renderSeconds = secondsSince(r0);
 

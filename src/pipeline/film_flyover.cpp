@@ -1,4 +1,4 @@
-#include "animate_flyover.h"
+#include "pipeline/film_flyover.h"
 
 #include <algorithm>
 

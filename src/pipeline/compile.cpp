@@ -19,71 +19,15 @@
 #include "emit/surface_contours.h"
 #include "geo/raster.h"
 #include "geo/sun_position.h"
-#include "pipeline.h"
-#include "scene_header.h"
-#include "surface_marks.h"
+#include "pipeline/compile.h"
+#include "pipeline/marks.h"
+#include "pipeline/record.h"
+#include "pipeline/surface.h"
+#include "pipeline/view.h"
 
 namespace relief {
 
 namespace {
-
-// The sun: the scene's angles, or where it stood at [lighting] datetime over
-// the terrain's centre. The scene's axes are the frame's grid, whose north is
-// the meridian convergence away from true north.
-std::optional<std::pair<emit::SunDirection, CompileResult::Sun>> sunOf(const scene::LookSpec& look,
-                                                                        const geo::ControlNet& net, Diagnostics& diags) {
-    const emit::SunDirection given{look.lighting.sunAzimuthDeg, look.lighting.sunAltitudeDeg};
-    if (!look.lighting.sunTime)
-        return std::pair{given, CompileResult::Sun{given.azimuthDeg, given.altitudeDeg, false, {}, 0, 0}};
-    const auto placed = sunOverTerrain(net, look.lighting.sunTime->utcSeconds);
-    if (!placed) {
-        diags.error(look.lighting.locs.at("lighting.datetime"),
-                    "lighting.datetime: the terrain's centre has no longitude and "
-                    "latitude in its frame; give sun_azimuth_deg and "
-                    "sun_altitude_deg instead");
-        return std::nullopt;
-    }
-    const auto& [sun, centre] = *placed;
-    const double cx = (net.x0 + net.xMax()) / 2, cy = (net.y0 + net.yMax()) / 2;
-    if (!(sun.altitudeDeg > 0)) {
-        diags.error(look.lighting.locs.at("lighting.datetime"),
-                    fmt::format("lighting.datetime = \"{}\"{}: the sun is {:.1f} degrees below the horizon at the "
-                                "terrain's centre (lon {:.4f}, lat {:.4f}); choose a time in daylight, or give "
-                                "sun_azimuth_deg and sun_altitude_deg",
-                                printableExcerpt(look.lighting.sunTimeText),
-                                look.lighting.sunTime->offsetMinutes != 0
-                                    ? " (" + formatUtc(look.lighting.sunTime->utcSeconds) + ")"
-                                    : std::string(),
-                                -sun.altitudeDeg, centre.lonDeg, centre.latDeg));
-        return std::nullopt;
-    }
-    const double convergenceDeg = geo::gridConvergenceDeg(net.frame, cx, cy);
-    return std::pair{emit::SunDirection{std::fmod(sun.azimuthDeg - convergenceDeg + 360, 360), sun.altitudeDeg},
-                     CompileResult::Sun{sun.azimuthDeg, sun.altitudeDeg, true, look.lighting.sunTimeText, centre.lonDeg,
-                                        centre.latDeg}};
-}
-
-// Where the terrain sits in the scene, where the camera is and where the
-// light comes from: made once, read by everything after.
-struct View {
-    emit::ScenePlacement where;
-    emit::CameraView camera;
-    emit::SunDirection sun;
-    CompileResult::Sun sunRecord;
-};
-
-std::optional<View> resolveView(const scene::SceneSpec& spec, const Surface& surface, Diagnostics& diags) {
-    const auto points = emit::cameraPointsInFrame(spec.look.camera, surface.net.frame, diags);
-    if (!points) return std::nullopt;
-    auto sun = sunOf(spec.look, surface.net, diags);
-    if (!sun) return std::nullopt;
-    View v;
-    v.where = emit::placeTerrain(surface.refined, spec.look);
-    v.camera = emit::placeCamera(v.where, spec.look.camera, *points, spec.render);
-    v.sun = sun->first;
-    v.sunRecord = sun->second;
-    return v;
-}
 
 // The terrain's geometry: a mesh (a view of the refined grid), the adaptive
 // mesh, or a height field's 16-bit levels, and the image draped on it.
@@ -119,7 +63,7 @@ bool buildMeshes(const LoadedScene& loaded, const Surface& surface, const View& 
         t.mesh = emit::buildAdaptiveMesh(refined, view.where, t.adaptiveToleranceM);
         if (!subdiv::checkBudget(
                 subdiv::withBuiltMesh(surface.estimate, double(t.mesh->vertices), double(t.mesh->triangles)),
-                budgetOf(spec.limits), budgetKey(spec), surface.depth, diags, true))
+                loaded.budget, budgetKey(spec), surface.depth, diags, true))
             return false;
     }
     emit::nodeTextures(*t.mesh);
@@ -158,9 +102,9 @@ bool writeTerrainPngs(const scene::SceneSpec& spec, const Surface& surface, cons
 
 // [overlay] contours, built before anything is written, so that lines over
 // the output limits are refused with nothing left behind.
-std::optional<emit::ContourRibbons> buildContours(const scene::SceneSpec& spec, const Surface& surface,
-                                                  const View& view, double metresPerPixel, long long meshTriangles,
-                                                  Diagnostics& diags) {
+std::optional<emit::ContourRibbons> buildContours(const scene::SceneSpec& spec, const subdiv::Budget& budget,
+                                                  const Surface& surface, const View& view, double metresPerPixel,
+                                                  long long meshTriangles, Diagnostics& diags) {
     if (!spec.overlay.contours) return emit::ContourRibbons{};
     const SourceLoc at = spec.overlay.locs.at("overlay.contours");
     constexpr int kMaxContourLevels = 1000;
@@ -181,11 +125,9 @@ std::optional<emit::ContourRibbons> buildContours(const scene::SceneSpec& spec, 
         return std::nullopt;
     }
     // The lines' triangles join the surface's in POV-Ray's parse; their SDL is the .pov's beside the surface's.
-    subdiv::OutputEstimate withLines;
-    withLines.triangles = double(ribbons.ribbons.faces.size()) + double(meshTriangles);
-    withLines.parseSeconds = withLines.triangles * subdiv::kParseSecondsPerTriangle;
-    withLines.sdlBytes = ribbons.ribbons.sdlBytes();
-    if (const std::string over = subdiv::overBudget(withLines, budgetOf(spec.limits)); !over.empty()) {
+    const auto withLines =
+        subdiv::linesOnSurface(double(ribbons.ribbons.faces.size()), ribbons.ribbons.sdlBytes(), meshTriangles);
+    if (const std::string over = subdiv::overBudget(withLines, budget); !over.empty()) {
         const std::string beside = meshTriangles > 0 ? fmt::format(" beside the surface's {}", meshTriangles) : "";
         diags.error(at, fmt::format("overlay.contours: interval_m = {} m draws {} lines of {} triangles{}: {}; choose "
                                     "a wider interval, or raise [limits]",
@@ -277,7 +219,7 @@ bool dumpNetFits(const CompileOptions& options, const geo::ControlNet& net, Diag
 
 // What the surface and its placement were, for the header and the sidecar.
 void recordSurface(CompileResult& r, const LoadedScene& loaded, const Surface& surface, const emit::ScenePlacement& where,
-                   const CompileResult::Sun& sunRecord) {
+                   const SunFacts& sunRecord) {
     r.estimate = surface.estimate;
     r.depth = surface.depth;
     r.depthReason = surface.depthReason;
@@ -385,15 +327,13 @@ std::unique_ptr<SharedTerrain::State> compileTerrain(const LoadedScene& loaded, 
     auto surface = buildSurface(loaded, diags, options.threads, options.progress);
     if (!surface) return nullptr;
     st->surface = std::move(*surface);
-    auto view = resolveView(spec, st->surface, diags);
+    auto view = resolveView(spec, st->surface.net, st->surface.refined, diags);
     if (!view) return nullptr;
     st->view = std::move(*view);
     const auto t0 = Clock::now();
     if (scene::qualityLevel(spec.render.quality).skyLight)
         emit::addSkyLight(st->view.where, st->surface.refined, {.threads = options.threads});
-    CompileResult facts;  // the view's metres per pixel sizes the contour lines and the layers' lines
-    describeView(spec, st->surface.net, st->view, facts);
-    const double metresPerPixel = facts.overlayFacts.metresPerPixel;
+    const double metresPerPixel = st->view.metresPerPixel;  // the width of the contour lines and the layers' lines
     auto marks = buildSurfaceMarks(spec, st->surface.refined, st->view.where, metresPerPixel, diags);
     if (!marks) return nullptr;
     st->marks = std::move(*marks);
@@ -401,9 +341,9 @@ std::unique_ptr<SharedTerrain::State> compileTerrain(const LoadedScene& loaded, 
     if (!buildMeshes(st->loaded, st->surface, st->view, st->terrain, diags)) return nullptr;
     const long long parsedTriangles =
         st->terrain.field ? 0 : st->terrain.triangles;  // a height field's are POV-Ray's own
-    auto ribbons = buildContours(spec, st->surface, st->view, metresPerPixel, parsedTriangles, diags);
+    auto ribbons = buildContours(spec, loaded.budget, st->surface, st->view, metresPerPixel, parsedTriangles, diags);
     if (!ribbons ||
-        !surfaceMarksWithinLimits(st->marks, spec,
+        !surfaceMarksWithinLimits(st->marks, spec, loaded.budget,
                                   parsedTriangles + static_cast<long long>(ribbons->ribbons.faces.size()), diags) ||
         !dumpNetFits(options, st->surface.net, diags) ||
         !writeTerrainPngs(spec, st->surface, st->view, options, st->terrain, diags))
@@ -423,7 +363,7 @@ std::optional<CompileResult> compileView(const LoadedScene& frame, const SharedT
     const SharedTerrain::State& st = *shared.state_;
     const scene::SceneSpec& spec = frame.scene;
     std::optional<View> own;  // a frame's own camera and sun; a still's are the terrain's
-    if (st.inFiles && !(own = resolveView(spec, st.surface, diags))) return std::nullopt;
+    if (st.inFiles && !(own = resolveView(spec, st.surface.net, st.surface.refined, diags))) return std::nullopt;
     const View& view = own ? *own : st.view;
     const auto t0 = Clock::now();
     CompileResult r;
@@ -478,14 +418,6 @@ std::optional<CompileResult> compileScene(const LoadedScene& loaded, const Compi
     dump(options.dumpNetPath, shared.net(), "--dump-net");
     dump(options.dumpSurfacePath, shared.refined(), "--dump-surface");
     return r;
-}
-
-std::optional<std::pair<geo::SunPosition, GeoPoint>> sunOverTerrain(const geo::ControlNet& net,
-                                                                    std::int64_t utcSeconds) {
-    const double cx = (net.x0 + net.xMax()) / 2, cy = (net.y0 + net.yMax()) / 2;
-    const auto centre = geo::reverse(net.frame, Vec3{cx, cy, 0});
-    if (!centre) return std::nullopt;
-    return std::pair{geo::sunPosition(centre->lonDeg, centre->latDeg, utcSeconds), *centre};
 }
 
 }  // namespace relief

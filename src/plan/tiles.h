@@ -12,26 +12,26 @@
 #include "plan/plan.h"
 #include "render/povray.h"
 
-namespace relief::render {
+namespace relief::plan {
 
 struct TileOptions {
     int threads = 0;                    ///< POV-Ray's threads; 0: all cores
     /// POV-Ray in its sandbox: the command's choice (--no-sandbox), never the plan's.
     bool sandbox = true;
     std::function<bool()> cancelled;    ///< stops POV-Ray when it says so
-    ProgressFn progress;                ///< POV-Ray's own lines (may be empty)
+    render::ProgressFn progress;        ///< POV-Ray's own lines (may be empty)
 };
 
 /// Renders tile `index` of `plan` into the plan's tiles/ (its PNG, then its
 /// record with the PNG's SHA-256: a tile with a record is whole). The result
 /// says why not; a tiles/ that is not the plan's own folder (a link planted
 /// there) is an output that cannot be written.
-RenderResult renderTile(const plan::RenderPlan& plan, int index, const TileOptions& options);
+render::RenderResult renderTile(const RenderPlan& plan, int index, const TileOptions& options);
 
 /// The still from the plan's tiles, each checked against the plan (its
 /// record's hash and versions, its image's SHA-256, its size from the PNG's
 /// header before its pixels are decoded, its channels); nullopt with `error`
 /// naming the first tile that is not right.
-std::optional<PngImage8> stitchTiles(const plan::RenderPlan& plan, std::string& error);
+std::optional<PngImage8> stitchTiles(const RenderPlan& plan, std::string& error);
 
-}  // namespace relief::render
+}  // namespace relief::plan

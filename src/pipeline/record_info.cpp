@@ -1,5 +1,5 @@
 // `relief info`: the plan of a scene (planSurface) as facts, JSON or text.
-#include "scene_info.h"
+#include "pipeline/record.h"
 
 #include <algorithm>
 #include <cmath>
@@ -55,8 +55,7 @@ ordered_json netFacts(const geo::ControlNet& net) {
 }
 
 // Each figure of the estimate and the limit it meets ("-" where it does not apply).
-ordered_json costFacts(const scene::SceneSpec& spec, const Surface& s) {
-    const subdiv::Budget b = budgetOf(spec.limits);
+ordered_json costFacts(const subdiv::Budget& b, const Surface& s) {
     const subdiv::OutputEstimate& e = s.estimate;
     const bool triangles = !e.heightField && !e.meshAfterBuild;
     ordered_json c;
@@ -98,7 +97,7 @@ ordered_json sceneInfo(const LoadedScene& loaded, const Surface& s, Diagnostics&
                         {"refined_rows", s.estimate.rows},
                         {"refined_cols", s.estimate.cols}};
     j["geometry"] = {{"kind", scene::nameOf(s.geometry.kind)}, {"reason", s.geometry.reason}};
-    j["cost"] = costFacts(spec, s);
+    j["cost"] = costFacts(loaded.budget, s);
     j["still"] = {{"width", spec.render.width}, {"height", spec.render.height}};
     j["vertical"] = exaggerationAdvice(s.net);
     j["vertical"]["exaggeration"] = spec.look.vertical.exaggeration;

@@ -1,4 +1,4 @@
-#include "render/tiles.h"
+#include "plan/tiles.h"
 
 #include <cmath>
 #include <cstring>
@@ -9,15 +9,15 @@
 #include "core/hash.h"
 #include "relief/version.h"
 
-namespace relief::render {
+namespace relief::plan {
 
 namespace fs = std::filesystem;
 
-RenderResult renderTile(const plan::RenderPlan& plan, int index, const TileOptions& options) {
-    const plan::TileRows rows = plan::tileRows(plan.height, plan.tiles, index);
-    RenderRequest req;
+render::RenderResult renderTile(const RenderPlan& plan, int index, const TileOptions& options) {
+    const TileRows rows = tileRows(plan.height, plan.tiles, index);
+    render::RenderRequest req;
     req.pov = plan.dir / plan.pov.name;
-    req.png = plan::tileImage(plan, index);
+    req.png = tileImage(plan, index);
     req.width = plan.width;
     req.height = plan.height;
     req.antialias = plan.antialias;
@@ -29,10 +29,10 @@ RenderResult renderTile(const plan::RenderPlan& plan, int index, const TileOptio
     req.threads = options.threads;
     req.sandbox = options.sandbox;
     req.timeoutSeconds = plan.timeoutS;
-    if (plan.tiles > 1) req.rows = RowRange{rows.first, rows.last};
+    if (plan.tiles > 1) req.rows = render::RowRange{rows.first, rows.last};
     else req.rawOutput = true;  // finishing re-encodes the still once
     req.cancelled = options.cancelled;
-    RenderResult result;
+    render::RenderResult result;
     try {
         makeOwnFolder(plan.dir / "tiles");
     } catch (const OutputError& e) {
@@ -40,14 +40,14 @@ RenderResult renderTile(const plan::RenderPlan& plan, int index, const TileOptio
         result.error = e.what();
         return result;
     }
-    result = renderPov(req, options.progress);
+    result = render::renderPov(req, options.progress);
     if (!result.ok) return result;
-    plan::TileRecord record;
+    TileRecord record;
     record.index = index;
     record.rows = rows;
     record.planHash = plan.hash;
     record.reliefVersion = kVersion;
-    record.povrayVersion = plan::povrayVersion();
+    record.povrayVersion = povrayVersion();
     record.parseSeconds = result.parseSeconds;
     record.traceSeconds = result.traceSeconds;
     record.wallSeconds = result.wallSeconds;
@@ -56,7 +56,7 @@ RenderResult renderTile(const plan::RenderPlan& plan, int index, const TileOptio
     std::string problem;
     record.imageSha256 = fileSha256(req.png, problem);
     try {
-        writeFileAtomically(plan::tileRecordPath(plan, index), plan::tileRecordJson(record).dump(1) + "\n");
+        writeFileAtomically(tileRecordPath(plan, index), tileRecordJson(record).dump(1) + "\n");
     } catch (const std::runtime_error& e) {
         result.ok = false;
         result.cannotWriteOutput = true;
@@ -65,18 +65,18 @@ RenderResult renderTile(const plan::RenderPlan& plan, int index, const TileOptio
     return result;
 }
 
-std::optional<PngImage8> stitchTiles(const plan::RenderPlan& plan, std::string& error) {
+std::optional<PngImage8> stitchTiles(const RenderPlan& plan, std::string& error) {
     PngImage8 still;
     for (int k = 0; k < plan.tiles; ++k) {
         std::string problem;
-        if (!plan::readTileRecord(plan, k, problem)) {
+        if (!readTileRecord(plan, k, problem)) {
             error = fmt::format("tile {} of {}: {}", k + 1, plan.tiles, problem);
             return std::nullopt;
         }
-        const plan::TileRows rows = plan::tileRows(plan.height, plan.tiles, k);
+        const TileRows rows = tileRows(plan.height, plan.tiles, k);
         const PngSize size{plan.width, rows.last - rows.first + 1};
         PngImage8 tile;
-        if (std::string e = readPng8(plan::tileImage(plan, k), tile, &size); !e.empty()) {
+        if (std::string e = readPng8(tileImage(plan, k), tile, &size); !e.empty()) {
             error = fmt::format("tile {} of {}: {}", k + 1, plan.tiles, e);
             return std::nullopt;
         }
@@ -99,4 +99,4 @@ std::optional<PngImage8> stitchTiles(const plan::RenderPlan& plan, std::string& 
     return still;
 }
 
-}  // namespace relief::render
+}  // namespace relief::plan

@@ -15,6 +15,7 @@
 #include "emit/graticule.h"
 #include "emit/surface_layers.h"
 #include "scene/scene_spec.h"
+#include "subdiv/budget.h"
 
 namespace relief {
 
@@ -38,7 +39,8 @@ std::optional<SurfaceMarks> buildSurfaceMarks(const scene::SceneSpec& spec, cons
 /// Whether the marks fit [limits] beside the `trianglesBeside` the surface
 /// and contours already take; else an error at the layer drawing the most
 /// (or the graticule), naming its counts and the limit.
-bool surfaceMarksWithinLimits(const SurfaceMarks& marks, const scene::SceneSpec& spec, long long trianglesBeside,
+bool surfaceMarksWithinLimits(const SurfaceMarks& marks, const scene::SceneSpec& spec, const subdiv::Budget& budget,
+                              long long trianglesBeside,
                               Diagnostics& diags);
 
 /// The marks' SDL (the template's {{contours}} holds them after the contours).

@@ -11,7 +11,7 @@
 #include "film/film_record.h"
 #include "film/frames.h"
 #include "film/video.h"
-#include "pipeline.h"
+#include "pipeline/job.h"
 
 namespace relief {
 

@@ -1,0 +1,174 @@
+// Stages 2 and 3 composed: the control net for the loaded scene, the depth
+// (depth.h), the fit to the scheme where the scene asks, the refined surface.
+#include "pipeline/surface.h"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "core/number_format.h"
+#include "core/stopwatch.h"
+#include "geo/control_net.h"
+#include "subdiv/refine.h"
+
+namespace relief {
+
+namespace {
+
+// The most nodes the control net may have: the job's memory at geo's bytes a node.
+geo::NetBudget netBudgetOf(const LoadedScene& loaded) {
+    const double mb = loaded.budget.maxMemoryMB;
+    geo::NetBudget b;
+    b.maxNodes = std::min(1e9, mb * 1e6 / geo::kNetBytesPerNode);
+    b.why = loaded.scene.limits.maxMemoryMB > 0
+                ? fmt::format("limits.max_memory_mb = {} ({} bytes a node)", formatShortest(mb), geo::kNetBytesPerNode)
+                : fmt::format("the memory relief may use ({:.0f} MB, three quarters of this machine's; "
+                              "limits.max_memory_mb) at {} bytes a node",
+                              mb, geo::kNetBytesPerNode);
+    return b;
+}
+
+// The cheapest geometry the scene allows, whose cost bounds the job's from below.
+subdiv::GeometryCost cheapestCost(scene::GeometryKind kind) {
+    switch (kind) {
+        case scene::GeometryKind::Mesh2:
+            return subdiv::GeometryCost::Mesh2;
+        case scene::GeometryKind::Adaptive:
+            return subdiv::GeometryCost::Adaptive;
+        default:
+            return subdiv::GeometryCost::HeightField;
+    }
+}
+
+}  // namespace
+
+SourceLoc budgetKey(const scene::SceneSpec& spec) {
+    const scene::SubdivisionSpec& sub = spec.subdivision;
+    if (sub.depthAuto) return sub.locs.at("subdivision.depth");
+    if (sub.depthGiven) return sub.locs.at("subdivision.scheme");
+    if (spec.net.locs.has("net.spacing_m")) return spec.net.locs.at("net.spacing_m");
+    return spec.net.locs.has("net.rows") ? spec.net.locs.at("net.rows") : SourceLoc{spec.samples.pathAsWritten, 0, 0};
+}
+
+namespace {
+
+// What [limits] and the still allow the control net, for geo: its nodes, a
+// default net no finer than the still, and a net whose refinement (at the
+// scene's depth, else at depth 0 in the cheapest geometry) is over [limits]
+// refused before a height is read.
+geo::NetLimits netLimitsOf(const LoadedScene& loaded) {
+    const scene::SceneSpec& spec = loaded.scene;
+    geo::NetLimits l{netBudgetOf(loaded), loaded.budget.maxMemoryMB, std::nullopt};
+    if (spec.limits.locs.has("limits.max_memory_mb")) l.memoryKey = spec.limits.locs.at("limits.max_memory_mb");
+    l.nodes.stillWidthPx = spec.render.width;
+    l.nodes.fits = [&loaded](int rows, int cols, Diagnostics& diags) {
+        const scene::SceneSpec& spec = loaded.scene;
+        const int depth = spec.subdivision.depthGiven ? spec.subdivision.depth : 0;
+        const auto est =
+            subdiv::estimateOutput(loaded.resolved.scheme, rows, cols, depth, cheapestCost(spec.geometry.kind));
+        return subdiv::checkBudget(est, loaded.budget, budgetKey(spec), depth, diags);
+    };
+    return l;
+}
+
+// net.gridding = "fit" and net.fit = true: the net made for the scheme's
+// surface at the depth rendered (chosen on the gridded net before).
+bool fitToScheme(const LoadedScene& loaded, int depth, geo::ControlNet& net, Surface& s, Diagnostics& diags,
+                 const ProgressFn& progress) {
+    const scene::NetSpec& spec = loaded.scene.net;
+    const subdiv::Scheme& scheme = loaded.resolved.scheme;
+    if (net.fitSamples) {
+        const geo::NetLimits limits = netLimitsOf(loaded);
+        const double neededMB = static_cast<double>(net.grid.points.size()) * fit::kFitBytesPerNode / 1e6;
+        const double budgetMB = limits.memoryMB;
+        if (neededMB > budgetMB) {
+            diags.error(limits.memoryKey.value_or(spec.locs.at("net.gridding")),
+                        fmt::format("net.gridding = \"fit\" on a net of {} nodes needs about {:.0f} MB ({:.0f} kB "
+                                    "a node), more than the {:.0f} MB relief may use (limits.max_memory_mb): a "
+                                    "coarser net (net.spacing_m), or raise the limit",
+                                    net.grid.points.size(), neededMB, fit::kFitBytesPerNode / 1e3, budgetMB));
+            return false;
+        }
+        const auto told = [&](const std::string& task) {
+            if (progress) progress({ProgressEvent::Stage::Compiling, task, -1});
+        };
+        s.fit = fit::fitNet(scheme, depth, *net.fitSamples, spec, net, diags, told);
+        if (!s.fit) return false;
+        if (progress)
+            progress({ProgressEvent::Stage::Compiling,
+                      fmt::format("fitted {} samples: RMSE {:.3g} m, largest residual {:.3g} m, smoothing {:.3g} ({}), "
+                                  "tension {:.3g}, {:.1f} s",
+                                  s.fit->samples, s.fit->rmseM, s.fit->maxResidualM, s.fit->smoothing,
+                                  s.fit->chosenBy, s.fit->tension, s.fit->seconds),
+                      -1});
+        return true;
+    }
+    if (spec.gridding == scene::Gridding::Fit)
+        diags.warning(spec.locs.at("net.gridding"),
+                      "net.gridding = \"fit\" is not used: the samples are a raster or a lattice, whose nodes are "
+                      "the net as they stand; net.fit = true makes an approximating scheme pass through them");
+    if (!spec.fit) return true;
+    s.prefilter = fit::prefilterNet(scheme, depth, spec, net, diags);
+    return s.prefilter.has_value();
+}
+
+}  // namespace
+
+std::optional<Surface> planSurface(const LoadedScene& loaded, Diagnostics& diags, int threads,
+                                   const ProgressFn& progress) {
+    const scene::SceneSpec& spec = loaded.scene;
+    const scene::SubdivisionSpec& sub = spec.subdivision;
+    auto t0 = Clock::now();
+    geo::NetProgressFn netProgress;
+    if (progress)
+        netProgress = [&](const std::string& task, int percent) {
+            progress({ProgressEvent::Stage::Compiling, task, percent});
+        };
+    scene::NetSpec netSpec = spec.net;
+    netSpec.linearBeforeFit = sub.depthAuto;
+    auto net = geo::controlNet(spec.samples, spec.frame, netSpec, netLimitsOf(loaded), diags, netProgress);
+    if (!net) return std::nullopt;
+    Surface s;
+    s.normalizeSeconds = secondsSince(t0);
+    t0 = Clock::now();
+    auto depth = chooseSurfaceDepth(loaded, *net, threads, diags);
+    if (!depth) return std::nullopt;
+    s.depth = depth->depth;
+    s.depthReason = std::move(depth->reason);
+    s.autoDepth = std::move(depth->autoDepth);
+    s.dataPeak = net->highestSample.value_or(measure::highestNode(*net));
+    if (!fitToScheme(loaded, s.depth, *net, s, diags, progress)) return std::nullopt;
+    auto cost = costAt(loaded, *net, s.depth, diags);
+    if (!cost) return std::nullopt;
+    s.geometry = cost->geometry;
+    s.estimate = cost->estimate;
+    if (!subdiv::checkBudget(s.estimate, loaded.budget, budgetKey(spec), s.depth, diags)) return std::nullopt;
+    s.subdivideSeconds = secondsSince(t0);
+    s.net = std::move(*net);
+    return s;
+}
+
+std::optional<Surface> buildSurface(const LoadedScene& loaded, Diagnostics& diags, int threads,
+                                    const ProgressFn& progress) {
+    auto s = planSurface(loaded, diags, threads, progress);
+    if (!s) return std::nullopt;
+    const auto t0 = Clock::now();
+    if (progress)
+        progress({ProgressEvent::Stage::Compiling,
+                  fmt::format("subdividing to depth {} ({} x {} nodes{})", s->depth, s->estimate.rows, s->estimate.cols,
+                              loaded.scene.subdivision.depthGiven ? std::string() : "; " + s->depthReason),
+                  -1});
+    const subdiv::Scheme& scheme = loaded.resolved.scheme;
+    s->refined =
+        s->net.refined(subdiv::refineGrid(scheme, s->net.grid, s->depth, threads), std::pow(scheme.arity, s->depth));
+    s->subdivideSeconds += secondsSince(t0);
+    s->peakLoss = measure::peakLoss(s->dataPeak, s->refined, std::max(s->net.dx, s->net.dy));
+    if (progress)
+        progress({ProgressEvent::Stage::Compiling,
+                  fmt::format("peak loss {:.3g} m: the data's highest point {:.2f} m, the surface's near it {:.2f} m",
+                              s->peakLoss.lossM, s->peakLoss.peak.z, s->peakLoss.surfaceHighest.z),
+                  -1});
+    return s;
+}
+
+}  // namespace relief
