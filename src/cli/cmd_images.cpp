@@ -234,7 +234,7 @@ int runSweep(const SweepOptions& o) {
                 std::cerr << "relief: POV-Ray failed:\n" << relief::terminalText(e.outcome->render.error, 8000, true) << '\n';
             if (ok && !o.common.quiet)
                 std::cerr << fmt::format("{} -> {} ({})\n", still, e.outcome->paths.still.string(),
-                                         e.outcome->compiled->certified);
+                                         e.outcome->compiled->surface.certified);
         }
     });
     if (result.status == relief::JobStatus::Cancelled) {

@@ -56,29 +56,30 @@ ProgressFn showing(Progress& progress) {
 }
 
 void printWritten(const relief::JobOutcome& outcome, bool rendered) {
-    const auto& c = *outcome.compiled;
+    const auto& c = outcome.compiled->surface;
+    const auto& t = outcome.compiled->terrain;
     std::cerr << fmt::format("scheme {}: {}\n", c.schemeFamily, c.certified);
-    if (c.autoDepth) std::cerr << relief::autoDepthSummary(*c.autoDepth, c.scene.subdivision.toleranceM) << '\n';
+    if (c.autoDepth) std::cerr << c.depthReason << '\n';
     // What POV-Ray gets: every vertex, the adaptive mesh, or the height field's PNGs.
     const std::string pov = terminalText(outcome.paths.pov.string(), 500);
     switch (c.geometry.kind) {
         case scene::GeometryKind::HeightField:
             std::cerr << fmt::format("wrote {} (a height field of {} x {} nodes: {}, {})\n", pov, c.estimate.rows,
-                                     c.estimate.cols, terminalText(c.heightPng.string(), 500),
-                                     terminalText(c.drapePng.string(), 500));
+                                     c.estimate.cols, terminalText(t.heightPng.string(), 500),
+                                     terminalText(t.drapePng.string(), 500));
             break;
         case scene::GeometryKind::Adaptive:
             std::cerr << fmt::format("wrote {} (an adaptive mesh2: {} triangles of the full {:.0f}, {:.1f} MB)\n", pov,
-                                     c.meshTriangles, c.estimate.triangles, c.povBytes / 1e6);
+                                     t.meshTriangles, c.estimate.triangles, outcome.compiled->povBytes / 1e6);
             break;
         default:
             std::cerr << fmt::format("wrote {} ({} x {} vertices, {} triangles, {:.1f} MB)\n", pov, c.estimate.rows,
-                                     c.estimate.cols, c.meshTriangles, c.povBytes / 1e6);
+                                     c.estimate.cols, t.meshTriangles, outcome.compiled->povBytes / 1e6);
     }
     if (rendered)
         std::cerr << fmt::format("wrote {} ({} x {}{}; POV-Ray parse {:.2f} s, trace {:.2f} s)\n",
-                                 terminalText(outcome.paths.still.string(), 500), c.scene.render.width,
-                                 c.scene.render.height,
+                                 terminalText(outcome.paths.still.string(), 500), outcome.compiled->view.widthPx,
+                                 outcome.compiled->view.heightPx,
                                  outcome.tiles > 1 ? fmt::format(", {} tiles", outcome.tiles) : std::string(),
                                  outcome.render.parseSeconds, outcome.render.traceSeconds);
 }

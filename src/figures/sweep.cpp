@@ -179,7 +179,7 @@ public:
             emit(event);
         };
         Diagnostics diags;
-        const PlansRendered rendered = renderPlans(plans, e, {told, "stills"}, diags);
+        const PlansRendered rendered = renderPlans(plans, e, {told, "stills", 0, 0, {}}, diags);
         if (rendered.status != JobStatus::Ok) {
             JobOutcome failed;
             failed.status = rendered.status;
@@ -204,7 +204,7 @@ public:
             event.diags = &diags;
             emit(event);
             result.tiles.push_back(
-                {p.outcome.paths.still, fmt::format("{}\n{}", labelOf(combos_[i]), p.outcome.compiled->certified)});
+                {p.outcome.paths.still, fmt::format("{}\n{}", labelOf(combos_[i]), p.outcome.compiled->surface.certified)});
         }
         return true;
     }

@@ -1,5 +1,5 @@
 #pragma once
-// Part of stage 2 (its front door is geo/control_net.h): scattered samples
+// Part of stage 2 (its front door is geo/geo.h): scattered samples
 // gridded onto the net. Input: FrameSpec, NetSpec and the samples (WGS84
 // lon/lat/elev, geo/samples.h). Output: ControlNet, a GeoGrid (metres,
 // x = east, y = north, z = up) ready for subdivision.

@@ -5,7 +5,7 @@
 // (crs_frame.h) nodes on the cells' centres are the cells, read; otherwise
 // every net node (x, y in the scene's frame) goes to WGS84 latitude and
 // longitude with GeographicLib, then to the raster's CRS with GDAL/PROJ, and is
-// resampled there by GDAL's warper, which reads only the blocks the net covers. controlNet (control_net.h)
+// resampled there by GDAL's warper, which reads only the blocks the net covers. controlNet (geo.h)
 // decides when a scene's samples take this path. In phases: the raster checked
 // (raster_source.h), where the net goes (raster_footprint.h), the warp
 // (raster_warp.h), the heights and nodata (raster_heights.h), composed in

@@ -1,4 +1,4 @@
-// Scattered samples made into the net (control_net.h: scatteredNet): read
+// Scattered samples made into the net (geo.h: scatteredNet): read
 // within the memory budget, resampled as the raster they are when they form
 // a lattice, else gridded.
 #include <algorithm>
@@ -9,7 +9,7 @@
 
 #include "core/input_file.h"
 #include "core/text_escape.h"
-#include "geo/control_net.h"
+#include "geo/geo.h"
 #include "geo/raster.h"
 
 namespace relief::geo {

@@ -138,36 +138,43 @@ std::optional<emit::ContourRibbons> buildContours(const scene::SceneSpec& spec, 
     return ribbons;
 }
 
-// What the overlays say, and the camera both ways, from the view.
-void describeView(const scene::SceneSpec& spec, const geo::ControlNet& net, const View& view, CompileResult& r) {
+// What the overlays say, the camera both ways and where the terrain sits, from the view.
+ViewSummary describeView(const scene::SceneSpec& spec, const geo::ControlNet& net, const View& view,
+                         const std::string& credits) {
     const emit::ScenePlacement& where = view.where;
     const emit::CameraView& camera = view.camera;
-    annotate::OverlayFacts& f = r.overlayFacts;
-    // Whose data: the scene's credit line, else the one the raster's metadata carries.
-    r.dataAttribution = !spec.samples.attribution.empty() ? spec.samples.attribution : net.attribution;
-    f = annotate::overlayFacts(spec.look, where, camera, spec.render, geo::gridConvergenceDeg(net.frame, where.originM.x,
-                                                                                               where.originM.y));
-    f.credits = spec.overlay.credits ? *spec.overlay.credits : r.dataAttribution;
+    ViewSummary v;
+    v.sun = view.sunRecord;
+    v.metresPerUnit = where.metresPerUnit;
+    v.baseFloorM = where.baseElevationM;
+    v.zRangeM = {where.zMinM, where.zMaxM};
+    v.overlayFacts = annotate::overlayFacts(spec.look, where, camera, spec.render,
+                                            geo::gridConvergenceDeg(net.frame, where.originM.x, where.originM.y));
+    v.overlayFacts.credits = spec.overlay.credits ? *spec.overlay.credits : credits;
+    v.widthPx = spec.render.width;
+    v.heightPx = spec.render.height;
     // The eye and the target back in metres (heights unexaggerated), then degrees.
     const Vec3 eye = where.unexaggerated(camera.eye), target = where.unexaggerated(camera.target);
-    for (auto [p, out] : {std::pair{eye, &r.cameraEye}, std::pair{target, &r.cameraTarget}})
+    for (auto [p, out] : {std::pair{eye, &v.cameraEye}, std::pair{target, &v.cameraTarget}})
         if (auto g = geo::reverse(net.frame, p)) *out = *g;
     const Vec3 d = eye - target;
-    r.cameraDistanceM = length(d);
-    r.cameraAzimuthDeg = std::fmod(std::atan2(d.x, d.y) * 180 / std::numbers::pi + 360, 360);
-    r.cameraElevationDeg =
-        std::asin(std::clamp(d.z / std::max(r.cameraDistanceM, 1e-300), -1.0, 1.0)) * 180 / std::numbers::pi;
+    v.cameraDistanceM = length(d);
+    v.cameraAzimuthDeg = std::fmod(std::atan2(d.x, d.y) * 180 / std::numbers::pi + 360, 360);
+    v.cameraElevationDeg =
+        std::asin(std::clamp(d.z / std::max(v.cameraDistanceM, 1e-300), -1.0, 1.0)) * 180 / std::numbers::pi;
+    return v;
 }
 
 // The image's credit joins the data's (a map's or a photo's licence asks for it too).
 void creditImage(const scene::SceneSpec& spec, const Terrain& t, CompileResult& r) {
     if (!t.image) return;
-    r.drapeImageCoverage = double(t.image->coveredCount) / double(t.image->covered.size());
-    r.imageAttribution = !spec.look.texture.drapeImageAttribution.empty() ? spec.look.texture.drapeImageAttribution
-                                                                          : t.image->attribution;
-    if (!spec.overlay.credits && !r.imageAttribution.empty())
-        r.overlayFacts.credits += (r.overlayFacts.credits.empty() ? "" : " ") + r.imageAttribution;
-    if (!r.imageAttribution.empty()) r.parameters.emplace_back("texture.image_attribution", r.imageAttribution);
+    r.terrain.drapeImageCoverage = double(t.image->coveredCount) / double(t.image->covered.size());
+    r.credits.image = !spec.look.texture.drapeImageAttribution.empty() ? spec.look.texture.drapeImageAttribution
+                                                                       : t.image->attribution;
+    annotate::OverlayFacts& f = r.view.overlayFacts;
+    if (!spec.overlay.credits && !r.credits.image.empty())
+        f.credits += (f.credits.empty() ? "" : " ") + r.credits.image;
+    if (!r.credits.image.empty()) r.parameters.emplace_back("texture.image_attribution", r.credits.image);
 }
 
 // The writers the template's placeholders call: terrain, block model, what lies on the surface.
@@ -217,37 +224,44 @@ bool dumpNetFits(const CompileOptions& options, const geo::ControlNet& net, Diag
     return false;
 }
 
-// What the surface and its placement were, for the header and the sidecar.
-void recordSurface(CompileResult& r, const LoadedScene& loaded, const Surface& surface, const emit::ScenePlacement& where,
-                   const SunFacts& sunRecord) {
-    r.estimate = surface.estimate;
-    r.depth = surface.depth;
-    r.depthReason = surface.depthReason;
-    r.autoDepth = surface.autoDepth;
-    r.geometry = surface.geometry;
-    r.maskedNodes = surface.refined.maskedCount();
-    r.schemeFamily = loaded.resolved.family;
-    r.certified = subdiv::certifiedClass(loaded.resolved.report);
-    r.arity = loaded.resolved.scheme.arity;
-    r.holder = loaded.resolved.report.holder;
-    r.metresPerUnit = where.metresPerUnit;
-    r.baseFloorM = where.baseElevationM;
-    r.zRangeM = {where.zMinM, where.zMaxM};
-    r.sun = sunRecord;
-    r.fit = surface.fit;
-    r.prefilter = surface.prefilter;
-    r.peakLoss = surface.peakLoss;
+// The net as the record describes it.
+NetSummary summaryOf(const geo::ControlNet& net) {
+    return {net.grid.rows,      net.grid.cols,      net.dx,           net.dy,          net.frame.describe(),
+            net.spacingReason,  net.sampleCount,    net.filledOutsideHull, net.filledNodata, net.maskedCount()};
+}
+
+// What the surface was, for the header and the sidecar.
+SurfaceSummary summaryOf(const LoadedScene& loaded, const Surface& surface) {
+    SurfaceSummary s;
+    s.net = summaryOf(surface.net);
+    s.schemeFamily = loaded.resolved.family;
+    s.certified = subdiv::certifiedClass(loaded.resolved.report);
+    s.arity = loaded.resolved.scheme.arity;
+    s.holder = loaded.resolved.report.holder;
+    s.depth = surface.depth;
+    s.depthReason = surface.depthReason;
+    s.autoDepth = surface.autoDepth;
+    s.estimate = surface.estimate;
+    s.geometry = surface.geometry;
+    s.maskedNodes = surface.refined.maskedCount();
+    s.fit = surface.fit;
+    s.prefilter = surface.prefilter;
+    s.peakLoss = surface.peakLoss;
+    return s;
 }
 
 // What the geometry became.
-void recordTerrain(CompileResult& r, const Terrain& t) {
-    r.heightPng = t.heightPng;
-    r.drapePng = t.drapePng;
-    r.heightStepM = t.heightStepM;
-    r.adaptiveToleranceM = t.adaptiveToleranceM;
-    r.adaptiveTolerancePx = t.adaptiveTolerancePx;
-    r.meshVertices = t.vertices;
-    r.meshTriangles = t.triangles;
+TerrainSummary summaryOf(const Terrain& t, const emit::SurfaceContours& contours) {
+    TerrainSummary s;
+    s.heightPng = t.heightPng;
+    s.drapePng = t.drapePng;
+    s.heightStepM = t.heightStepM;
+    s.adaptiveToleranceM = t.adaptiveToleranceM;
+    s.adaptiveTolerancePx = t.adaptiveTolerancePx;
+    s.meshVertices = t.vertices;
+    s.meshTriangles = t.triangles;
+    s.contours = contours;
+    return s;
 }
 
 // The SDL files a film's frames include in place of the geometry: written
@@ -283,6 +297,11 @@ emit::GeometryWriters includesOf(const SdlFiles& files) {
 }
 
 }  // namespace
+
+DataCredit dataCredit(const scene::SamplesSpec& samples, const geo::ControlNet& net) {
+    if (!samples.attribution.empty()) return {samples.attribution, false};
+    return {net.attribution, !net.attribution.empty()};
+}
 
 // Everything compiled but the view: the surface, the view it was fitted to
 // (the adaptive mesh's tolerance, the contours' width), the geometry and the
@@ -367,14 +386,14 @@ std::optional<CompileResult> compileView(const LoadedScene& frame, const SharedT
     const View& view = own ? *own : st.view;
     const auto t0 = Clock::now();
     CompileResult r;
-    r.scene = spec;
-    r.times = {frame.seconds, st.surface.normalizeSeconds, st.surface.subdivideSeconds, 0};
-    describeView(spec, st.surface.net, view, r);
-    recordSurface(r, st.loaded, st.surface, view.where, view.sunRecord);
-    recordTerrain(r, st.terrain);
-    r.contours = st.ribbons.made;
-    r.layers = describeSurfaceMarks(st.marks, spec, st.surface.refined, view.where, view.camera, r.overlayFacts);
-    r.parameters = sceneHeader(spec, st.surface.net, st.loaded.resolved, st.surface.depth, r);
+    r.seconds = {frame.seconds, st.surface.normalizeSeconds, st.surface.subdivideSeconds, 0};
+    r.credits.data = dataCredit(spec.samples, st.surface.net).text;
+    r.view = describeView(spec, st.surface.net, view, r.credits.data);
+    r.surface = summaryOf(st.loaded, st.surface);
+    r.terrain = summaryOf(st.terrain, st.ribbons.made);
+    r.terrain.layers =
+        describeSurfaceMarks(st.marks, spec, st.surface.refined, view.where, view.camera, r.view.overlayFacts);
+    r.parameters = sceneHeader(spec, st.surface.net, st.loaded.resolved, r);
     creditImage(spec, st.terrain, r);
 
     const std::filesystem::path pov = options.writeAt(options.povPath, "the .pov");
@@ -383,11 +402,10 @@ std::optional<CompileResult> compileView(const LoadedScene& frame, const SharedT
     if (!emit::writeScene(pov, st.tmpl, view.where, view.camera, view.sun, writers, spec.look, spec.render,
                           r.parameters, diags))
         return std::nullopt;
-    r.times.emit = st.seconds + secondsSince(t0);
+    r.seconds.emit = st.seconds + secondsSince(t0);
     std::error_code ec;
     r.povBytes = std::filesystem::file_size(pov, ec);
-    r.net = st.surface.net;
-    warnIfSidecarNotUtf8(r, options.povPath, diags);
+    warnIfSidecarNotUtf8(spec, r, options.povPath, diags);
     return r;
 }
 

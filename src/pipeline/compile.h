@@ -49,44 +49,86 @@ struct StageTimes {
     double readScene = 0, normalize = 0, subdivide = 0, emit = 0;  ///< seconds
 };
 
-struct CompileResult {
-    scene::SceneSpec scene;
+/// What compiling made, for the record (the .pov's header, the sidecar) and
+/// the command line: a summary a stage, no copy of the scene (the record reads
+/// it from the LoadedScene) or of the net.
+struct NetSummary {
+    int rows = 0, cols = 0;
+    double dx = 0, dy = 0;           ///< metres
+    std::string frame;               ///< the frame, described
+    std::string spacingReason;
+    size_t sampleCount = 0, filledOutsideHull = 0, filledNodata = 0;
+    size_t maskedNodes = 0;          ///< nodes without data
+};
+
+/// The surface: the net, the scheme, the depth and why, the refined grid's
+/// estimate and geometry, the fit, the peak loss.
+struct SurfaceSummary {
+    NetSummary net;
     std::string schemeFamily;
     std::string certified;  ///< e.g. "C1 (Hölder ~1.68)"
-    geo::ControlNet net;    ///< the control net (its grid is kept; it is small)
-    subdiv::OutputEstimate estimate;  ///< the refined grid's size and its mesh's
-    int depth = 0;                    ///< the scene's, the one depth = "auto" chose, or the still's
-    std::string depthReason;          ///< Surface::depthReason
-    std::optional<DepthChoice> autoDepth;
     int arity = 2;
-    double holder = 0;  ///< the scheme's Hölder estimate, next to the observed rates
-    double metresPerUnit = 1;
-    emit::ParameterList parameters;  ///< as recorded in the .pov header
-    StageTimes times;
-    std::uintmax_t povBytes = 0;
+    double holder = 0;      ///< the scheme's Hölder estimate, next to the observed rates
+    int depth = 0;          ///< the scene's, the one depth = "auto" chose, or the still's
+    std::string depthReason;
+    std::optional<DepthChoice> autoDepth;
+    subdiv::OutputEstimate estimate;  ///< the refined grid's size and its mesh's
     emit::GeometryChoice geometry;
+    size_t maskedNodes = 0;           ///< refined nodes without data
+    std::optional<fit::FitReport> fit;              ///< net.gridding = "fit": what the fit did
+    std::optional<fit::PrefilterReport> prefilter;  ///< net.fit = true
+    measure::PeakLoss peakLoss;                     ///< the data's peak against the surface's
+};
+
+/// The terrain's geometry as written, and what lies on it.
+struct TerrainSummary {
     std::filesystem::path heightPng, drapePng;      ///< the height field's PNGs, beside the .pov
     double heightStepM = 0;                         ///< its vertical quantization
     double adaptiveToleranceM = 0, adaptiveTolerancePx = 0;  ///< the adaptive mesh's bound
     long long meshVertices = 0, meshTriangles = 0;  ///< as emitted: masked nodes left out
-    size_t maskedNodes = 0;                         ///< refined nodes without data
-    SunFacts sun;
-    emit::SurfaceContours contours;             ///< [overlay] contours as drawn
-    std::optional<fit::FitReport> fit;              ///< net.gridding = "fit": what the fit did
-    std::optional<fit::PrefilterReport> prefilter;  ///< net.fit = true
-    measure::PeakLoss peakLoss;                     ///< the data's peak against the surface's
-    nlohmann::ordered_json layers = nlohmann::ordered_json::array();  ///< what each [[layer]] became (sidecar)
+    emit::SurfaceContours contours;                 ///< [overlay] contours as drawn
+    nlohmann::ordered_json layers = nlohmann::ordered_json::array();  ///< what each [[layer]] became
     std::optional<double> drapeImageCoverage;  ///< [texture] image: the share of the surface's nodes it covers
-    std::string dataAttribution;   ///< the samples' credit: the scene's, else the raster's metadata's
-    std::string imageAttribution;  ///< [texture] image's credit: the scene's, else the image's metadata's
-    std::optional<double> baseFloorM;   ///< the block model's floor elevation; unset: no block
-    std::array<double, 2> zRangeM{};    ///< the surface's lowest and highest elevation (nodes with data)
-    annotate::OverlayFacts overlayFacts;            ///< what the still's overlays say
-    /// The camera both ways: the eye and the point looked at as [lon, lat,
-    /// height_m], and as an orbit around the point (azimuth, elevation, distance).
+};
+
+/// The view: the sun, the camera both ways, where the terrain sits, what the
+/// overlays say.
+struct ViewSummary {
+    SunFacts sun;
+    /// The eye and the point looked at as [lon, lat, height_m], and as an
+    /// orbit around the point (azimuth, elevation, distance).
     GeoPoint cameraEye, cameraTarget;
     double cameraAzimuthDeg = 0, cameraElevationDeg = 0, cameraDistanceM = 0;
+    double metresPerUnit = 1;
+    std::optional<double> baseFloorM;   ///< the block model's floor elevation; unset: no block
+    std::array<double, 2> zRangeM{};    ///< the surface's lowest and highest elevation (nodes with data)
+    annotate::OverlayFacts overlayFacts;
+    int widthPx = 0, heightPx = 0;      ///< the still's
 };
+
+/// Whose data and whose image: the scene's credit line, else the one the
+/// file's metadata carries (dataCredit, the one rule).
+struct Credits {
+    std::string data, image;
+};
+
+struct CompileResult {
+    SurfaceSummary surface;
+    TerrainSummary terrain;
+    ViewSummary view;
+    Credits credits;
+    emit::ParameterList parameters;  ///< as recorded in the .pov header
+    std::uintmax_t povBytes = 0;
+    StageTimes seconds;
+};
+
+/// The data's credit: the scene's [samples] attribution, else what the
+/// raster's metadata carries (`fromMetadata` says which).
+struct DataCredit {
+    std::string text;
+    bool fromMetadata = false;
+};
+DataCredit dataCredit(const scene::SamplesSpec& samples, const geo::ControlNet& net);
 
 /// Runs stages 2-4 and writes the .pov, the files it reads (and the net
 /// dump, if asked) where `options.writeAt` says: the surface, the view

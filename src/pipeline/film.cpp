@@ -169,7 +169,7 @@ bool planFrame(const AnimateJob& job, const LoadedScene& scene, const SharedTerr
     paths.still = plan.dir / "frame.png";  // a label only: finishFrames names the frames kept
     paths.pov = options.povPath;
     paths.sidecar = plan.dir / "frame.json";
-    describeRender(plan, *compiled, paths, job.tiles);
+    describeRender(plan, scene.scene, *compiled, paths, job.tiles);
     plan::copyTemplates(plan, job.templatesDir);
     if (!writePlan(plan, diags)) return false;
     work.plans.push_back(std::move(plan));
@@ -244,7 +244,7 @@ bool renderFrames(const std::vector<plan::RenderPlan>& plans, size_t from, size_
     for (size_t i = from; i < to; ++i) these.push_back(&plans[i]);
     execute::Options options = execution;
     if (options.jobDir.empty()) options.jobDir = plans[from].dir.parent_path() / "slurm";
-    const PlansRendered r = renderPlans(these, options, {progress, "frames", from, plans.size()}, diags);
+    const PlansRendered r = renderPlans(these, options, {progress, "frames", from, plans.size(), {}}, diags);
     if (r.status == JobStatus::Ok) return true;
     outcome.status = r.status;
     outcome.toolError = r.error;

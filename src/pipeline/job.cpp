@@ -113,7 +113,7 @@ void compileOnly(PlannedJob& p, const LoadedScene& loaded, Diagnostics& diags, c
     p.outcome.compiled = compileScene(loaded, copts, diags);
     if (!p.outcome.compiled) return;
     writeFileAtomically(outputs.staged(p.outcome.paths.sidecar),
-                        sidecarText(sidecarJson(*p.outcome.compiled, p.outcome.paths)));
+                        sidecarText(sidecarJson(loaded.scene, *p.outcome.compiled, p.outcome.paths)));
     p.outcome.status = JobStatus::Ok;
 }
 
@@ -155,7 +155,7 @@ void compileIntoPlan(PlannedJob& p, const LoadedScene& loaded, Diagnostics& diag
     };
     p.outcome.compiled = compileScene(loaded, copts, diags);
     if (!p.outcome.compiled) return;
-    describeRender(plan, *p.outcome.compiled, paths, job.tiles);
+    describeRender(plan, loaded.scene, *p.outcome.compiled, paths, job.tiles);
     plan::copyTemplates(plan, job.templatesDir);
     if (!writePlan(plan, diags)) return;
     // Named when whole (the lock goes with it); another render onto the same
@@ -219,8 +219,8 @@ OutputPaths outputPathsFor(const std::filesystem::path& still) {
     return p;
 }
 
-void describeRender(plan::RenderPlan& plan, const CompileResult& compiled, const OutputPaths& paths, int tiles) {
-    const scene::SceneSpec& s = compiled.scene;
+void describeRender(plan::RenderPlan& plan, const scene::SceneSpec& s, const CompileResult& compiled,
+                    const OutputPaths& paths, int tiles) {
     plan.povrayVersion = plan::povrayVersion();
     plan.width = s.render.width;
     plan.height = s.render.height;
@@ -237,8 +237,8 @@ void describeRender(plan::RenderPlan& plan, const CompileResult& compiled, const
     plan.overlays = annotate::overlaysWanted(s.overlay, s.render.width);
     plan.overlaySpec = s.overlay;
     plan.overlaySpec.locs = {};
-    plan.overlayFacts = compiled.overlayFacts;
-    plan.sidecar0 = sidecarJson(compiled, paths);
+    plan.overlayFacts = compiled.view.overlayFacts;
+    plan.sidecar0 = sidecarJson(s, compiled, paths);
 }
 
 std::optional<PngImage8> stitchedStill(const plan::RenderPlan& plan, Diagnostics& diags) {
@@ -337,7 +337,7 @@ namespace {
 // The tiles rendered (POV-Ray sandboxed unless `execution` says not); the outcome says how, when not all were.
 bool renderTiles(const plan::RenderPlan& plan, const execute::Options& execution, JobOutcome& outcome,
                  Diagnostics& diags, const ProgressFn& progress) {
-    const PlansRendered r = renderPlans({&plan}, execution, {progress, "tiles"}, diags);
+    const PlansRendered r = renderPlans({&plan}, execution, {progress, "tiles", 0, 0, {}}, diags);
     outcome.tiles = r.tiles;
     outcome.render.wallSeconds = r.wallSeconds;
     outcome.status = r.status;

@@ -91,7 +91,8 @@ PlannedJob planJob(const SceneJob& job, Diagnostics& diags, const ProgressFn& pr
 /// The render plan's fields for a compiled scene: the still's size and
 /// POV-Ray's options, where the still and sidecar go, the overlays and their
 /// facts, the sidecar so far (compiling into plan.dir adds its files).
-void describeRender(plan::RenderPlan& plan, const CompileResult& compiled, const OutputPaths& paths, int tiles);
+void describeRender(plan::RenderPlan& plan, const scene::SceneSpec& scene, const CompileResult& compiled,
+                    const OutputPaths& paths, int tiles);
 
 /// The plan's tiles stitched into the still's pixels, no overlays; nullopt with the reason.
 std::optional<PngImage8> stitchedStill(const plan::RenderPlan& plan, Diagnostics& diags);

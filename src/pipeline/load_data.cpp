@@ -12,6 +12,7 @@
 #include "core/input_file.h"
 #include "core/number_format.h"
 #include "core/text_escape.h"
+#include "geo/geo.h"
 #include "geo/raster.h"
 #include "geo/raster_mosaic.h"
 #include "scene/enum_names.h"
@@ -23,12 +24,13 @@ namespace fs = std::filesystem;
 
 InputKind inputKindOf(const fs::path& path, std::string& why) {
     std::error_code ec;
-    if (fs::is_directory(path, ec)) {  // a folder of tiles
-        if (!geo::rasterTilesIn(path, why).empty()) return InputKind::Raster;
-        return InputKind::Neither;
+    const bool folder = fs::is_directory(path, ec);
+    if (!folder && (!fs::is_regular_file(path, ec) || path.extension() == ".toml")) return InputKind::Scene;
+    // Data as geo reads it (a raster, a folder of tiles), by the table controlNet reads samples with.
+    if (geo::recognisedSource(path).raster) {
+        if (!folder || !geo::rasterTilesIn(path, why).empty()) return InputKind::Raster;
+        return InputKind::Neither;  // a folder without tiles: `why` says so
     }
-    if (!fs::is_regular_file(path, ec) || path.extension() == ".toml") return InputKind::Scene;
-    if (geo::isRasterDem(path)) return InputKind::Raster;
     if (path.extension() == ".csv") return InputKind::Samples;
     std::string problem;
     const auto text = readInputFile(path, kMaxSceneBytes, problem);

@@ -22,17 +22,19 @@ namespace relief {
 // The .pov's header and the sidecar's "parameters": the inputs, the frame and
 // net, the scheme, depth and geometry, the look and the still.
 emit::ParameterList sceneHeader(const scene::SceneSpec& scene, const geo::ControlNet& net,
-                                const subdiv::ResolvedScheme& scheme, int depth, const CompileResult& compiled);
+                                const subdiv::ResolvedScheme& scheme, const CompileResult& compiled);
 
 /// The JSON sidecar: inputs, parameters, net size, vertex and triangle
 /// counts, time per stage, what the compile made; finishPlan adds the
 /// render's (POV-Ray's seconds, every tile's record, what the overlays show).
 /// Every string UTF-8: a name that is not is written with U+FFFD.
-nlohmann::ordered_json sidecarJson(const CompileResult& compiled, const OutputPaths& paths);
+nlohmann::ordered_json sidecarJson(const scene::SceneSpec& scene, const CompileResult& compiled,
+                                   const OutputPaths& paths);
 
 /// Warns (once a run) when the sidecar of `compiled`, its .pov at `pov`,
 /// will write a name or text with U+FFFD (not UTF-8), naming the first.
-void warnIfSidecarNotUtf8(const CompileResult& compiled, const std::filesystem::path& pov, Diagnostics& diags);
+void warnIfSidecarNotUtf8(const scene::SceneSpec& scene, const CompileResult& compiled,
+                          const std::filesystem::path& pov, Diagnostics& diags);
 
 /// The sidecar's text: the JSON, indented, a line feed at the end.
 std::string sidecarText(const nlohmann::ordered_json& sidecar);

@@ -27,10 +27,8 @@ void addData(Header& h, const scene::SceneSpec& s, const geo::ControlNet& net) {
     h.add("scene_sha1", s.sceneSha1);
     for (const auto& [k, v] : s.overrides) h.add("override " + k, v);
     h.add("samples.path", s.samples.pathAsWritten);
-    if (!s.samples.attribution.empty())
-        h.add("samples.attribution", s.samples.attribution);
-    else if (!net.attribution.empty())
-        h.add("samples.attribution", net.attribution + " (from the raster's metadata)");
+    if (const DataCredit credit = dataCredit(s.samples, net); !credit.text.empty())
+        h.add("samples.attribution", credit.text + (credit.fromMetadata ? " (from the raster's metadata)" : ""));
     h.add("samples.count", std::to_string(net.sampleCount));
     h.add("frame", net.frame.describe());
     h.add("net.size", fmt::format("{} rows x {} cols", net.grid.rows, net.grid.cols));
@@ -51,7 +49,7 @@ void addData(Header& h, const scene::SceneSpec& s, const geo::ControlNet& net) {
 }
 
 // What made the net fit the scheme's surface, and how much of the data's peak the surface keeps.
-void addFit(Header& h, const CompileResult& c) {
+void addFit(Header& h, const SurfaceSummary& c) {
     if (c.fit)
         h.add("net.fit", fmt::format("{} samples fitted at depth {}: RMSE {:.3g} m, largest residual {:.3g} m, "
                                      "smoothing {:.3g} ({}), tension {:.3g} ({}), {} of {} nodes constrained, data "
@@ -69,8 +67,9 @@ void addFit(Header& h, const CompileResult& c) {
 }
 
 // The scheme, its certificate and the depth, and the refined grid.
-void addSubdivision(Header& h, const scene::SubdivisionSpec& sub, const subdiv::ResolvedScheme& scheme, int depth,
-                    const CompileResult& compiled) {
+void addSubdivision(Header& h, const scene::SubdivisionSpec& sub, const subdiv::ResolvedScheme& scheme,
+                    const SurfaceSummary& surface) {
+    const int depth = surface.depth;
     std::string params;
     for (const auto& [k, v] : scheme.params)
         params += fmt::format("{}{} = {}", params.empty() ? "" : ", ", k, formatShortest(v));
@@ -84,42 +83,44 @@ void addSubdivision(Header& h, const scene::SubdivisionSpec& sub, const subdiv::
     h.add("subdivision.depth", sub.depthAuto
                                    ? fmt::format("{} (auto, tolerance_m = {})", depth, formatShortest(sub.toleranceM))
                                : sub.depthGiven ? std::to_string(depth)
-                                                : fmt::format("{} ({})", depth, compiled.depthReason));
-    const subdiv::OutputEstimate& est = compiled.estimate;
+                                                : fmt::format("{} ({})", depth, surface.depthReason));
+    const subdiv::OutputEstimate& est = surface.estimate;
     h.add("refined.size", fmt::format("{} rows x {} cols", est.rows, est.cols));
     h.add("refined.vertices", fmt::format("{:.0f}", est.vertices));
     h.add("refined.triangles", fmt::format("{:.0f}", est.triangles));
-    addFit(h, compiled);
+    addFit(h, surface);
 }
 
 // The geometry written, and what is drawn on it or under it.
 void addGeometry(Header& h, const scene::SceneSpec& s, const CompileResult& compiled) {
-    const subdiv::OutputEstimate& est = compiled.estimate;
-    h.add("geometry", fmt::format("{} ({})", scene::nameOf(compiled.geometry.kind), compiled.geometry.reason));
-    if (compiled.geometry.kind == scene::GeometryKind::HeightField)
+    const SurfaceSummary& surface = compiled.surface;
+    const TerrainSummary& t = compiled.terrain;
+    const subdiv::OutputEstimate& est = surface.estimate;
+    h.add("geometry", fmt::format("{} ({})", scene::nameOf(surface.geometry.kind), surface.geometry.reason));
+    if (surface.geometry.kind == scene::GeometryKind::HeightField)
         h.add("geometry.height_field", fmt::format("{}, 16-bit, one level = {:.3g} m",
-                                                   compiled.heightPng.filename().string(), compiled.heightStepM));
-    if (compiled.geometry.kind == scene::GeometryKind::Adaptive)
+                                                   t.heightPng.filename().string(), t.heightStepM));
+    if (surface.geometry.kind == scene::GeometryKind::Adaptive)
         h.add("geometry.adaptive", fmt::format("{} triangles of the full mesh2's {:.0f}, vertical error at most {:.3g} "
                                                "m ({:.2g} px)",
-                                               compiled.meshTriangles, est.triangles, compiled.adaptiveToleranceM,
-                                               compiled.adaptiveTolerancePx));
-    else if (compiled.maskedNodes > 0)
-        h.add("mesh.with_data", fmt::format("{} vertices, {} triangles (masked nodata left out)", compiled.meshVertices,
-                                            compiled.meshTriangles));
+                                               t.meshTriangles, est.triangles, t.adaptiveToleranceM,
+                                               t.adaptiveTolerancePx));
+    else if (surface.maskedNodes > 0)
+        h.add("mesh.with_data", fmt::format("{} vertices, {} triangles (masked nodata left out)", t.meshVertices,
+                                            t.meshTriangles));
     if (s.overlay.contours && s.overlay.enabled != scene::OverlaySpec::Enabled::Off)
         h.add("overlay.contours",
               fmt::format("every {} m on the surface{}", formatShortest(s.overlay.contours->intervalM),
                           s.overlay.contours->indexEvery > 0
                               ? fmt::format(", every {}th heavier", s.overlay.contours->indexEvery)
                               : std::string()));
-    if (compiled.baseFloorM)
+    if (compiled.view.baseFloorM)
         h.add("base", fmt::format("a block: walls down to a floor at {:.2f} m, {:.2f} m below the lowest point",
-                                  *compiled.baseFloorM, compiled.zRangeM[0] - *compiled.baseFloorM));
+                                  *compiled.view.baseFloorM, compiled.view.zRangeM[0] - *compiled.view.baseFloorM));
 }
 
 // The colours and the sun.
-void addTextureAndSun(Header& h, const scene::LookSpec& look, const CompileResult& compiled) {
+void addTextureAndSun(Header& h, const scene::LookSpec& look, const SunFacts& sun) {
     h.add("texture.ramp",
           look.texture.ramp.cptPath.empty() ? look.texture.ramp.preset : "cpt " + look.texture.ramp.cptPath);
     using Colouring = scene::TextureSpec::Colouring;
@@ -128,11 +129,10 @@ void addTextureAndSun(Header& h, const scene::LookSpec& look, const CompileResul
         h.add("texture.mode",
               fmt::format("{}: rock from {} to {} degrees of slope", scene::nameOf(look.texture.colouring),
                           formatShortest(look.texture.rockFromDeg), formatShortest(look.texture.rockToDeg)));
-    if (compiled.sun.fromDatetime)
+    if (sun.fromDatetime)
         h.add("lighting.sun",
               fmt::format("azimuth {:.2f} deg (true), altitude {:.2f} deg, at {} over lon {:.4f} lat {:.4f}",
-                          compiled.sun.azimuthDeg, compiled.sun.altitudeDeg, oneLineText(compiled.sun.datetime),
-                          compiled.sun.lonDeg, compiled.sun.latDeg));
+                          sun.azimuthDeg, sun.altitudeDeg, oneLineText(sun.datetime), sun.lonDeg, sun.latDeg));
     else
         h.add("lighting.sun",
               fmt::format("azimuth {} deg, altitude {} deg", formatShortest(look.lighting.sunAzimuthDeg),
@@ -180,13 +180,13 @@ void addCameraAndRender(Header& h, const scene::CameraSpec& camera, const scene:
 }  // namespace
 
 emit::ParameterList sceneHeader(const scene::SceneSpec& s, const geo::ControlNet& net,
-                                const subdiv::ResolvedScheme& scheme, int depth, const CompileResult& compiled) {
+                                const subdiv::ResolvedScheme& scheme, const CompileResult& compiled) {
     Header h;
     addData(h, s, net);
-    addSubdivision(h, s.subdivision, scheme, depth, compiled);
+    addSubdivision(h, s.subdivision, scheme, compiled.surface);
     addGeometry(h, s, compiled);
-    addTextureAndSun(h, s.look, compiled);
-    addCameraAndRender(h, s.look.camera, s.render, compiled.metresPerUnit);
+    addTextureAndSun(h, s.look, compiled.view.sun);
+    addCameraAndRender(h, s.look.camera, s.render, compiled.view.metresPerUnit);
     addQuality(h, s.render, s.look.lighting);
     return std::move(h.lines);
 }

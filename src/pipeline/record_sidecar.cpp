@@ -18,7 +18,7 @@ using nlohmann::ordered_json;
 namespace {
 
 // The net's fit (or prefilter) and the peak loss.
-void addFitToSidecar(ordered_json& j, const CompileResult& c) {
+void addFitToSidecar(ordered_json& j, const SurfaceSummary& c) {
     const auto point = [](const Vec3& p) { return ordered_json::array({p.x, p.y, p.z}); };
     j["peak_loss"] = {{"loss_m", c.peakLoss.lossM},
                       {"data_peak_m", point(c.peakLoss.peak)},
@@ -55,40 +55,43 @@ void addFitToSidecar(ordered_json& j, const CompileResult& c) {
 }
 
 // The sidecar as compiling made it, its strings as they came (a name may not be UTF-8).
-ordered_json sidecarFacts(const CompileResult& c, const OutputPaths& paths) {
+ordered_json sidecarFacts(const scene::SceneSpec& scene, const CompileResult& compiled, const OutputPaths& paths) {
+    const SurfaceSummary& c = compiled.surface;
+    const TerrainSummary& t = compiled.terrain;
+    const ViewSummary& v = compiled.view;
     ordered_json j;
     j["relief_version"] = kVersion;
-    j["inputs"] = {{"scene", c.scene.sceneFile.string()},
-                   {"scene_sha1", c.scene.sceneSha1},
-                   {"samples", c.scene.samples.path.string()},
+    j["inputs"] = {{"scene", scene.sceneFile.string()},
+                   {"scene_sha1", scene.sceneSha1},
+                   {"samples", scene.samples.path.string()},
                    {"sample_count", c.net.sampleCount}};
-    if (!c.scene.madeForData.empty()) j["inputs"]["scene_made_for_the_data"] = c.scene.madeForData;
-    if (!c.dataAttribution.empty()) j["inputs"]["attribution"] = c.dataAttribution;
+    if (!scene.madeForData.empty()) j["inputs"]["scene_made_for_the_data"] = scene.madeForData;
+    if (!compiled.credits.data.empty()) j["inputs"]["attribution"] = compiled.credits.data;
     ordered_json params = ordered_json::object();
-    for (const auto& [k, v] : c.parameters) params[k] = v;
+    for (const auto& [k, value] : compiled.parameters) params[k] = value;
     j["parameters"] = params;
-    j["net"] = {{"rows", c.net.grid.rows},
-                {"cols", c.net.grid.cols},
+    j["net"] = {{"rows", c.net.rows},
+                {"cols", c.net.cols},
                 {"dx_m", c.net.dx},
                 {"dy_m", c.net.dy},
-                {"frame", c.net.frame.describe()},
+                {"frame", c.net.frame},
                 {"spacing_reason", c.net.spacingReason},
                 {"filled_outside_hull", c.net.filledOutsideHull},
                 {"filled_nodata", c.net.filledNodata},
-                {"masked_nodata", c.net.maskedCount()}};
+                {"masked_nodata", c.net.maskedNodes}};
     j["refined"] = {{"depth", c.depth},
                     {"depth_reason", c.depthReason},
                     {"rows", c.estimate.rows},
                     {"cols", c.estimate.cols},
                     {"masked_nodata", c.maskedNodes},
-                    {"vertices", c.meshVertices},
-                    {"triangles", c.meshTriangles},
-                    {"pov_bytes", c.povBytes},
+                    {"vertices", t.meshVertices},
+                    {"triangles", t.meshTriangles},
+                    {"pov_bytes", compiled.povBytes},
                     {"memory_estimate_mb", c.estimate.memoryBytes / 1e6}};
-    ordered_json times = {{"read_scene", c.times.readScene},
-                          {"normalize", c.times.normalize},
-                          {"subdivide", c.times.subdivide},
-                          {"emit", c.times.emit}};
+    ordered_json times = {{"read_scene", compiled.seconds.readScene},
+                          {"normalize", compiled.seconds.normalize},
+                          {"subdivide", compiled.seconds.subdivide},
+                          {"emit", compiled.seconds.emit}};
     if (c.autoDepth) {
         ordered_json levels = ordered_json::array();
         const int arity = c.arity;
@@ -103,47 +106,47 @@ ordered_json sidecarFacts(const CompileResult& c, const OutputPaths& paths) {
             if (std::isfinite(rate)) level["rate"] = rate;
             levels.push_back(level);
         }
-        j["auto_depth"] = {{"tolerance_m", c.scene.subdivision.toleranceM},
+        j["auto_depth"] = {{"tolerance_m", scene.subdivision.toleranceM},
                            {"depth", c.depth},
                            {"holder_estimate", c.holder},
                            {"levels", levels}};
     }
-    if (c.contours.levels > 0)
-        j["contours"] = {{"interval_m", c.scene.overlay.contours->intervalM},
-                         {"levels", c.contours.levels},
-                         {"lines", c.contours.lines}};
-    if (!c.layers.empty()) j["layers"] = c.layers;
+    if (t.contours.levels > 0)
+        j["contours"] = {{"interval_m", scene.overlay.contours->intervalM},
+                         {"levels", t.contours.levels},
+                         {"lines", t.contours.lines}};
+    if (!t.layers.empty()) j["layers"] = t.layers;
     addFitToSidecar(j, c);
-    if (c.baseFloorM)
-        j["base"] = {{"floor_elevation_m", *c.baseFloorM}, {"thickness_m", c.zRangeM[0] - *c.baseFloorM}};
-    j["sun"] = {{"azimuth_deg", c.sun.azimuthDeg},
-                {"altitude_deg", c.sun.altitudeDeg},
-                {"from", c.sun.fromDatetime ? "datetime" : "scene"}};
-    j["sun"]["azimuth_is"] = c.sun.fromDatetime ? "true bearing" : "bearing on the frame's grid, as given";
-    if (c.sun.fromDatetime) {
-        j["sun"]["datetime"] = c.sun.datetime;
-        j["sun"]["at_lonlat"] = {c.sun.lonDeg, c.sun.latDeg};
+    if (v.baseFloorM)
+        j["base"] = {{"floor_elevation_m", *v.baseFloorM}, {"thickness_m", v.zRangeM[0] - *v.baseFloorM}};
+    j["sun"] = {{"azimuth_deg", v.sun.azimuthDeg},
+                {"altitude_deg", v.sun.altitudeDeg},
+                {"from", v.sun.fromDatetime ? "datetime" : "scene"}};
+    j["sun"]["azimuth_is"] = v.sun.fromDatetime ? "true bearing" : "bearing on the frame's grid, as given";
+    if (v.sun.fromDatetime) {
+        j["sun"]["datetime"] = v.sun.datetime;
+        j["sun"]["at_lonlat"] = {v.sun.lonDeg, v.sun.latDeg};
     }
     const auto lonLatH = [](const GeoPoint& p) { return std::array{p.lonDeg, p.latDeg, p.heightM}; };
     j["camera"] = {
-        {"eye_lonlat_h", lonLatH(c.cameraEye)}, {"look_at_lonlat_h", lonLatH(c.cameraTarget)},
-        {"azimuth_deg", c.cameraAzimuthDeg},    {"elevation_deg", c.cameraElevationDeg},
-        {"distance_m", c.cameraDistanceM},      {"placed_by", c.scene.look.camera.position ? "position" : "orbit"}};
+        {"eye_lonlat_h", lonLatH(v.cameraEye)}, {"look_at_lonlat_h", lonLatH(v.cameraTarget)},
+        {"azimuth_deg", v.cameraAzimuthDeg},    {"elevation_deg", v.cameraElevationDeg},
+        {"distance_m", v.cameraDistanceM},      {"placed_by", scene.look.camera.position ? "position" : "orbit"}};
     j["seconds"] = times;
     j["geometry"] = {{"kind", scene::nameOf(c.geometry.kind)}, {"reason", c.geometry.reason}};
-    if (!c.heightPng.empty()) j["geometry"]["height_step_m"] = c.heightStepM;
+    if (!t.heightPng.empty()) j["geometry"]["height_step_m"] = t.heightStepM;
     if (c.geometry.kind == scene::GeometryKind::Adaptive) {
-        j["geometry"]["tolerance_m"] = c.adaptiveToleranceM;
-        j["geometry"]["tolerance_px"] = c.adaptiveTolerancePx;
+        j["geometry"]["tolerance_m"] = t.adaptiveToleranceM;
+        j["geometry"]["tolerance_px"] = t.adaptiveTolerancePx;
     }
-    j["geometry"]["triangles"] = c.meshTriangles;
+    j["geometry"]["triangles"] = t.meshTriangles;
     j["outputs"] = {{"pov", paths.pov.string()}};
-    if (!c.heightPng.empty()) j["outputs"]["height_png"] = c.heightPng.string();
-    if (!c.drapePng.empty()) j["outputs"]["drape_png"] = c.drapePng.string();
-    if (c.drapeImageCoverage)
-        j["texture"] = {{"image", c.scene.look.texture.drapeImageText},
-                        {"image_covers", *c.drapeImageCoverage},
-                        {"image_attribution", c.imageAttribution}};
+    if (!t.heightPng.empty()) j["outputs"]["height_png"] = t.heightPng.string();
+    if (!t.drapePng.empty()) j["outputs"]["drape_png"] = t.drapePng.string();
+    if (t.drapeImageCoverage)
+        j["texture"] = {{"image", scene.look.texture.drapeImageText},
+                        {"image_covers", *t.drapeImageCoverage},
+                        {"image_attribution", compiled.credits.image}};
     // Keyed by what the still is: "png", "pdf" or "svg".
     if (!paths.still.empty()) {
         const std::string extension = asciiLower(paths.still.extension().string());
@@ -154,16 +157,17 @@ ordered_json sidecarFacts(const CompileResult& c, const OutputPaths& paths) {
 
 }  // namespace
 
-ordered_json sidecarJson(const CompileResult& c, const OutputPaths& paths) {
-    ordered_json j = sidecarFacts(c, paths);
+ordered_json sidecarJson(const scene::SceneSpec& scene, const CompileResult& c, const OutputPaths& paths) {
+    ordered_json j = sidecarFacts(scene, c, paths);
     replaceNotUtf8(j);  // compileView has warned
     return j;
 }
 
-void warnIfSidecarNotUtf8(const CompileResult& c, const std::filesystem::path& pov, Diagnostics& diags) {
-    ordered_json j = sidecarFacts(c, {{}, pov, {}});
+void warnIfSidecarNotUtf8(const scene::SceneSpec& scene, const CompileResult& c, const std::filesystem::path& pov,
+                          Diagnostics& diags) {
+    ordered_json j = sidecarFacts(scene, c, {{}, pov, {}});
     if (const std::string bad = replaceNotUtf8(j); !bad.empty())
-        warnNotUtf8(diags, {c.scene.sceneFile.string(), 0, 0}, "the sidecar's " + bad);
+        warnNotUtf8(diags, {scene.sceneFile.string(), 0, 0}, "the sidecar's " + bad);
 }
 
 namespace {

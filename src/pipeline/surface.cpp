@@ -8,7 +8,7 @@
 
 #include "core/number_format.h"
 #include "core/stopwatch.h"
-#include "geo/control_net.h"
+#include "geo/geo.h"
 #include "subdiv/refine.h"
 
 namespace relief {

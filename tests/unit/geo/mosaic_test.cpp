@@ -11,7 +11,7 @@
 #include <gdal_utils.h>
 
 #include "core/diagnostics.h"
-#include "geo/control_net.h"
+#include "geo/geo.h"
 #include "geo/gdal_setup.h"
 #include "geo/raster_mosaic.h"
 #include "unit/test_dirs.h"

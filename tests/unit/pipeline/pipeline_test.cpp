@@ -89,7 +89,7 @@ TEST(Pipeline, CompileJobWritesThePovAndItsSidecar) {
     // The header names the scene as given; everything after it must match.
     EXPECT_EQ(pov.substr(pov.find("\n#")), golden.substr(golden.find("\n#")));
     const auto sidecar = nlohmann::json::parse(readFile(dir / "small.json"));
-    const auto& c = *outcome.compiled;
+    const auto& c = outcome.compiled->surface;
     EXPECT_EQ(sidecar["refined"]["rows"], c.estimate.rows);
     EXPECT_EQ(sidecar["refined"]["triangles"], 2 * (c.estimate.rows - 1) * (c.estimate.cols - 1));
     EXPECT_EQ(sidecar["refined"]["pov_bytes"], pov.size());
@@ -192,7 +192,7 @@ TEST(Pipeline, ARastersOwnCreditIsTheDefaultAttribution) {
     ASSERT_EQ(outcome.status, JobStatus::Ok) << (diags.all().empty() ? "" : formatDiagnostic(diags.all()[0]));
     auto sidecar = nlohmann::json::parse(readFile(dir / "s.json"));
     EXPECT_EQ(sidecar["inputs"]["attribution"], "DEM: someone, CC BY 4.0");
-    EXPECT_EQ(outcome.compiled->overlayFacts.credits, "DEM: someone, CC BY 4.0");
+    EXPECT_EQ(outcome.compiled->view.overlayFacts.credits, "DEM: someone, CC BY 4.0");
     EXPECT_NE(readFile(dir / "s.pov").find("// samples.attribution: DEM: someone, CC BY 4.0 (from the raster's metadata)"),
               std::string::npos);
 
@@ -201,13 +201,13 @@ TEST(Pipeline, ARastersOwnCreditIsTheDefaultAttribution) {
     ASSERT_EQ(outcome.status, JobStatus::Ok) << (diags.all().empty() ? "" : formatDiagnostic(diags.all()[0]));
     sidecar = nlohmann::json::parse(readFile(dir / "s.json"));
     EXPECT_EQ(sidecar["texture"]["image_attribution"], "Map: someone else, CC BY-SA");
-    EXPECT_EQ(outcome.compiled->overlayFacts.credits, "DEM: someone, CC BY 4.0 Map: someone else, CC BY-SA");
+    EXPECT_EQ(outcome.compiled->view.overlayFacts.credits, "DEM: someone, CC BY 4.0 Map: someone else, CC BY-SA");
 
     // The scene's own line wins over the file's.
     job.overrides = {{"samples.attribution", "Ours"}};
     outcome = runSceneJob(job, diags, nullptr);
     ASSERT_EQ(outcome.status, JobStatus::Ok);
-    EXPECT_EQ(outcome.compiled->overlayFacts.credits, "Ours");
+    EXPECT_EQ(outcome.compiled->view.overlayFacts.credits, "Ours");
 }
 
 // A DEM given alone: relief makes the scene, and the depth suits the still.
@@ -335,9 +335,12 @@ TEST(Pipeline, AFileNamedInLatinOneCompilesAndItsRecordsAreUtf8) {
     Diagnostics diags;
     const JobOutcome outcome = runSceneJob(job, diags, nullptr);
     ASSERT_EQ(outcome.status, JobStatus::Ok) << firstWarning(diags);
-    EXPECT_EQ(outcome.compiled->scene.samples.path, dem);  // the bytes, not U+FFFD
-    EXPECT_EQ(outcome.compiled->scene.overlay.title, "caf\xEF\xBF\xBD");
-    EXPECT_TRUE(isUtf8(outcome.compiled->scene.madeForData));
+    Diagnostics again;
+    const auto loaded = loadScene(dem, again, job.overrides);
+    ASSERT_TRUE(loaded);
+    EXPECT_EQ(loaded->scene.samples.path, dem);  // the bytes, not U+FFFD
+    EXPECT_EQ(loaded->scene.overlay.title, "caf\xEF\xBF\xBD");
+    EXPECT_TRUE(isUtf8(loaded->scene.madeForData));
     std::vector<std::string> said;
     for (const auto& d : diags.all())
         if (d.message.find("not UTF-8") != std::string::npos) said.push_back(formatDiagnostic(d));

@@ -13,7 +13,7 @@
 //    resampled as a raster when they sit one per node of a regular lattice in
 //    some CRS (raster.h: findLattice, latticeNet), else gridded by
 //    triangulation or a search (normalize.h: normalize).
-// A new kind of scattered data is a reader and its row (control_net.cpp);
+// A new kind of scattered data is a reader and its row (geo.cpp);
 // docs/architecture.md, "An input format".
 #include <cstdint>
 #include <filesystem>
@@ -70,10 +70,17 @@ struct SampleSource {
     std::string_view name;  ///< what relief takes such a file for, in messages: "a CSV of samples"
     bool (*recognises)(const std::filesystem::path& path);
     std::optional<ControlNet> (*read)(const NetRequest& request, Diagnostics& diags);
+    bool raster = false;    ///< read as a raster (a raster DEM, a folder of them); else scattered samples
 };
 
 /// The sources in the order controlNet tries them; the last recognises any file.
 std::span<const SampleSource> sampleSources();
+
+/// The source that reads `path`: the first of sampleSources() that
+/// recognises it. What controlNet reads a scene's samples with, and what
+/// tells `relief render dem.tif` that a file named in place of a scene is
+/// data: one table answers both.
+const SampleSource& recognisedSource(const std::filesystem::path& path);
 
 /// A reader of scattered samples: the samples of the file `spec` names, WGS84
 /// lon, lat (degrees) and elevation (metres) with their locations, every bad

@@ -1,4 +1,4 @@
-#include "geo/control_net.h"
+#include "geo/geo.h"
 
 #include <gtest/gtest.h>
 
@@ -58,6 +58,18 @@ TEST(ControlNet, TheLastSourceTakesAnyFile) {
     ASSERT_GE(sampleSources().size(), 2u);
     EXPECT_TRUE(sampleSources().back().recognises("no-such-file.csv"));
     EXPECT_EQ(sampleSources().back().name, "a CSV of samples");
+    EXPECT_FALSE(sampleSources().back().raster);
+}
+
+// One table answers what a file is, for controlNet and for a DEM named in place of a scene.
+TEST(ControlNet, TheSourceOfAFileIsTheTablesFirstThatTakesIt) {
+    const fs::path dir = relief::testing::freshTestDir("relief-control-net-recognised");
+    const fs::path grid = writeGrid(dir);
+    EXPECT_EQ(recognisedSource(grid).name, "a raster DEM");
+    EXPECT_TRUE(recognisedSource(grid).raster);
+    EXPECT_EQ(recognisedSource(dir).name, "a folder of raster tiles");
+    EXPECT_TRUE(recognisedSource(dir).raster);
+    EXPECT_EQ(recognisedSource(dir / "no-such-file.csv").name, "a CSV of samples");
 }
 
 TEST(ControlNet, ARasterIsResampledTellingItsPercent) {

@@ -1,6 +1,6 @@
 // geo's front door: the table of sample sources, and the net made by the
 // first that recognises the scene's samples file.
-#include "geo/control_net.h"
+#include "geo/geo.h"
 
 #include <fmt/format.h>
 
@@ -49,23 +49,27 @@ std::optional<ControlNet> folderOfTiles(const NetRequest& request, Diagnostics& 
 // In the order they are tried: a raster is told by what GDAL makes of the
 // file, and what is not one is taken for scattered samples.
 constexpr SampleSource kSampleSources[] = {
-    {"a folder of raster tiles", isFolder, folderOfTiles},
-    {"a raster DEM", [](const std::filesystem::path& path) { return isRasterDem(path); }, resampledRaster},
+    {"a folder of raster tiles", isFolder, folderOfTiles, true},
+    {"a raster DEM", [](const std::filesystem::path& path) { return isRasterDem(path); }, resampledRaster, true},
     {"a CSV of samples", anyFile,
-     [](const NetRequest& request, Diagnostics& diags) { return scatteredNet(request, readSamples, diags); }},
+     [](const NetRequest& request, Diagnostics& diags) { return scatteredNet(request, readSamples, diags); }, false},
 };
 
 }  // namespace
 
 std::span<const SampleSource> sampleSources() { return kSampleSources; }
 
+const SampleSource& recognisedSource(const std::filesystem::path& path) {
+    for (const SampleSource& source : sampleSources())
+        if (source.recognises(path)) return source;
+    return sampleSources().back();  // it recognises any file
+}
+
 std::optional<ControlNet> controlNet(const scene::SamplesSpec& samples, const scene::FrameSpec& frame,
                                      const scene::NetSpec& net, const NetLimits& limits, Diagnostics& diags,
                                      const NetProgressFn& progress) {
-    for (const SampleSource& source : sampleSources())
-        if (source.recognises(samples.path))
-            return source.read({source.name, samples, frame, net, limits, progress}, diags);
-    return std::nullopt;  // the last source recognises any file
+    const SampleSource& source = recognisedSource(samples.path);
+    return source.read({source.name, samples, frame, net, limits, progress}, diags);
 }
 
 }  // namespace relief::geo
