@@ -68,6 +68,11 @@ char* writeFixed(char* out, double value, int decimals) {
 
 std::string formatShortest(double value) { return fmt::format("{}", value); }
 
+std::string fixedNumber(double value, int decimals) {
+    char buf[40];
+    return std::string(buf, writeFixed(buf, value, decimals));
+}
+
 std::string fixedVector(double x, double y, double z, int decimals) {
     char buf[128];
     char* p = buf;

@@ -13,6 +13,9 @@ namespace relief {
 /// Writes at most 32 characters at `out` and returns the end.
 char* writeFixed(char* out, double value, int decimals);
 
+/// `value` with `decimals` fixed decimals (writeFixed), as SDL's numbers are written.
+std::string fixedNumber(double value, int decimals = 6);
+
 /// "<x,y,z>" with `decimals` fixed decimals each (writeFixed), as POV-Ray's
 /// vectors are written.
 std::string fixedVector(double x, double y, double z, int decimals);

@@ -50,10 +50,6 @@ void writeHeightFieldPng(const HeightField& field, const std::filesystem::path& 
 }
 
 namespace {
-std::string num(double v) {
-    char buf[40];
-    return std::string(buf, writeFixed(buf, v, 6));
-}
 
 // A drape PNG as a linear image map laid flat (x east, z north): the unit
 // square scaled by (sx, sz) and moved by (tx, tz), each line after `indent`.
@@ -68,7 +64,7 @@ std::string drapeTexture(const std::string& png, double sx, double sz, double tx
         "{0}  }}\n"
         "{0}  finish {{ TerrainFinish }}\n"
         "{0}}}",
-        indent, png, num(sx), num(sz), num(tx), num(tz));
+        indent, png, fixedNumber(sx), fixedNumber(sz), fixedNumber(tx), fixedNumber(tz));
 }
 }  // namespace
 
@@ -93,7 +89,8 @@ void writeHeightFieldSdl(std::FILE* out, const HeightField& field, const geo::Ge
         "  translate <{}, {}, {}>\n"
         "}}",
         heightPng, drapeTexture(drapePng, cols / (cols - 1), rows / (rows - 1), -0.5 / (cols - 1), -0.5 / (rows - 1), "  "),
-        num(ne.x - sw.x), num(height), num(ne.z - sw.z), num(sw.x), num(sw.y), num(sw.z));
+        fixedNumber(ne.x - sw.x), fixedNumber(height), fixedNumber(ne.z - sw.z), fixedNumber(sw.x),
+        fixedNumber(sw.y), fixedNumber(sw.z));
     std::fwrite(sdl.data(), 1, sdl.size(), out);
 }
 

@@ -73,11 +73,6 @@ std::string vec(const SceneVec3& v, int decimals = 6) {
     return std::string(buf, writeVector(buf, v, decimals));
 }
 
-std::string num(double v, int decimals = 6) {
-    char buf[40];
-    return std::string(buf, writeFixed(buf, v, decimals));
-}
-
 }  // namespace
 
 size_t writeMesh2(const Mesh& mesh, std::FILE* out, const WriteProgressFn& progress) {
@@ -191,8 +186,8 @@ std::string sunAreaSdl(double distance, double diameterDeg, scene::Quality quali
     if (!scene::qualityLevel(quality).softSun) return "";
     const double width = 2 * distance * std::tan(0.5 * diameterDeg * 3.14159265358979323846 / 180);
     return fmt::format(
-        "\n    area_light <{0}, 0, 0>, <0, 0, {0}>, {1}, {1}\n    adaptive {2}\n    circular\n    orient", num(width),
-        kSunSamples, kSunAdaptive);
+        "\n    area_light <{0}, 0, 0>, <0, 0, {0}>, {1}, {1}\n    adaptive {2}\n    circular\n    orient",
+        fixedNumber(width), kSunSamples, kSunAdaptive);
 }
 
 }  // namespace
@@ -213,13 +208,13 @@ Bindings sceneBindings(const ScenePlacement& where, const CameraView& view, cons
     b["camera_look_at"].text = vec(target);
     if (view.perspective) {
         b["camera_projection"].text = std::string("perspective");
-        b["camera_right"].text = fmt::format("x*{}", num(view.aspect));
+        b["camera_right"].text = fmt::format("x*{}", fixedNumber(view.aspect));
         b["camera_up"].text = std::string("y");
-        b["camera_angle"].text = fmt::format("angle {}", num(camera.fovDeg));
+        b["camera_angle"].text = fmt::format("angle {}", fixedNumber(camera.fovDeg));
     } else {
         b["camera_projection"].text = "orthographic";
-        b["camera_right"].text = fmt::format("x*{}", num(view.orthoHeight * view.aspect));
-        b["camera_up"].text = fmt::format("y*{}", num(view.orthoHeight));
+        b["camera_right"].text = fmt::format("x*{}", fixedNumber(view.orthoHeight * view.aspect));
+        b["camera_up"].text = fmt::format("y*{}", fixedNumber(view.orthoHeight));
         b["camera_angle"].text = "";
     }
     const SceneVec3 sunDir = sceneDirection(sun.azimuthDeg, sun.altitudeDeg);
@@ -243,7 +238,8 @@ Bindings sceneBindings(const ScenePlacement& where, const CameraView& view, cons
             break;
         case scene::Background::Colour: {
             const auto& c = render.backgroundColour;
-            b["background"].text = fmt::format("background {{ color rgb <{}, {}, {}> }}", num(c.r), num(c.g), num(c.b));
+            b["background"].text = fmt::format("background {{ color rgb <{}, {}, {}> }}", fixedNumber(c.r),
+                                               fixedNumber(c.g), fixedNumber(c.b));
             break;
         }
         case scene::Background::Transparent:
@@ -263,9 +259,9 @@ Bindings sceneBindings(const ScenePlacement& where, const CameraView& view, cons
             "  pigment {{ color rgbt <{}, {}, {}, {}> }}\n"
             "  finish {{ ambient 0.1 diffuse 0.6 specular 0.5 roughness 0.01 reflection 0.08 }}\n"
             "}}",
-            formatShortest(*look.water.levelM), num(where.boundsMin.x), num(y - 1e-4 * radius), num(where.boundsMin.z),
-            num(where.boundsMax.x), num(y), num(where.boundsMax.z), num(c.r), num(c.g), num(c.b),
-            num(look.water.transparency));
+            formatShortest(*look.water.levelM), fixedNumber(where.boundsMin.x), fixedNumber(y - 1e-4 * radius), fixedNumber(where.boundsMin.z),
+            fixedNumber(where.boundsMax.x), fixedNumber(y), fixedNumber(where.boundsMax.z), fixedNumber(c.r), fixedNumber(c.g), fixedNumber(c.b),
+            fixedNumber(look.water.transparency));
     }
     // [atmosphere] haze: distance fog the colour of the horizon. At haze 1 the
     // centre of the view keeps e^-0.3 = 74 % of its light and a ridge a
@@ -273,7 +269,7 @@ Bindings sceneBindings(const ScenePlacement& where, const CameraView& view, cons
     b["atmosphere"].text = "";
     if (look.atmosphere.haze > 0)
         b["atmosphere"].text = fmt::format("fog {{ fog_type 1 distance {} color rgb <0.78, 0.85, 0.93> }}",
-                                           num(length(view.eye - view.target) / (0.3 * look.atmosphere.haze)));
+                                           fixedNumber(length(view.eye - view.target) / (0.3 * look.atmosphere.haze)));
     b["terrain"].writer = std::move(writers.terrain);
     if (writers.base) b["base"].writer = std::move(writers.base);
     else b["base"].text = "";

@@ -138,7 +138,11 @@ r["image_sha256"] = "sha256:" + hashlib.sha256(open(os.path.join(d, "tile-0000.p
 json.dump(r, open(os.path.join(d, "tile-0000.json"), "w"), indent=1)
 PY
 "$relief" render-tile "$p" --tile 1 || fail "swapped: tile 1 again"
-(ulimit -v 1500000; "$relief" finish "$p") > bomb.out 2> bomb.txt; code=$?
+# Under a 2 GB address-space limit that decoding it would break (not under AddressSanitizer, whose
+# shadow memory alone is more than that).
+limit=(bash -c 'ulimit -v 2000000; exec "$0" "$@"')
+"${limit[@]}" "$relief" --version > /dev/null 2>&1 || limit=()
+"${limit[@]}" "$relief" finish "$p" > bomb.out 2> bomb.txt; code=$?
 [ "$code" = 2 ] || { fail "a tile of 60000 x 60000 pixels: exit $code, expected 2"; cat bomb.txt; }
 grep -q "tile 1 of 3: cannot read .*tile-0000.png: it is 60000 x 60000 pixels, not 160 x 40" bomb.txt || { fail "bomb:"; cat bomb.txt; }
 
