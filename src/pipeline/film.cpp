@@ -13,6 +13,7 @@
 
 #include "pipeline/film_flyover.h"
 #include "pipeline/run_plans.h"
+#include "scene/read_scene_table.h"
 #include "pipeline/working_folder.h"
 #include "core/atomic_file.h"
 #include "core/hash.h"
@@ -28,6 +29,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// The film's job and its scene, read once: every frame's spec is read from the document.
+struct FilmScene {
+    const AnimateJob& job;
+    const scene::SceneDocument& document;
+};
+
 // "camera.azimuth_deg=90 lighting.datetime=..." : a frame's keys as --set takes them.
 std::string setsText(const scene::SceneOverrides& overrides) {
     std::string text;
@@ -35,14 +42,14 @@ std::string setsText(const scene::SceneOverrides& overrides) {
     return text;
 }
 
-// A frame's scene: the file with the frame's keys set. A key that makes the
-// scene wrong is reported at `key`, the [animation] key that set it.
-std::optional<LoadedScene> loadFrame(const AnimateJob& job, const scene::AnimationSpec& a, const FilmFrame& f,
+// A frame's scene: the scene read once, with the frame's keys set. A key that
+// makes the scene wrong is reported at `key`, the [animation] key that set it.
+std::optional<LoadedScene> loadFrame(const FilmScene& film, const scene::AnimationSpec& a, const FilmFrame& f,
                                      const char* key, Diagnostics& diags) {
-    scene::SceneOverrides overrides = job.overrides;
+    scene::SceneOverrides overrides = film.job.overrides;
     overrides.insert(overrides.end(), f.settings.overrides.begin(), f.settings.overrides.end());
     Diagnostics own;  // the file's warnings were told once, with the scene
-    auto loaded = loadScene(job.scenePath, own, overrides);
+    auto loaded = loadScene(film.document, own, overrides);
     if (loaded && own.errorCount() == 0) return loaded;
     const auto first = std::find_if(own.all().begin(), own.all().end(),
                                     [](const Diagnostic& d) { return d.severity == Severity::Error; });
@@ -52,12 +59,12 @@ std::optional<LoadedScene> loadFrame(const AnimateJob& job, const scene::Animati
     return std::nullopt;
 }
 
-std::optional<std::vector<LoadedScene>> loadFrames(const AnimateJob& job, const LoadedScene& base,
+std::optional<std::vector<LoadedScene>> loadFrames(const FilmScene& film, const LoadedScene& base,
                                                    const std::vector<FilmFrame>& frames, Diagnostics& diags) {
     std::vector<LoadedScene> scenes;
     for (const auto& f : frames) {
         const scene::AnimationSpec& a = base.scene.animation;
-        auto loaded = loadFrame(job, a, f, !a.vary.empty() ? "animation.vary" : "animation", diags);
+        auto loaded = loadFrame(film, a, f, !a.vary.empty() ? "animation.vary" : "animation", diags);
         if (!loaded) return std::nullopt;
         scenes.push_back(std::move(*loaded));
     }
@@ -69,7 +76,7 @@ std::optional<std::vector<LoadedScene>> loadFrames(const AnimateJob& job, const 
 // another, and relief render of the frame's keys must make this terrain);
 // and for a flyover each frame's camera over the surface. The frames' scenes
 // are loaded again with them.
-bool addTerrainKeys(const AnimateJob& job, const SharedTerrain& terrain, const std::vector<size_t>& group,
+bool addTerrainKeys(const FilmScene& film, const SharedTerrain& terrain, const std::vector<size_t>& group,
                     std::vector<LoadedScene>& scenes, std::vector<FilmFrame>& frames, Diagnostics& diags) {
     const scene::SceneSpec& spec = scenes[group.front()].scene;
     const scene::AnimationSpec& a = spec.animation;
@@ -87,7 +94,7 @@ bool addTerrainKeys(const AnimateJob& job, const SharedTerrain& terrain, const s
         if (chosenDepth) overrides.emplace_back("subdivision.depth", std::to_string(terrain.depth()));
         overrides.insert(overrides.end(), cameras[g].begin(), cameras[g].end());
         const char* key = a.path == scene::CameraPath::Flyover ? "animation.path" : "animation";
-        auto loaded = loadFrame(job, a, frames[i], key, diags);
+        auto loaded = loadFrame(film, a, frames[i], key, diags);
         if (!loaded) return false;
         scenes[i] = std::move(*loaded);
     }
@@ -177,9 +184,10 @@ bool planFrame(const AnimateJob& job, const LoadedScene& scene, const SharedTerr
 }
 
 // Every frame of one terrain: the terrain compiled (its files in terrain-N/), the nights told, a plan a frame.
-bool planGroup(const AnimateJob& job, std::vector<LoadedScene>& scenes, const std::vector<size_t>& group,
+bool planGroup(const FilmScene& film, std::vector<LoadedScene>& scenes, const std::vector<size_t>& group,
                int groupIndex, std::vector<FilmFrame>& frames, FilmWork& work, Diagnostics& diags,
                const ProgressFn& progress) {
+    const AnimateJob& job = film.job;
     const fs::path sharedDir = work.dir / fmt::format("terrain-{}", groupIndex + 1);
     fs::create_directories(sharedDir);
     std::vector<plan::PlanFile> shared;
@@ -204,7 +212,7 @@ bool planGroup(const AnimateJob& job, std::vector<LoadedScene>& scenes, const st
         f.sha256 = fileSha256(sharedDir / f.name, problem);
     }
     if (!terrain || !checkNights(scenes.front().scene.animation, terrain->net(), group, frames, diags) ||
-        !addTerrainKeys(job, *terrain, group, scenes, frames, diags))
+        !addTerrainKeys(film, *terrain, group, scenes, frames, diags))
         return false;
     for (size_t i : group) {
         if (frames[i].night) continue;
@@ -390,9 +398,9 @@ bool finishFrames(const film::FilmRecord& record, const FilmWork& work, OutputSe
 }
 
 // Compiling: the frames' scenes, a terrain for each group of them, a plan a frame.
-bool planFilm(const AnimateJob& job, const LoadedScene& base, film::FilmRecord& record, FilmWork& work,
+bool planFilm(const FilmScene& film, const LoadedScene& base, film::FilmRecord& record, FilmWork& work,
               Diagnostics& diags, const ProgressFn& progress) {
-    auto scenes = loadFrames(job, base, record.frames, diags);
+    auto scenes = loadFrames(film, base, record.frames, diags);
     if (!scenes) return false;
     const auto groups = terrainGroups(record.frames);
     record.terrains = static_cast<int>(groups.size());
@@ -404,7 +412,7 @@ bool planFilm(const AnimateJob& job, const LoadedScene& base, film::FilmRecord& 
                                   groups.size() > 1 ? fmt::format(" {} of {}", g + 1, groups.size()) : "",
                                   groups[g].size(), groups[g].size() == 1 ? "" : "s"),
                       -1});
-        if (!planGroup(job, *scenes, groups[g], static_cast<int>(g), record.frames, work, diags, progress))
+        if (!planGroup(film, *scenes, groups[g], static_cast<int>(g), record.frames, work, diags, progress))
             return false;
     }
     numberKeptFrames(record.frames);
@@ -570,7 +578,9 @@ AnimateOutcome runAnimateJob(const AnimateJob& job, Diagnostics& diags, const Pr
     const auto t0 = Clock::now();
     try {
         if (progress) progress({ProgressEvent::Stage::Reading, "reading " + job.scenePath.string(), -1});
-        const auto base = loadScene(job.scenePath, diags, job.overrides);
+        // The scene read once: every frame's spec is read from it, with the frame's keys.
+        const auto document = readSceneDocument(job.scenePath, diags);
+        const auto base = document ? loadScene(*document, diags, job.overrides) : std::nullopt;
         if (!base) return outcome;
         outcome.film = job.output.empty() ? fs::path("out") / (job.scenePath.stem().string() + ".mp4") : job.output;
         outcome.sidecar = fs::path(outcome.film).replace_extension(".json");
@@ -588,7 +598,7 @@ AnimateOutcome runAnimateJob(const AnimateJob& job, Diagnostics& diags, const Pr
         const auto lock = plan::PlanLock::take(building.path());  // held while the film is made; it moves with the folder
         FilmWork work;
         work.dir = building.path();
-        const bool planned = planFilm(job, *base, record, work, diags, progress);
+        const bool planned = planFilm({job, *document}, *base, record, work, diags, progress);
         outcome.frames = record.frames;
         if (!planned) return outcome;
         // --frames' PNGs are declared once it is known which frames are kept.

@@ -7,13 +7,12 @@
 
 #include "core/stopwatch.h"
 #include "core/utf8_record.h"
-#include "scene/read_scene.h"
+#include "scene/read_scene_table.h"
 
 namespace relief {
 
-std::optional<LoadedScene> loadScene(const std::filesystem::path& named, Diagnostics& diags,
-                                     const scene::SceneOverrides& overrides) {
-    const auto t0 = Clock::now();
+std::shared_ptr<const scene::SceneDocument> readSceneDocument(const std::filesystem::path& named,
+                                                              Diagnostics& diags) {
     // "tiles/" is the folder "tiles", beside which its scene lies.
     const std::filesystem::path scenePath = named.has_filename() ? named : named.parent_path();
     std::string why;
@@ -26,13 +25,31 @@ std::optional<LoadedScene> loadScene(const std::filesystem::path& named, Diagnos
                 "ASCII grid, VRT, ...), a folder of such tiles or a CSV of lon,lat,elev samples, and this is none of "
                 "them ({})",
                 why));
-        return std::nullopt;
+        return nullptr;
     }
     checkUtf8(diags, {scenePath.string(), 0, 0}, scenePath.string(), "the file's name");
+    if (kind != InputKind::Scene) return std::make_shared<const scene::SceneDocument>(sceneDocumentForData(scenePath));
+    auto document = scene::readSceneFileOnce(scenePath, diags);
+    if (!document) return nullptr;
+    return std::make_shared<const scene::SceneDocument>(std::move(*document));
+}
+
+std::optional<LoadedScene> loadScene(const std::filesystem::path& scenePath, Diagnostics& diags,
+                                     const scene::SceneOverrides& overrides) {
+    const auto t0 = Clock::now();
+    const auto document = readSceneDocument(scenePath, diags);
+    if (!document) return std::nullopt;
+    auto loaded = loadScene(*document, diags, overrides);
+    if (loaded) loaded->seconds = secondsSince(t0);
+    return loaded;
+}
+
+std::optional<LoadedScene> loadScene(const scene::SceneDocument& document, Diagnostics& diags,
+                                     const scene::SceneOverrides& overrides) {
+    const auto t0 = Clock::now();
     for (const auto& [key, value] : overrides)
         checkUtf8(diags, {"--set " + key, 0, 0}, value, "the value");
-    auto spec = kind == InputKind::Scene ? scene::readScene(scenePath, diags, overrides)
-                                         : readSceneForData(scenePath, diags, overrides);
+    auto spec = scene::readSceneDocument(document, diags, overrides);
     if (!spec) return std::nullopt;
     // The scene's own errors do not stop the scheme's checks: every problem is reported at once.
     auto resolved = subdiv::resolveScheme(spec->subdivision.scheme, diags);

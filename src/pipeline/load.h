@@ -3,6 +3,7 @@
 // from elevation data named where a scene goes (relief render dem.tif:
 // the scene relief makes for it), validated and its scheme resolved.
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -10,6 +11,10 @@
 #include "scene/scene_spec.h"
 #include "subdiv/budget.h"
 #include "subdiv/resolve.h"
+
+namespace relief::scene {
+struct SceneDocument;  // scene/read_scene_table.h
+}
 
 namespace relief {
 
@@ -28,6 +33,15 @@ struct LoadedScene {
 std::optional<LoadedScene> loadScene(const std::filesystem::path& scenePath, Diagnostics& diags,
                                      const scene::SceneOverrides& overrides = {});
 
+/// The scene named `scenePath` read once: a scene file parsed, or the scene
+/// relief makes for data named in its place. Nullopt after an error.
+std::shared_ptr<const scene::SceneDocument> readSceneDocument(const std::filesystem::path& scenePath,
+                                                              Diagnostics& diags);
+/// A scene read before, loaded with `overrides` set (a film's frame): the
+/// file is not read again.
+std::optional<LoadedScene> loadScene(const scene::SceneDocument& document, Diagnostics& diags,
+                                     const scene::SceneOverrides& overrides = {});
+
 /// What a file named in place of a scene is.
 enum class InputKind {
     Scene,    ///< a scene file (TOML), or a file that is not there (the scene reader says so)
@@ -41,14 +55,13 @@ InputKind inputKindOf(const std::filesystem::path& path, std::string& why);
 /// land: their scene takes the topobathy ramp.
 inline constexpr double kSeaFloorM = -500;
 
-/// The scene relief makes for elevation data given alone, read: [samples]
-/// path (the file's name, whatever its bytes: the scene is read as if it were
-/// the file, from its folder), the topobathy ramp for a raster reaching
-/// kSeaFloorM, and a title from the raster's metadata or the file's name.
-/// Every other choice is relief's default: the net and the depth for the
-/// still. Its `madeForData` is the scene's record (TOML, for the sidecar).
-std::optional<scene::SceneSpec> readSceneForData(const std::filesystem::path& data, Diagnostics& diags,
-                                                 const scene::SceneOverrides& overrides = {});
+/// The scene relief makes for elevation data given alone, as a document:
+/// [samples] path (the file's name, whatever its bytes: the scene is read as
+/// if it were the file, from its folder), the topobathy ramp for a raster
+/// reaching kSeaFloorM, and a title from the raster's metadata or the file's
+/// name. Every other choice is relief's default: the net and the depth for
+/// the still. Its record (TOML, for the sidecar) becomes the spec's `madeForData`.
+scene::SceneDocument sceneDocumentForData(const std::filesystem::path& data);
 
 /// That scene's record, as the sidecar keeps it: TOML text, with U+FFFD for
 /// the bytes of a name that are not UTF-8.

@@ -94,16 +94,13 @@ std::string sceneRecord(const fs::path& data, toml::table scene) {
 
 std::string sceneTextForData(const fs::path& path) { return sceneRecord(path, sceneTableForData(path)); }
 
-std::optional<scene::SceneSpec> readSceneForData(const fs::path& path, Diagnostics& diags,
-                                                 const scene::SceneOverrides& overrides) {
+scene::SceneDocument sceneDocumentForData(const fs::path& path) {
     // Read as a table, never as TOML text: a file's name need not be UTF-8 (Linux allows any
     // byte but '/' and NUL), TOML cannot hold one that is not, and the table keeps its bytes, so
     // the file is found. Only the record (the sidecar's) shows them as U+FFFD.
     toml::table scene = sceneTableForData(path);
     std::string record = sceneRecord(path, scene);
-    auto spec = scene::readSceneTable(std::move(scene), record, path, diags, overrides);
-    if (spec) spec->madeForData = std::move(record);
-    return spec;
+    return {path, std::move(record), std::move(scene)};
 }
 
 }  // namespace relief

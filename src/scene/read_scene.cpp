@@ -179,15 +179,28 @@ void readEachTable(const SectionReader& reader, const SceneFile& f, SceneSpec& s
 
 }  // namespace
 
-std::optional<SceneSpec> readScene(const std::filesystem::path& path, Diagnostics& diags,
-                                   const SceneOverrides& overrides) {
+std::optional<SceneDocument> readSceneFileOnce(const std::filesystem::path& path, Diagnostics& diags) {
     std::string problem;
-    const auto text = readInputFile(path, kMaxSceneBytes, problem);
+    auto text = readInputFile(path, kMaxSceneBytes, problem);
     if (!text) {
         diags.error({path.string(), 0, 0}, fmt::format("cannot read the scene file: {}", problem));
         return std::nullopt;
     }
-    return readSceneText(*text, path, diags, overrides);
+    return SceneDocument{path, std::move(*text), std::nullopt};
+}
+
+std::optional<SceneSpec> readSceneDocument(const SceneDocument& document, Diagnostics& diags,
+                                           const SceneOverrides& overrides) {
+    if (!document.madeForData) return readSceneText(document.record, document.path, diags, overrides);
+    auto spec = readSceneTable(*document.madeForData, document.record, document.path, diags, overrides);
+    if (spec) spec->madeForData = document.record;
+    return spec;
+}
+
+std::optional<SceneSpec> readScene(const std::filesystem::path& path, Diagnostics& diags,
+                                   const SceneOverrides& overrides) {
+    const auto document = readSceneFileOnce(path, diags);
+    return document ? readSceneDocument(*document, diags, overrides) : std::nullopt;
 }
 
 std::optional<SceneSpec> readSceneText(const std::string& text, const std::filesystem::path& path, Diagnostics& diags,
