@@ -7,7 +7,7 @@
 #include <fmt/format.h>
 
 #include "core/number_format.h"
-#include "measure/contours.h"
+#include "geo/contours.h"
 
 namespace relief::emit {
 
@@ -27,15 +27,20 @@ int contourLevelCount(const ScenePlacement& where, const scene::ContourSpec& spe
     return static_cast<int>(levelsOf(where, spec).size());
 }
 
-ContourRibbons buildSurfaceContours(const geo::GeoGrid& refined, const ScenePlacement& where,
-                                    const scene::ContourSpec& spec, double widthM, std::string& error) {
+std::optional<ContourRibbons> buildSurfaceContours(const geo::GeoGrid& refined, const ScenePlacement& where,
+                                                   const scene::ContourSpec& spec, double widthM, const SourceLoc& at,
+                                                   Diagnostics& diags) {
     ContourRibbons contours;
     SurfaceContours& made = contours.made;
     const std::vector<double> levels = levelsOf(where, spec);
     made.levels = static_cast<int>(levels.size());
     if (levels.empty()) return contours;
-    const auto lines = measure::contourLines(refined, levels, error);
-    if (!error.empty()) return contours;
+    std::string error;
+    const auto lines = geo::contourLines(refined, levels, error);
+    if (!error.empty()) {
+        diags.error(at, "overlay.contours: GDAL: " + error);
+        return std::nullopt;
+    }
     for (size_t li = 0; li < lines.size(); ++li) {
         const long long index = std::llround(levels[li] / spec.intervalM);
         const bool heavy = spec.indexEvery > 0 && index % spec.indexEvery == 0;

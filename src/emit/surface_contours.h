@@ -29,10 +29,11 @@ struct ContourRibbons {
 /// The contour lines of `refined` at every multiple of spec.intervalM within
 /// the surface's range (GDAL), each as a ribbon lying on the surface (its
 /// edges' heights sampled from it, lifted a fifth of its width), `widthM` wide
-/// (index contours twice that). Nodes without data have none. `error` is set
-/// when GDAL fails.
-ContourRibbons buildSurfaceContours(const geo::GeoGrid& refined, const ScenePlacement& where,
-                                    const scene::ContourSpec& spec, double widthM, std::string& error);
+/// (index contours twice that). Nodes without data have none. Nullopt when
+/// GDAL fails, with the error at `at` (overlay.contours).
+std::optional<ContourRibbons> buildSurfaceContours(const geo::GeoGrid& refined, const ScenePlacement& where,
+                                                   const scene::ContourSpec& spec, double widthM, const SourceLoc& at,
+                                                   Diagnostics& diags);
 
 /// Writes the ribbons as one mesh2, unshadowed, in spec.colour.
 void writeSurfaceContours(std::FILE* out, const ContourRibbons& ribbons, const scene::ContourSpec& spec);

@@ -84,7 +84,7 @@ std::vector<double> defaultLevels(const FramedSurface& a, const FramedSurface& b
     };
     const auto [loA, hiA] = range(a.grid->grid);
     const auto [loB, hiB] = range(b.grid->grid);
-    return niceLevels(std::max(loA, loB), std::min(hiA, hiB), 5);
+    return geo::niceLevels(std::max(loA, loB), std::min(hiA, hiB), 5);
 }
 
 std::optional<GeometryComparison> compareGeometry(const FramedSurface& a, const FramedSurface& b,
@@ -131,8 +131,8 @@ std::optional<GeometryComparison> compareGeometry(const FramedSurface& a, const 
     }
 
     std::string error;
-    const auto linesA = contourLines(*a.grid, levels, error);
-    auto linesB = error.empty() ? contourLines(*b.grid, levels, error) : linesA;
+    const auto linesA = geo::contourLines(*a.grid, levels, error);
+    auto linesB = error.empty() ? geo::contourLines(*b.grid, levels, error) : linesA;
     if (!error.empty()) {
         diags.error({a.name, 0, 0}, "contour lines: " + error);
         return std::nullopt;
@@ -146,8 +146,8 @@ std::optional<GeometryComparison> compareGeometry(const FramedSurface& a, const 
     for (size_t i = 0; i < levels.size(); ++i) {
         ContourComparison cc;
         cc.level = levels[i];
-        auto la = clipToBox(linesA[i], common.xmin, common.ymin, common.xmax, common.ymax);
-        auto lb = clipToBox(linesB[i], common.xmin, common.ymin, common.xmax, common.ymax);
+        auto la = geo::clipToBox(linesA[i], common.xmin, common.ymin, common.xmax, common.ymax);
+        auto lb = geo::clipToBox(linesB[i], common.xmin, common.ymin, common.xmax, common.ymax);
         cc.linesA = la.size();
         cc.linesB = lb.size();
         cc.h = curves::hausdorff(la, lb);

@@ -10,7 +10,7 @@
 #include "core/diagnostics.h"
 #include "curves/hausdorff.h"
 #include "geo/normalize.h"
-#include "measure/contours.h"
+#include "geo/contours.h"
 
 namespace relief::measure {
 

@@ -7,7 +7,7 @@
 #include "curves/curve_file.h"
 #include "curves/hausdorff.h"
 #include "geo/profile.h"
-#include "measure/contours.h"
+#include "geo/contours.h"
 
 namespace relief::measure {
 
@@ -50,7 +50,7 @@ std::optional<SurfaceCurves> surfaceCurves(const geo::GeoGrid& refined, const st
         out.profiles.push_back(std::move(p));
     }
     std::string error;
-    const auto sets = contourLines(refined, levels, error);
+    const auto sets = geo::contourLines(refined, levels, error);
     if (!error.empty()) {
         diags.error(at, "contour lines: " + error);
         return std::nullopt;

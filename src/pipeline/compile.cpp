@@ -117,13 +117,10 @@ std::optional<emit::ContourRibbons> buildContours(const scene::SceneSpec& spec, 
     }
     if (spec.overlay.enabled == scene::OverlaySpec::Enabled::Off) return emit::ContourRibbons{};
     // A line a pixel and a fifth wide at the centre of the view (index lines twice that).
-    std::string error;
-    emit::ContourRibbons ribbons =
-        emit::buildSurfaceContours(surface.refined, view.where, *spec.overlay.contours, 1.2 * metresPerPixel, error);
-    if (!error.empty()) {
-        diags.error(at, "overlay.contours: GDAL: " + error);
-        return std::nullopt;
-    }
+    auto built =
+        emit::buildSurfaceContours(surface.refined, view.where, *spec.overlay.contours, 1.2 * metresPerPixel, at, diags);
+    if (!built) return std::nullopt;
+    emit::ContourRibbons ribbons = std::move(*built);
     // The lines' triangles join the surface's in POV-Ray's parse; their SDL is the .pov's beside the surface's.
     const auto withLines =
         subdiv::linesOnSurface(double(ribbons.ribbons.faces.size()), ribbons.ribbons.sdlBytes(), meshTriangles);

@@ -242,10 +242,7 @@ void describeRender(plan::RenderPlan& plan, const scene::SceneSpec& s, const Com
 }
 
 std::optional<PngImage8> stitchedStill(const plan::RenderPlan& plan, Diagnostics& diags) {
-    std::string error;
-    auto still = plan::stitchTiles(plan, error);
-    if (!still) diags.error({(plan.dir / "plan.json").string(), 0, 0}, error);
-    return still;
+    return plan::stitchTiles(plan, diags);
 }
 
 std::optional<PngImage8> stillOfPlan(const plan::RenderPlan& plan, std::optional<annotate::OverlayRecord>& overlays,

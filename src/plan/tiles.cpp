@@ -65,25 +65,25 @@ render::RenderResult renderTile(const RenderPlan& plan, int index, const TileOpt
     return result;
 }
 
-std::optional<PngImage8> stitchTiles(const RenderPlan& plan, std::string& error) {
+std::optional<PngImage8> stitchTiles(const RenderPlan& plan, Diagnostics& diags) {
+    const SourceLoc at{(plan.dir / "plan.json").string(), 0, 0};
     PngImage8 still;
     for (int k = 0; k < plan.tiles; ++k) {
         std::string problem;
         if (!readTileRecord(plan, k, problem)) {
-            error = fmt::format("tile {} of {}: {}", k + 1, plan.tiles, problem);
+            diags.error(at, fmt::format("tile {} of {}: {}", k + 1, plan.tiles, problem));
             return std::nullopt;
         }
         const TileRows rows = tileRows(plan.height, plan.tiles, k);
         const PngSize size{plan.width, rows.last - rows.first + 1};
         PngImage8 tile;
         if (std::string e = readPng8(tileImage(plan, k), tile, &size); !e.empty()) {
-            error = fmt::format("tile {} of {}: {}", k + 1, plan.tiles, e);
+            diags.error(at, fmt::format("tile {} of {}: {}", k + 1, plan.tiles, e));
             return std::nullopt;
         }
         if (k > 0 && tile.channels != still.channels) {
-            error = fmt::format("tile {} of {} is {} x {} with {} channels, not rows {}..{} of the plan's {} x {}", k + 1,
-                                plan.tiles, tile.width, tile.height, tile.channels, rows.first, rows.last, plan.width,
-                                plan.height);
+            diags.error(at, fmt::format("tile {} of {} is {} x {} with {} channels, where tile 1 has {}", k + 1,
+                                        plan.tiles, tile.width, tile.height, tile.channels, still.channels));
             return std::nullopt;
         }
         if (plan.tiles == 1) return tile;  // the still in one piece

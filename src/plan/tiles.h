@@ -30,8 +30,8 @@ render::RenderResult renderTile(const RenderPlan& plan, int index, const TileOpt
 
 /// The still from the plan's tiles, each checked against the plan (its
 /// record's hash and versions, its image's SHA-256, its size from the PNG's
-/// header before its pixels are decoded, its channels); nullopt with `error`
-/// naming the first tile that is not right.
-std::optional<PngImage8> stitchTiles(const RenderPlan& plan, std::string& error);
+/// header before its pixels are decoded, its channels); nullopt with an error
+/// at the plan naming the first tile that is not right.
+std::optional<PngImage8> stitchTiles(const RenderPlan& plan, Diagnostics& diags);
 
 }  // namespace relief::plan

@@ -28,9 +28,10 @@ TEST(SurfaceContours, RingsOnAConeLieOnItsCircles) {
     scene::ContourSpec spec;
     spec.intervalM = 10;
     const double widthM = 0.8;
-    std::string error;
-    const ContourRibbons ribbons = buildSurfaceContours(grid, where, spec, widthM, error);
-    ASSERT_EQ(error, "");
+    Diagnostics diags;
+    const auto built = buildSurfaceContours(grid, where, spec, widthM, {}, diags);
+    ASSERT_TRUE(built) << (diags.all().empty() ? "" : diags.all().front().message);
+    const ContourRibbons& ribbons = *built;
     // Levels 20 to 100 over the surface's 15.1..100 m: 90 and below reach the grid (100 is the apex).
     EXPECT_EQ(ribbons.made.levels, 9);
     EXPECT_GE(ribbons.made.lines, 7);

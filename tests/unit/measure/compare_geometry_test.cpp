@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "measure/compare_geometry.h"
-#include "measure/contours.h"
+#include "geo/contours.h"
 
 namespace relief::measure {
 namespace {
@@ -22,7 +22,7 @@ Grid ramp(double x0, double slope, double lift) {
 TEST(Contours, PlaneGivesStraightLinesAtTheRightPlace) {
     const geo::GeoGrid l{{}, ramp(0, 1.0, 0), 300000, 6000000, 10, 10, {}};  // z = x - x0
     std::string error;
-    const auto sets = contourLines(l, {55, 200, 1000}, error);
+    const auto sets = geo::contourLines(l, {55, 200, 1000}, error);
     ASSERT_TRUE(error.empty()) << error;
     ASSERT_EQ(sets.size(), 3u);
     EXPECT_TRUE(sets[2].empty());  // above the surface
@@ -49,7 +49,7 @@ TEST(Contours, MaskedNodesHaveNoContours) {
     for (int r = 0; r < l.rows(); ++r)
         for (int c = 0; c < l.cols(); ++c) l.masked[static_cast<size_t>(r) * l.cols() + c] = r >= 15 || c >= 30;
     std::string error;
-    const auto sets = contourLines(l, {55, 350}, error);
+    const auto sets = geo::contourLines(l, {55, 350}, error);
     ASSERT_TRUE(error.empty()) << error;
     EXPECT_TRUE(sets[1].empty());  // x = 350 m lies in the masked columns
     ASSERT_EQ(sets[0].size(), 1u);
@@ -60,7 +60,7 @@ TEST(Contours, MaskedNodesHaveNoContours) {
 TEST(Contours, ClipToBox) {
     // A closed square around the box's corner: one line, the part inside.
     const auto square = curves::toBezier(curves::CurveFile{"polyline", true, {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}});
-    const auto clipped = clipToBox({square}, 0, 0, 5, 5);
+    const auto clipped = geo::clipToBox({square}, 0, 0, 5, 5);
     ASSERT_EQ(clipped.size(), 1u);
     const auto& segs = clipped[0].segments;
     ASSERT_EQ(segs.size(), 2u);  // (1, 0) -> (1, 1) -> (0, 1)
@@ -70,17 +70,17 @@ TEST(Contours, ClipToBox) {
     EXPECT_EQ(segs[1].control[1].y, 1.0);
     // Leaving and re-entering: two lines. Wholly inside: kept (closed).
     const auto zigzag = curves::toBezier(curves::CurveFile{"polyline", false, {{1, 1}, {1, 9}, {2, 1}}});
-    EXPECT_EQ(clipToBox({zigzag}, 0, 0, 5, 5).size(), 2u);
-    const auto inside = clipToBox({square}, -2, -2, 2, 2);
+    EXPECT_EQ(geo::clipToBox({zigzag}, 0, 0, 5, 5).size(), 2u);
+    const auto inside = geo::clipToBox({square}, -2, -2, 2, 2);
     ASSERT_EQ(inside.size(), 1u);
     EXPECT_TRUE(inside[0].closed);
-    EXPECT_TRUE(clipToBox({square}, 3, 3, 5, 5).empty());
+    EXPECT_TRUE(geo::clipToBox({square}, 3, 3, 5, 5).empty());
 }
 
 TEST(Contours, NiceLevels) {
-    EXPECT_EQ(niceLevels(0, 1000, 5), (std::vector<double>{200, 400, 600, 800}));
-    EXPECT_EQ(niceLevels(102.5, 186.1, 5), (std::vector<double>{120, 140, 160, 180}));
-    EXPECT_TRUE(niceLevels(5, 5, 5).empty());
+    EXPECT_EQ(geo::niceLevels(0, 1000, 5), (std::vector<double>{200, 400, 600, 800}));
+    EXPECT_EQ(geo::niceLevels(102.5, 186.1, 5), (std::vector<double>{120, 140, 160, 180}));
+    EXPECT_TRUE(geo::niceLevels(5, 5, 5).empty());
 }
 
 // Two ramps 3 m apart vertically (slope 1): their contour lines are 3 m apart

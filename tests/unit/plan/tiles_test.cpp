@@ -44,12 +44,20 @@ RenderPlan planWithTiles(const fs::path& dir) {
     return plan;
 }
 
+// The message stitchTiles gave, at the plan's plan.json; "" when it gave none.
+std::string stitchError(const RenderPlan& plan) {
+    Diagnostics diags;
+    if (stitchTiles(plan, diags)) return "";
+    EXPECT_EQ(diags.all().at(0).loc.file, (plan.dir / "plan.json").string());
+    return diags.all().at(0).message;
+}
+
 // The still is its tiles' rows in order, every byte; nothing POV-Ray runs.
 TEST(StitchTiles, TheStillIsItsTilesRowsInOrder) {
     const RenderPlan plan = planWithTiles(relief::testing::freshTestDir("relief-stitch"));
-    std::string error;
-    const auto still = stitchTiles(plan, error);
-    ASSERT_TRUE(still) << error;
+    Diagnostics diags;
+    const auto still = stitchTiles(plan, diags);
+    ASSERT_TRUE(still) << (diags.all().empty() ? "" : diags.all().front().message);
     ASSERT_EQ(still->width, 5);
     ASSERT_EQ(still->height, 7);
     ASSERT_EQ(still->channels, 3);
@@ -62,32 +70,26 @@ TEST(StitchTiles, ATileThatIsNotThePlansIsNamed) {
     {
         const RenderPlan plan = planWithTiles(relief::testing::freshTestDir("relief-stitch-record"));
         fs::remove(tileRecordPath(plan, 1));  // a tile half-written: its PNG, no record
-        std::string error;
-        EXPECT_FALSE(stitchTiles(plan, error));
+        const std::string error = stitchError(plan);
         EXPECT_EQ(error.rfind("tile 2 of 3: ", 0), 0u) << error;
     }
     {
         RenderPlan plan = planWithTiles(relief::testing::freshTestDir("relief-stitch-hash"));
         plan.hash = "sha256:ffffffffffffffffffff";  // the tiles were rendered from another plan
-        std::string error;
-        EXPECT_FALSE(stitchTiles(plan, error));
-        EXPECT_EQ(error, "tile 1 of 3: it was rendered from another plan (sha256:0123456789ab, not sha256:ffffffffffff)");
+        EXPECT_EQ(stitchError(plan), "tile 1 of 3: it was rendered from another plan (sha256:0123456789ab, not sha256:ffffffffffff)");
     }
     {
         const RenderPlan plan = planWithTiles(relief::testing::freshTestDir("relief-stitch-size"));
         const std::vector<std::uint8_t> pixels(5 * 4 * 3, 0);  // tile 3 is rows 5..7: 3 rows, not 4
         ASSERT_NO_THROW(writePngAtomically(tileImage(plan, 2), {5, 4, 3, false, pixels.data()}));
-        std::string error;
-        EXPECT_FALSE(stitchTiles(plan, error));  // not the image rendered
-        EXPECT_EQ(error, "tile 3 of 3: its image is not the one rendered (its SHA-256 is not the record's): render the "
+        EXPECT_EQ(stitchError(plan), "tile 3 of 3: its image is not the one rendered (its SHA-256 is not the record's): render the "
                          "tile again");
         auto record = nlohmann::json::parse(readFile(tileRecordPath(plan, 2)));
         std::string problem;
         record["image_sha256"] = fileSha256(tileImage(plan, 2), problem);  // and its record forged
         std::ofstream(tileRecordPath(plan, 2)) << record.dump();
-        EXPECT_FALSE(stitchTiles(plan, error));
-        EXPECT_EQ(error, "tile 3 of 3: cannot read " + tileImage(plan, 2).string() +
-                             ": it is 5 x 4 pixels, not 5 x 3");
+        EXPECT_EQ(stitchError(plan), "tile 3 of 3: cannot read " + tileImage(plan, 2).string() +
+                                         ": it is 5 x 4 pixels, not 5 x 3");
     }
 }
 

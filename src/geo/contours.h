@@ -6,7 +6,7 @@
 #include "curves/hausdorff.h"
 #include "geo/geo_grid.h"
 
-namespace relief::measure {
+namespace relief::geo {
 
 /// The contour lines at each level (GDALContourGenerate on an in-memory
 /// raster whose pixel centres are the nodes; marching squares, linear along
@@ -26,4 +26,4 @@ curves::CurveSet clipToBox(const curves::CurveSet& lines, double xmin, double ym
 /// spacing, none at the extremes.
 std::vector<double> niceLevels(double lo, double hi, int count);
 
-}  // namespace relief::measure
+}  // namespace relief::geo

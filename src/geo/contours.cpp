@@ -1,4 +1,4 @@
-#include "measure/contours.h"
+#include "geo/contours.h"
 
 #include <algorithm>
 #include <cmath>
@@ -12,7 +12,7 @@
 #include "geo/gdal_handles.h"
 #include "geo/gdal_setup.h"
 
-namespace relief::measure {
+namespace relief::geo {
 
 std::vector<curves::CurveSet> contourLines(const geo::GeoGrid& lat, const std::vector<double>& levels,
                                            std::string& error) {
@@ -142,4 +142,4 @@ std::vector<double> niceLevels(double lo, double hi, int count) {
     return out;
 }
 
-}  // namespace relief::measure
+}  // namespace relief::geo
