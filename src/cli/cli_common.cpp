@@ -250,6 +250,16 @@ void Progress::show(const relief::ProgressEvent& e) {
     show(line, e.percent);
 }
 
+ProgressFn showing(Progress& progress) {
+    return [&](const relief::ProgressEvent& e) {
+        // Each stage on a line of its own; the render's progress rewrites its line.
+        if ((e.stage == relief::ProgressEvent::Stage::Compiling || e.stage == relief::ProgressEvent::Stage::Finishing) &&
+            e.percent < 0)
+            progress.done();
+        progress.show(e);
+    };
+}
+
 void Progress::done() {
     if (open_) std::cerr << "\r\033[K" << std::flush;
     open_ = false;

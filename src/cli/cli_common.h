@@ -61,8 +61,11 @@ struct Command {
     int parseErrorCode = code(Exit::BadInput);
 };
 
-// Registration, one function per cmd_*.cpp.
-void addSceneCommands(CLI::App& app, std::vector<Command>& out);     // compile, render
+// Registration, one function per group of commands (a cmd_*.cpp each but the plan's steps).
+void addDataCommands(CLI::App& app, std::vector<Command>& out);      // info, init
+void addSceneCommands(CLI::App& app, std::vector<Command>& out);     // compile, render, plan
+void addAnimateCommands(CLI::App& app, std::vector<Command>& out);   // animate
+void addPlanStepCommands(CLI::App& app, std::vector<Command>& out);  // render-tile, finish
 void addSchemeCommands(CLI::App& app, std::vector<Command>& out);    // check, curve
 void addGeometryCommands(CLI::App& app, std::vector<Command>& out);  // hausdorff, profile, compare-geometry
 void addImageCommands(CLI::App& app, std::vector<Command>& out);     // diff, test, sweep (relief-images)
@@ -113,6 +116,10 @@ private:
     int firstPercent_ = -1;  ///< its first percentage, and when it came: the rate is measured from there
     std::chrono::steady_clock::time_point firstPercentAt_;
 };
+
+/// What a job tells, shown on `progress`: each stage on a line of its own, the
+/// render's progress rewriting its line.
+ProgressFn showing(Progress& progress);
 
 /// The options of the commands that take one scene file.
 struct CommonOptions {

@@ -2,6 +2,7 @@
 
 // relief compile, relief render: one scene file to a .pov, or all the way to a
 // PNG; and the render's steps on their own: relief plan, render-tile, finish.
+// Every one of them calls pipeline/job.h.
 #include <iostream>
 #include <memory>
 
@@ -9,10 +10,7 @@
 
 #include "core/text_escape.h"
 #include "core/atomic_file.h"
-#include "pipeline/film.h"
 #include "pipeline/job.h"
-#include "pipeline/load.h"
-#include "pipeline/record.h"
 
 namespace relief::cli {
 
@@ -43,16 +41,6 @@ relief::SceneJob sceneJob(const SceneOptions& o, relief::SceneJob::Until until, 
     job.keepPlan = o.keepPlan;
     job.execution = executionOf(o.execution, o.common.noSandbox);
     return job;
-}
-
-ProgressFn showing(Progress& progress) {
-    return [&](const relief::ProgressEvent& e) {
-        // Each stage on a line of its own; the render's progress rewrites its line.
-        if ((e.stage == relief::ProgressEvent::Stage::Compiling || e.stage == relief::ProgressEvent::Stage::Finishing) &&
-            e.percent < 0)
-            progress.done();
-        progress.show(e);
-    };
 }
 
 void printWritten(const relief::JobOutcome& outcome, bool rendered) {
@@ -235,95 +223,6 @@ int runFinish(const std::string& planDir, bool keepPlan) {
     return code(Exit::Ok);
 }
 
-// `relief info` and `relief init`: a DEM (or, for info, a scene) and what relief would make of it.
-struct DataOptions {
-    std::string input, output;
-    std::vector<std::string> sets;
-    bool json = false, force = false, quiet = false;
-};
-
-std::optional<std::pair<relief::LoadedScene, relief::Surface>> planned(const DataOptions& o,
-                                                                       relief::Diagnostics& diags) {
-    scene::SceneOverrides overrides;
-    if (!parseOverrides(o.sets, overrides)) return std::nullopt;
-    auto loaded = relief::loadScene(o.input, diags, overrides);
-    if (!loaded) return std::nullopt;
-    auto surface = relief::planSurface(*loaded, diags);
-    if (!surface) return std::nullopt;
-    return std::pair{std::move(*loaded), std::move(*surface)};
-}
-
-int runInfo(const DataOptions& o) {
-    relief::Diagnostics diags;
-    const auto plan = planned(o, diags);
-    const auto info = plan ? relief::sceneInfo(plan->first, plan->second, diags) : nlohmann::ordered_json();
-    printDiagnostics(diags, plan.has_value());
-    if (!plan) return code(Exit::BadInput);
-    std::cout << (o.json ? info.dump(2) + "\n" : terminalText(relief::sceneInfoText(info), 100000, true));
-    return code(Exit::Ok);
-}
-
-int runInit(const DataOptions& o) {
-    relief::Diagnostics diags;
-    const std::filesystem::path out =
-        o.output.empty() ? std::filesystem::path(std::filesystem::path(o.input).stem().string() + ".toml")
-                         : std::filesystem::path(o.output);
-    std::error_code ec;
-    if (std::filesystem::exists(out, ec) && !o.force) {
-        std::cerr << fmt::format("relief: error: {} exists: give another -o, or --force to replace it\n",
-                                 terminalText(out.string(), 500));
-        return code(Exit::BadInput);
-    }
-    // Before any work: a name TOML cannot hold is refused, not written with U+FFFD.
-    const std::filesystem::path input(o.input);
-    if (!relief::initCanNameData(input.has_filename() ? input : input.parent_path(), out, diags)) {
-        printDiagnostics(diags, false);
-        return code(Exit::BadInput);
-    }
-    const auto plan = planned(o, diags);
-    if (plan && plan->first.scene.madeForData.empty())
-        diags.error({o.input, 0, 0},
-                    "relief init makes a scene for elevation data (a raster or a CSV of samples); "
-                    "this is a scene file already");
-    if (!plan || diags.hasErrors() || !o.quiet) printDiagnostics(diags, false);
-    if (!plan || diags.hasErrors()) return code(Exit::BadInput);
-    try {
-        createParentFolder(out);
-        writeFileAtomically(out, relief::initSceneText(plan->first, plan->second, out));
-    } catch (const std::exception& e) {
-        std::cerr << "relief: error: " << terminalText(e.what(), 2000) << '\n';
-        return code(Exit::BadInput);
-    }
-    if (!o.quiet)
-        std::cerr << fmt::format("wrote {} (net {} x {}, depth {}): relief render {} makes the still\n",
-                                 terminalText(out.string(), 500), plan->second.net.rows(), plan->second.net.cols(),
-                                 plan->second.depth, terminalText(shellQuoted(out.string()), 500));
-    return code(Exit::Ok);
-}
-
-void addDataCommands(CLI::App& app, std::vector<Command>& out) {
-    auto o = std::make_shared<DataOptions>();
-    CLI::App* info = app.add_subcommand(
-        "info",
-        "what relief would do with a DEM or a scene and what it would cost (the data, frame, net, depth and "
-        "why, geometry, estimated triangles, memory and .pov size against [limits]), before doing it");
-    info->add_option("input", o->input, "a raster DEM, a CSV of lon,lat,elev samples, or a scene file")->required();
-    info->add_flag("--json", o->json, "print JSON");
-    info->add_option("--set", o->sets, "override a scene key: section.key=value (render.width=3840); repeatable");
-    out.push_back({info, [o] { return runInfo(*o); }});
-
-    CLI::App* init =
-        app.add_subcommand("init",
-                           "write the scene relief makes for a DEM as a TOML file: every choice with its value and why "
-                           "(relief render of it makes the still relief render of the DEM does)");
-    init->add_option("input", o->input, "a raster DEM or a CSV of lon,lat,elev samples")->required();
-    init->add_option("-o,--output", o->output, "the scene file to write (default: <DEM name>.toml here)");
-    init->add_option("--set", o->sets, "override a scene key first: section.key=value (render.width=3840); repeatable");
-    init->add_flag("--force", o->force, "replace the scene file if it exists");
-    init->add_flag("-q,--quiet", o->quiet, "print errors only");
-    out.push_back({init, [o] { return runInit(*o); }});
-}
-
 void addCommonSceneOptions(CLI::App* sub, SceneOptions& o, const char* outputHelp, bool sceneRequired) {
     auto* scene = sub->add_option("scene", o.common.scene,
                                   "scene file (TOML), or a DEM alone: a raster GDAL opens or a CSV of lon,lat,elev "
@@ -359,73 +258,9 @@ void addRenderOptions(CLI::App* sub, SceneOptions& o, bool renders) {
     sub->add_flag("--keep-plan", o.keepPlan, "keep the plan (its .pov, PNGs and tiles) after the still is made");
 }
 
-struct AnimateOptions {
-    CommonOptions common;
-    ExecutionOptions execution;
-    std::string frames;
-    std::string resume;  ///< --resume DIR: a film's kept working folder
-};
-
-// `relief animate`: the film of a scene's [animation].
-int runAnimate(const AnimateOptions& o) {
-    relief::Diagnostics diags;
-    Progress progress(o.common.quiet);
-    installInterruptHandler();
-    relief::AnimateJob job;
-    job.scenePath = o.common.scene;
-    if (!parseOverrides(o.common.sets, job.overrides)) return code(Exit::BadInput);
-    job.output = o.common.output;
-    job.framesDir = o.frames;
-    job.templatesDir = findTemplates(o.common.templates);
-    job.threads = o.common.threads;
-    job.tiles = o.execution.tiles;
-    job.execution = executionOf(o.execution, o.common.noSandbox);
-    const relief::AnimateOutcome outcome =
-        o.resume.empty() ? relief::runAnimateJob(job, diags, showing(progress))
-                         : relief::resumeFilm(o.resume, job.execution, o.frames, diags, showing(progress));
-    progress.done();
-    const std::string kept =
-        outcome.workDir.empty()
-            ? std::string()
-            : fmt::format("relief: the film's frames are kept: relief animate --resume {} renders what is missing\n",
-                          terminalText(shellQuoted(outcome.workDir.string()), 500));
-    switch (outcome.status) {
-        case relief::JobStatus::Ok:
-            break;
-        case relief::JobStatus::Cancelled:
-            printDiagnostics(diags, false);
-            std::cerr << "relief: interrupted; nothing written\n" << kept;
-            return code(Exit::Interrupted);
-        case relief::JobStatus::ToolFailed:
-            printDiagnostics(diags, false);
-            std::cerr << "relief: error: " << terminalText(outcome.toolError, 8000, true) << " (nothing written)\n"
-                      << kept;
-            return code(Exit::ToolFailed);
-        default:
-            printDiagnostics(diags, false);
-            std::cerr << kept;
-            return code(Exit::BadInput);
-    }
-    printDiagnostics(diags, true);
-    if (!o.common.quiet) {
-        int kept = 0;
-        for (const auto& f : outcome.frames) kept += f.fileNumber > 0;
-        std::cerr << fmt::format(
-            "wrote {} ({} frames{}, {} terrain{} compiled; compile {:.1f} s, render {:.1f} s, "
-            "encode {:.1f} s) and {}\n",
-            terminalText(outcome.film.string(), 500), kept,
-            kept < int(outcome.frames.size()) ? fmt::format(", {} at night left out", outcome.frames.size() - kept)
-                                              : "",
-            outcome.terrains, outcome.terrains == 1 ? "" : "s", outcome.compileSeconds, outcome.renderSeconds,
-            outcome.encodeSeconds, terminalText(outcome.sidecar.string(), 500));
-    }
-    return code(Exit::Ok);
-}
-
 }  // namespace
 
 void addSceneCommands(CLI::App& app, std::vector<Command>& out) {
-    addDataCommands(app, out);
     auto o = std::make_shared<SceneOptions>();
     CLI::App* compile = app.add_subcommand("compile", "write the POV-Ray scene (.pov) and a JSON sidecar; no rendering");
     addCommonSceneOptions(compile, *o, "the .pov to write (default: out/<scene name>.pov)", true);
@@ -458,37 +293,9 @@ void addSceneCommands(CLI::App& app, std::vector<Command>& out) {
     addRenderOptions(plan, *o, false);
     out.push_back({plan, [o] { return runPlan(*o); }});
 
-    auto a = std::make_shared<AnimateOptions>();
-    CLI::App* animate = app.add_subcommand(
-        "animate",
-        "render the film of the scene's [animation] (an orbit, a flyover, the sun through a day, keys varied): "
-        "every frame through the render plan's executors, encoded by ffmpeg");
-    animate->add_option("scene", a->common.scene, "scene file (TOML) with an [animation] section");
-    animate->add_option("--resume", a->resume,
-                        "finish a film a run did not: render the missing frames of its kept working folder "
-                        "(<film>.film), encode it (no scene file)");
-    animate->add_option("-o,--output", a->common.output,
-                        "the film: .mp4 (H.264), .webm (VP9) or .gif (default: out/<scene name>.mp4)");
-    animate->add_option("--frames", a->frames,
-                        "also keep every frame's PNG in this folder (frame-00001.png, ...); with --resume, where a "
-                        "film whose first run kept them keeps them");
-    animate->add_option("--templates", a->common.templates, "folder with scene.pov.in");
-    animate->add_option("--threads", a->common.threads, "refiner threads (0: all cores)")->check(CLI::Range(0, 256));
-    animate->add_flag("-q,--quiet", a->common.quiet, "print errors only");
-    animate->add_option("--set", a->common.sets, "override a scene key: section.key=value; repeatable");
-    animate->add_flag("--no-sandbox", a->common.noSandbox, "run POV-Ray without its bubblewrap sandbox");
-    addExecutionOptions(animate, a->execution, true,
-                        "tiles at once, of every frame (0: as many as cores here; on Slurm, as many as the cluster "
-                        "runs)");
-    animate->callback([a] {
-        if (a->resume.empty() && a->common.scene.empty()) throw CLI::RequiredError("scene");
-        if (!a->resume.empty() && !a->common.scene.empty())
-            throw CLI::ValidationError("--resume", "give a film's folder to resume or a scene, not both");
-        if (!a->resume.empty() && (!a->common.output.empty() || !a->common.sets.empty()))
-            throw CLI::ValidationError("--resume", "the film's folder says what it makes: no -o or --set");
-    });
-    out.push_back({animate, [a] { return runAnimate(*a); }});
+}
 
+void addPlanStepCommands(CLI::App& app, std::vector<Command>& out) {
     auto t = std::make_shared<TileOptions>();
     CLI::App* tile = app.add_subcommand("render-tile", "render one tile of a render plan (what each Slurm task runs)");
     tile->add_option("plan", t->plan, "the render plan's folder");

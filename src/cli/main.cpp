@@ -20,7 +20,10 @@ int main(int argc, char** argv) {
     app.require_subcommand(1);
 
     std::vector<Command> commands;
+    addDataCommands(app, commands);
     addSceneCommands(app, commands);
+    addAnimateCommands(app, commands);
+    addPlanStepCommands(app, commands);
     addSchemeCommands(app, commands);
     addImageCommandEntries(app);
     addGeometryCommands(app, commands);
