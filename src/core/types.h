@@ -64,6 +64,23 @@ struct LonLatBox {
     double west = 0, south = 0, east = 0, north = 0;
 };
 
+/// A point on a still: pixels from its top left corner, y down.
+struct PixelPoint {
+    double x = 0, y = 0;
+};
+/// A box of pixels on an image (a still, a raster), y down: (x0, y0) its top
+/// left corner, (x1, y1) its bottom right.
+struct PixelBox {
+    double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+    double w() const { return x1 - x0; }
+    double h() const { return y1 - y0; }
+    /// Whether the two boxes overlap, or come closer than `pad` pixels.
+    bool meets(const PixelBox& o, double pad) const {
+        return x0 < o.x1 + pad && o.x0 < x1 + pad && y0 < o.y1 + pad && o.y0 < y1 + pad;
+    }
+    friend bool operator==(const PixelBox&, const PixelBox&) = default;
+};
+
 /// A colour as light adds up: linear 0..1 components of an sRGB colour.
 struct LinearRgb {
     double r = 0, g = 0, b = 0;

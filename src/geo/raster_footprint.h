@@ -7,17 +7,12 @@
 #include <optional>
 
 #include "core/diagnostics.h"
+#include "core/types.h"
 #include "geo/geo_grid.h"
 #include "geo/raster_source.h"
 #include "scene/scene_spec.h"
 
 namespace relief::geo {
-
-/// A box of cells: pixel edges x0, y0 (the first row read) to x1, y1.
-struct PixelBox {
-    double x0, y0, x1, y1;
-    bool operator==(const PixelBox&) const = default;
-};
 
 /// The box (in pixels) whose footprint is the net's default extent:
 /// `footprint` when given (a lattice of samples: the nodes' centres), else

@@ -164,13 +164,13 @@ nlohmann::ordered_json describeSurfaceMarks(const SurfaceMarks& m, const scene::
             continue;
         }
         if (p.label.empty()) continue;
-        facts.labels.push_back({drawnText(p.label), anchor[0], anchor[1], marker ? 0.25 * l.markerSizePx : 0,
+        facts.labels.push_back({drawnText(p.label), {anchor[0], anchor[1]}, marker ? 0.25 * l.markerSizePx : 0,
                                 ground[1], l.labelSizePx, l.number});
     }
     if (m.graticule)
         for (const emit::GraticuleLine& line : m.graticule->lines)
             if (const auto a = graticuleAnchor(line, refined, where, view, W, H))
-                facts.labels.push_back({line.label, (*a)[0], (*a)[1], 0, (*a)[1], kGraticuleLabelPx, 0});
+                facts.labels.push_back({line.label, {(*a)[0], (*a)[1]}, 0, (*a)[1], kGraticuleLabelPx, 0});
     nlohmann::ordered_json layers = nlohmann::ordered_json::array();
     for (size_t i = 0; i < spec.layers.size(); ++i) {
         const scene::LayerSpec& l = spec.layers[i];

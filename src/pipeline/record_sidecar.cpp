@@ -202,8 +202,8 @@ void addRenderFacts(ordered_json& j, const RenderFacts& r) {
     for (const auto& l : o.labels) {
         ordered_json label = {{"text", l.text}, {"layer", l.layer}};
         if (l.placed) {
-            label["box_px"] = {std::round(l.x0 * 10) / 10, std::round(l.y0 * 10) / 10, std::round(l.x1 * 10) / 10,
-                               std::round(l.y1 * 10) / 10};
+            label["box_px"] = {std::round(l.box.x0 * 10) / 10, std::round(l.box.y0 * 10) / 10,
+                               std::round(l.box.x1 * 10) / 10, std::round(l.box.y1 * 10) / 10};
             label["leader"] = l.leader;
         } else {
             label["left_out"] = "no free place beside its marker";

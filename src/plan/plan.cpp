@@ -49,14 +49,14 @@ std::vector<LinearRgb> coloursOf(const ordered_json& a) {
 ordered_json labelsJson(const std::vector<annotate::LabelFact>& labels) {
     ordered_json a = ordered_json::array();
     for (const auto& l : labels)
-        a.push_back({{"text", l.text}, {"x", l.x}, {"y", l.y}, {"marker_px", l.markerPx}, {"ground_y", l.groundY},
-                     {"size_px", l.sizePx}, {"layer", l.layer}});
+        a.push_back({{"text", l.text}, {"x", l.anchor.x}, {"y", l.anchor.y}, {"marker_px", l.markerPx},
+                     {"ground_y", l.groundY}, {"size_px", l.sizePx}, {"layer", l.layer}});
     return a;
 }
 std::vector<annotate::LabelFact> labelsOf(const ordered_json& a) {
     std::vector<annotate::LabelFact> out;
     for (const auto& l : a)
-        out.push_back({l.at("text").get<std::string>(), l.at("x").get<double>(), l.at("y").get<double>(),
+        out.push_back({l.at("text").get<std::string>(), {l.at("x").get<double>(), l.at("y").get<double>()},
                        l.at("marker_px").get<double>(), l.at("ground_y").get<double>(), l.at("size_px").get<double>(),
                        l.at("layer").get<int>()});
     return out;
@@ -284,8 +284,8 @@ bool overlaySizesSane(const RenderPlan& p) {
     const auto within = [](double v, double lo, double hi) { return v >= lo && v <= hi; };  // false for NaN
     bool ok = p.dpi == 0 || within(p.dpi, 1, 4800);
     for (const auto& l : p.overlayFacts.labels)
-        ok = ok && within(l.sizePx, 1, 1000) && within(l.markerPx, 0, 1000) && within(l.x, -1e7, 1e7) &&
-             within(l.y, -1e7, 1e7) && within(l.groundY, -1e7, 1e7);
+        ok = ok && within(l.sizePx, 1, 1000) && within(l.markerPx, 0, 1000) && within(l.anchor.x, -1e7, 1e7) &&
+             within(l.anchor.y, -1e7, 1e7) && within(l.groundY, -1e7, 1e7);
     for (const auto& e : p.overlayFacts.layerLegend)
         ok = ok && within(e.widthPx, 0, 1000) && within(e.fillOpacity, 0, 1);
     return ok;

@@ -5,5 +5,5 @@
 // once the locale is loaded (the locale test sets LOCPATH, core_test.cpp).
 // fontconfig keeps its configuration and font patterns for the process's life
 // (freed only by FcFini, which Pango's cached font map forbids); the overlays'
-// text goes through it (annotate/overlay.cpp).
+// text goes through it (annotate/paint.cpp).
 extern "C" const char* __lsan_default_suppressions() { return "leak:argz_add_sep\nleak:libfontconfig.so\n"; }

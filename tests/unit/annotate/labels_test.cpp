@@ -6,30 +6,30 @@
 
 #include <cmath>
 
-#include "annotate/labels.h"
+#include "annotate/layout.h"
 
 namespace relief::annotate {
 namespace {
 
-LabelBox markerOf(double x, double y) {
+PixelBox markerOf(double x, double y) {
     return {x - 4, y - 4, x + 4, y + 20};
 }
 
 LabelRequest at(double x, double y, double w = 60, double h = 14) {
-    return {x, y, 4, w, h, markerOf(x, y)};
+    return {{x, y}, 4, w, h, markerOf(x, y)};
 }
 
 void expectValid(const std::vector<std::optional<PlacedLabel>>& placed, const std::vector<LabelRequest>& requests,
-                 const std::vector<LabelBox>& obstacles, int W, int H) {
+                 const std::vector<PixelBox>& obstacles, int W, int H) {
     for (size_t i = 0; i < placed.size(); ++i) {
         if (!placed[i]) continue;
-        const LabelBox& b = placed[i]->box;
+        const PixelBox& b = placed[i]->box;
         EXPECT_GE(b.x0, 0) << i;
         EXPECT_GE(b.y0, 0) << i;
         EXPECT_LE(b.x1, W) << i;
         EXPECT_LE(b.y1, H) << i;
         EXPECT_NEAR(b.x1 - b.x0, requests[i].w, 1e-9);
-        for (const LabelBox& o : obstacles) EXPECT_FALSE(b.meets(o, 0)) << "label " << i << " over an obstacle";
+        for (const PixelBox& o : obstacles) EXPECT_FALSE(b.meets(o, 0)) << "label " << i << " over an obstacle";
         for (size_t j = 0; j < i; ++j)
             if (placed[j]) {
                 EXPECT_FALSE(b.meets(placed[j]->box, 0)) << "labels " << j << " and " << i << " overlap";
@@ -62,7 +62,7 @@ TEST(PlaceLabels, ALabelAtTheStillsEdgeTurnsInward) {
 // another; the same input gives the same places.
 TEST(PlaceLabels, ACrowdOfFiftyNeverOverlaps) {
     std::vector<LabelRequest> r;
-    std::vector<LabelBox> obstacles;
+    std::vector<PixelBox> obstacles;
     for (int i = 0; i < 50; ++i) {
         const double x = 180 + std::fmod(i * 37.0, 120), y = 120 + std::fmod(i * 23.0, 80);
         r.push_back(at(x, y, 40 + (i % 5) * 10, 12));
@@ -78,11 +78,11 @@ TEST(PlaceLabels, ACrowdOfFiftyNeverOverlaps) {
     for (size_t i = 0; i < placed.size(); ++i)
         if (placed[i] && placed[i]->leader) {  // from its marker to a point on its own box
             const PlacedLabel& p = *placed[i];
-            EXPECT_GE(p.leaderX, p.box.x0 - 1e-9);
-            EXPECT_LE(p.leaderX, p.box.x1 + 1e-9);
-            EXPECT_GE(p.leaderY, p.box.y0 - 1e-9);
-            EXPECT_LE(p.leaderY, p.box.y1 + 1e-9);
-            EXPECT_GT(std::hypot(p.leaderX - r[i].anchorX, p.leaderY - r[i].anchorY), r[i].markerPx);
+            EXPECT_GE(p.leaderEnd.x, p.box.x0 - 1e-9);
+            EXPECT_LE(p.leaderEnd.x, p.box.x1 + 1e-9);
+            EXPECT_GE(p.leaderEnd.y, p.box.y0 - 1e-9);
+            EXPECT_LE(p.leaderEnd.y, p.box.y1 + 1e-9);
+            EXPECT_GT(std::hypot(p.leaderEnd.x - r[i].anchor.x, p.leaderEnd.y - r[i].anchor.y), r[i].markerPx);
         }
     const auto again = placeLabels(r, 480, 320, {});
     for (size_t i = 0; i < placed.size(); ++i) {
@@ -102,7 +102,7 @@ TEST(PlaceLabels, ALabelTooBigForTheStillIsLeftOut) {
 // A point under the title: its label would need a leader across the title, and is left out;
 // the same point clear of it is labelled.
 TEST(PlaceLabels, NoLeaderCrossesTheFurniture) {
-    const LabelBox title{50, 90, 150, 110};
+    const PixelBox title{50, 90, 150, 110};
     EXPECT_FALSE(placeLabels({at(100, 100)}, 400, 300, {title})[0]);
     EXPECT_TRUE(placeLabels({at(100, 200)}, 400, 300, {title})[0]);
 }

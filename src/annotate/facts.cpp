@@ -1,0 +1,131 @@
+#include "annotate/facts.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include <fmt/format.h>
+
+#include "core/number_format.h"
+#include "emit/mesh.h"
+
+namespace relief::annotate {
+
+namespace {
+
+// 1, 2 or 5 x 10^k: the largest not above `v`.
+double roundDown125(double v) {
+    const double p = std::pow(10.0, std::floor(std::log10(v)));
+    const double m = v / p;
+    return (m >= 5 ? 5 : m >= 2 ? 2 : 1) * p;
+}
+
+std::string metresLabel(double m) {
+    if (m >= 1000) return formatShortest(m / 1000) + " km";
+    return formatShortest(m) + " m";
+}
+
+}  // namespace
+
+TerrainOnImage TerrainOnImage::fromPoints(const std::vector<std::array<double, 2>>& points, int widthPx) {
+    TerrainOnImage t;
+    const int bands = std::max(1, static_cast<int>(std::ceil(widthPx / t.bandPx)));
+    t.top.assign(bands, 1e300);
+    t.bottom.assign(bands, -1e300);
+    for (const auto& [x, y] : points) {
+        if (!(x >= 0 && x < widthPx) || !std::isfinite(y)) continue;
+        const int b = static_cast<int>(x / t.bandPx);
+        t.top[b] = std::min(t.top[b], y), t.bottom[b] = std::max(t.bottom[b], y);
+    }
+    // Bands between covered ones: linear between their neighbours (the lattice's
+    // nodes land a few pixels apart).
+    int last = -1;
+    for (int b = 0; b < bands; ++b) {
+        if (t.top[b] > t.bottom[b]) continue;
+        for (int k = last + 1; last >= 0 && k < b; ++k) {
+            const double f = double(k - last) / (b - last);
+            t.top[k] = t.top[last] + f * (t.top[b] - t.top[last]);
+            t.bottom[k] = t.bottom[last] + f * (t.bottom[b] - t.bottom[last]);
+        }
+        last = b;
+    }
+    return t;
+}
+
+bool TerrainOnImage::covers(double x, double y) const {
+    const int b = static_cast<int>(std::floor(x / bandPx));
+    return b >= 0 && b < static_cast<int>(top.size()) && y >= top[b] && y <= bottom[b];
+}
+
+ScaleBar chooseScaleBar(double metresPerPixel, int widthPx) {
+    ScaleBar bar;
+    if (!(metresPerPixel > 0) || widthPx <= 0) return bar;
+    bar.metres = roundDown125(0.2 * widthPx * metresPerPixel);
+    bar.pixels = bar.metres / metresPerPixel;
+    bar.label = metresLabel(bar.metres);
+    return bar;
+}
+
+std::vector<double> legendTicks(double zMinM, double zMaxM) {
+    std::vector<double> ticks;
+    if (!(zMaxM > zMinM)) return {zMinM};
+    const double step = roundDown125((zMaxM - zMinM) / 4);
+    for (double v = std::ceil(zMinM / step) * step; v <= zMaxM + 1e-9 * step; v += step)
+        ticks.push_back(std::abs(v) < 1e-9 * step ? 0.0 : v);
+    return ticks;
+}
+
+double northOnImageDeg(const emit::CameraView& view, double convergenceDeg, int widthPx, int heightPx) {
+    // True north is convergenceDeg anticlockwise of grid north: in scene axes
+    // (x east, z north) the direction (-sin g, 0, cos g).
+    const double g = convergenceDeg * std::numbers::pi / 180;
+    const double step = 1e-3 * view.radius;
+    const SceneVec3 north{-std::sin(g) * step, 0, std::cos(g) * step};
+    const auto a = emit::projectToImage(view, view.target, widthPx, heightPx);
+    const auto b = emit::projectToImage(view, view.target + north, widthPx, heightPx);
+    return std::atan2(b[0] - a[0], a[1] - b[1]) * 180 / std::numbers::pi;
+}
+
+double metresPerPixelAtTarget(const emit::CameraView& view, double metresPerUnit, int widthPx) {
+    const double span = view.perspective ? 2 * length(view.target - view.eye) * view.tanHalfFov
+                                         : view.orthoHeight * view.aspect;
+    return span * metresPerUnit / widthPx;
+}
+
+bool overlaysWanted(const scene::OverlaySpec& spec, int widthPx) {
+    using E = scene::OverlaySpec::Enabled;
+    return spec.enabled == E::On || (spec.enabled == E::Auto && widthPx >= scene::OverlaySpec::kMinAutoWidthPx);
+}
+
+OverlayFacts overlayFacts(const scene::LookSpec& look, const emit::ScenePlacement& where, const emit::CameraView& view,
+                          const scene::RenderSpec& render, double convergenceDeg) {
+    OverlayFacts f;
+    f.palette.assign(where.paletteColors.begin(),
+                     where.paletteColors.begin() + std::min<size_t>(emit::kPaletteSize, where.paletteColors.size()));
+    f.zMinM = where.zMinM;
+    f.zMaxM = where.zMaxM;
+    using Colouring = scene::TextureSpec::Colouring;
+    if (look.texture.colouring == Colouring::Image) {
+        f.palette.clear();  // an image's colours are its own: no elevation legend
+    } else if (look.texture.colouring == Colouring::Slope) {
+        f.legendTitle = "Slope (\u00b0)";
+        f.zMinM = 0;
+        f.zMaxM = emit::kSlopePaletteMaxDeg;
+    } else if (look.texture.colouring == Colouring::Blend) {
+        f.legendNote = fmt::format("rock on slopes over {}\u00b0", formatShortest(look.texture.rockFromDeg));
+    }
+    f.exaggeration = where.exaggeration;
+    f.perspective = view.perspective;
+    f.metresPerPixel = metresPerPixelAtTarget(view, where.metresPerUnit, render.width);
+    f.northDeg = northOnImageDeg(view, convergenceDeg, render.width, render.height);
+    // Where the terrain lies on the still (points in front of the eye only).
+    std::vector<std::array<double, 2>> onImage;
+    const SceneVec3 forward = view.target - view.eye;
+    for (const SceneVec3& p : where.outline)
+        if (!view.perspective || dot(p - view.eye, forward) > 0)
+            onImage.push_back(emit::projectToImage(view, p, render.width, render.height));
+    f.terrain = TerrainOnImage::fromPoints(onImage, render.width);
+    return f;
+}
+
+}  // namespace relief::annotate
