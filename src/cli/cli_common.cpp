@@ -250,6 +250,12 @@ void Progress::show(const relief::ProgressEvent& e) {
     show(line, e.percent);
 }
 
+std::string keptForResume(std::string_view what, std::string_view command, const fs::path& dir) {
+    if (dir.empty()) return "";
+    return fmt::format("relief: {} kept: relief {} --resume {} renders what is missing\n", what, command,
+                       terminalText(shellQuoted(dir.string()), 500));
+}
+
 ProgressFn showing(Progress& progress) {
     return [&](const relief::ProgressEvent& e) {
         // Each stage on a line of its own; the render's progress rewrites its line.

@@ -117,6 +117,10 @@ private:
     std::chrono::steady_clock::time_point firstPercentAt_;
 };
 
+/// "relief: <what> kept: relief <command> --resume <dir> renders what is
+/// missing" and a line feed, or "" when nothing was kept (`dir` empty).
+std::string keptForResume(std::string_view what, std::string_view command, const fs::path& dir);
+
 /// What a job tells, shown on `progress`: each stage on a line of its own, the
 /// render's progress rewriting its line.
 ProgressFn showing(Progress& progress);

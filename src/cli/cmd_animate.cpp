@@ -38,11 +38,7 @@ int runAnimate(const AnimateOptions& o) {
         o.resume.empty() ? relief::runAnimateJob(job, diags, showing(progress))
                          : relief::resumeFilm(o.resume, job.execution, o.frames, diags, showing(progress));
     progress.done();
-    const std::string kept =
-        outcome.workDir.empty()
-            ? std::string()
-            : fmt::format("relief: the film's frames are kept: relief animate --resume {} renders what is missing\n",
-                          terminalText(shellQuoted(outcome.workDir.string()), 500));
+    const std::string kept = keptForResume("the film's frames are", "animate", outcome.workDir);
     switch (outcome.status) {
         case relief::JobStatus::Ok:
             break;

@@ -74,11 +74,7 @@ void printWritten(const relief::JobOutcome& outcome, bool rendered) {
 
 // How a job that did not finish ended, and its exit code.
 int reportFailure(const relief::JobOutcome& outcome, const relief::Diagnostics& diags, const std::string& scene) {
-    const std::string kept =
-        outcome.plan.empty()
-            ? std::string()
-            : fmt::format("relief: the render plan is kept: relief render --resume {} renders what is missing\n",
-                          terminalText(shellQuoted(outcome.plan.string()), 500));
+    const std::string kept = keptForResume("the render plan is", "render", outcome.plan);
     switch (outcome.status) {
         case relief::JobStatus::Cancelled:
             printDiagnostics(diags, false);

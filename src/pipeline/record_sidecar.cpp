@@ -54,22 +54,44 @@ void addFitToSidecar(ordered_json& j, const SurfaceSummary& c) {
                        {"seconds", f.seconds}};
 }
 
-// The sidecar as compiling made it, its strings as they came (a name may not be UTF-8).
-ordered_json sidecarFacts(const scene::SceneSpec& scene, const CompileResult& compiled, const OutputPaths& paths) {
-    const SurfaceSummary& c = compiled.surface;
-    const TerrainSummary& t = compiled.terrain;
-    const ViewSummary& v = compiled.view;
-    ordered_json j;
+// What the run read: the scene, its samples and their credit, the parameters the header records.
+void addInputs(ordered_json& j, const scene::SceneSpec& scene, const CompileResult& compiled) {
     j["relief_version"] = kVersion;
     j["inputs"] = {{"scene", scene.sceneFile.string()},
                    {"scene_sha1", scene.sceneSha1},
                    {"samples", scene.samples.path.string()},
-                   {"sample_count", c.net.sampleCount}};
+                   {"sample_count", compiled.surface.net.sampleCount}};
     if (!scene.madeForData.empty()) j["inputs"]["scene_made_for_the_data"] = scene.madeForData;
     if (!compiled.credits.data.empty()) j["inputs"]["attribution"] = compiled.credits.data;
     ordered_json params = ordered_json::object();
     for (const auto& [k, value] : compiled.parameters) params[k] = value;
     j["parameters"] = params;
+}
+
+// depth = "auto": the change each level made, and its observed rate beside the scheme's Hölder exponent.
+ordered_json autoDepthJson(const scene::SceneSpec& scene, const SurfaceSummary& c) {
+    ordered_json levels = ordered_json::array();
+    for (size_t i = 0; i < c.autoDepth->levels.size(); ++i) {
+        const auto& l = c.autoDepth->levels[i];
+        ordered_json level = {{"level", l.level},
+                              {"hausdorff_m", l.distanceM},
+                              {"curve", l.curve},
+                              {"where_m", {l.x, l.y, l.z}},
+                              {"seconds", l.seconds}};
+        const double rate = observedRate(*c.autoDepth, i, c.arity);
+        if (std::isfinite(rate)) level["rate"] = rate;
+        levels.push_back(level);
+    }
+    return {{"tolerance_m", scene.subdivision.toleranceM},
+            {"depth", c.depth},
+            {"holder_estimate", c.holder},
+            {"levels", levels}};
+}
+
+// The net, the refined surface and what lies on it, the fit.
+void addSurface(ordered_json& j, const scene::SceneSpec& scene, const CompileResult& compiled) {
+    const SurfaceSummary& c = compiled.surface;
+    const TerrainSummary& t = compiled.terrain;
     j["net"] = {{"rows", c.net.rows},
                 {"cols", c.net.cols},
                 {"dx_m", c.net.dx},
@@ -88,35 +110,17 @@ ordered_json sidecarFacts(const scene::SceneSpec& scene, const CompileResult& co
                     {"triangles", t.meshTriangles},
                     {"pov_bytes", compiled.povBytes},
                     {"memory_estimate_mb", c.estimate.memoryBytes / 1e6}};
-    ordered_json times = {{"read_scene", compiled.seconds.readScene},
-                          {"normalize", compiled.seconds.normalize},
-                          {"subdivide", compiled.seconds.subdivide},
-                          {"emit", compiled.seconds.emit}};
-    if (c.autoDepth) {
-        ordered_json levels = ordered_json::array();
-        const int arity = c.arity;
-        for (size_t i = 0; i < c.autoDepth->levels.size(); ++i) {
-            const auto& l = c.autoDepth->levels[i];
-            ordered_json level = {{"level", l.level},
-                                  {"hausdorff_m", l.distanceM},
-                                  {"curve", l.curve},
-                                  {"where_m", {l.x, l.y, l.z}},
-                                  {"seconds", l.seconds}};
-            const double rate = observedRate(*c.autoDepth, i, arity);
-            if (std::isfinite(rate)) level["rate"] = rate;
-            levels.push_back(level);
-        }
-        j["auto_depth"] = {{"tolerance_m", scene.subdivision.toleranceM},
-                           {"depth", c.depth},
-                           {"holder_estimate", c.holder},
-                           {"levels", levels}};
-    }
+    if (c.autoDepth) j["auto_depth"] = autoDepthJson(scene, c);
     if (t.contours.levels > 0)
         j["contours"] = {{"interval_m", scene.overlay.contours->intervalM},
                          {"levels", t.contours.levels},
                          {"lines", t.contours.lines}};
     if (!t.layers.empty()) j["layers"] = t.layers;
     addFitToSidecar(j, c);
+}
+
+// The block, the sun and the camera.
+void addView(ordered_json& j, const scene::SceneSpec& scene, const ViewSummary& v) {
     if (v.baseFloorM)
         j["base"] = {{"floor_elevation_m", *v.baseFloorM}, {"thickness_m", v.zRangeM[0] - *v.baseFloorM}};
     j["sun"] = {{"azimuth_deg", v.sun.azimuthDeg},
@@ -132,7 +136,13 @@ ordered_json sidecarFacts(const scene::SceneSpec& scene, const CompileResult& co
         {"eye_lonlat_h", lonLatH(v.cameraEye)}, {"look_at_lonlat_h", lonLatH(v.cameraTarget)},
         {"azimuth_deg", v.cameraAzimuthDeg},    {"elevation_deg", v.cameraElevationDeg},
         {"distance_m", v.cameraDistanceM},      {"placed_by", scene.look.camera.position ? "position" : "orbit"}};
-    j["seconds"] = times;
+}
+
+// The geometry written and the files made, the still keyed by what it is: "png", "pdf" or "svg".
+void addOutputs(ordered_json& j, const scene::SceneSpec& scene, const CompileResult& compiled,
+                const OutputPaths& paths) {
+    const SurfaceSummary& c = compiled.surface;
+    const TerrainSummary& t = compiled.terrain;
     j["geometry"] = {{"kind", scene::nameOf(c.geometry.kind)}, {"reason", c.geometry.reason}};
     if (!t.heightPng.empty()) j["geometry"]["height_step_m"] = t.heightStepM;
     if (c.geometry.kind == scene::GeometryKind::Adaptive) {
@@ -147,11 +157,23 @@ ordered_json sidecarFacts(const scene::SceneSpec& scene, const CompileResult& co
         j["texture"] = {{"image", scene.look.texture.drapeImageText},
                         {"image_covers", *t.drapeImageCoverage},
                         {"image_attribution", compiled.credits.image}};
-    // Keyed by what the still is: "png", "pdf" or "svg".
     if (!paths.still.empty()) {
         const std::string extension = asciiLower(paths.still.extension().string());
         j["outputs"][extension.size() > 1 ? extension.substr(1) : "still"] = paths.still.string();
     }
+}
+
+// The sidecar as compiling made it, its strings as they came (a name may not be UTF-8).
+ordered_json sidecarFacts(const scene::SceneSpec& scene, const CompileResult& compiled, const OutputPaths& paths) {
+    ordered_json j;
+    addInputs(j, scene, compiled);
+    addSurface(j, scene, compiled);
+    addView(j, scene, compiled.view);
+    j["seconds"] = {{"read_scene", compiled.seconds.readScene},
+                    {"normalize", compiled.seconds.normalize},
+                    {"subdivide", compiled.seconds.subdivide},
+                    {"emit", compiled.seconds.emit}};
+    addOutputs(j, scene, compiled, paths);
     return j;
 }
 
