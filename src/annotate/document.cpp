@@ -96,8 +96,12 @@ std::string finishSvg(const std::filesystem::path& drawnAt, const std::filesyste
 
 }  // namespace
 
-std::string writeDocument(const PngImage8& still, const DocumentRequest& request, OverlayRecord* record) {
-    if (still.channels != 3 && still.channels != 4) return "a document needs an RGB or RGBA still";
+namespace {
+
+// The document, or why not (the words of the error at the still).
+std::string documentOf(const PngImage8& still, const DocumentRequest& request, OverlayRecord* record) {
+    if (still.channels != 3 && still.channels != 4)
+        return fmt::format("a document needs an RGB or RGBA still, not one of {} channels", still.channels);
     const double pointsPerPixel = 72.0 / request.dpi;
     const double widthPt = still.width * pointsPerPixel, heightPt = still.height * pointsPerPixel;
     const std::filesystem::path drawnAt =
@@ -140,6 +144,15 @@ std::string writeDocument(const PngImage8& still, const DocumentRequest& request
             return problem;
     if (record) *record = drawn;
     return {};
+}
+
+}  // namespace
+
+bool writeDocument(const PngImage8& still, const DocumentRequest& request, const SourceLoc& at, Diagnostics& diags,
+                   OverlayRecord* record) {
+    const std::string problem = documentOf(still, request, record);
+    if (!problem.empty()) diags.error(at, problem);
+    return problem.empty();
 }
 
 }  // namespace relief::annotate

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "annotate/facts.h"
+#include "core/diagnostics.h"
 #include "core/png_file.h"
 #include "core/types.h"
 #include "scene/scene_spec.h"
@@ -53,9 +54,9 @@ struct OverlayRecord {
 };
 
 /// Draws the overlays the spec asks for onto `image` (8-bit RGB or RGBA,
-/// changed in place). Returns "" or the error.
-std::string drawOverlays(PngImage8& image, const scene::OverlaySpec& spec, const OverlayFacts& facts,
-                         OverlayRecord* record = nullptr);
+/// changed in place). False with the error at `at` (the still's file).
+bool drawOverlays(PngImage8& image, const scene::OverlaySpec& spec, const OverlayFacts& facts, const SourceLoc& at,
+                  Diagnostics& diags, OverlayRecord* record = nullptr);
 
 enum class DocumentFormat { Pdf, Svg };
 
@@ -77,7 +78,9 @@ struct DocumentRequest {
 /// out as on a PNG (the same Pango layouts, in the still's pixels, scaled to
 /// points): a PDF's text is in embedded (subset) fonts, which pdftotext and a
 /// reader's search find; an SVG's glyphs are outlines, with the strings as an
-/// invisible text layer over them. Returns "" or the error.
-std::string writeDocument(const PngImage8& still, const DocumentRequest& request, OverlayRecord* record = nullptr);
+/// invisible text layer over them. False with the error at `at` (the still's
+/// file as the user knows it).
+bool writeDocument(const PngImage8& still, const DocumentRequest& request, const SourceLoc& at, Diagnostics& diags,
+                   OverlayRecord* record = nullptr);
 
 }  // namespace relief::annotate

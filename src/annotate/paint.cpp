@@ -448,16 +448,20 @@ OverlayRecord paintOverlays(cairo_t* cr, int widthPx, int heightPx, const scene:
     return drawing.record;
 }
 
-std::string drawOverlays(PngImage8& image, const scene::OverlaySpec& spec, const OverlayFacts& facts,
-                         OverlayRecord* record) {
-    if (image.channels != 3 && image.channels != 4) return "overlays need an RGB or RGBA image";
-    const Owned<cairo_surface_t> surface = surfaceOf(image);
-    if (!surface) return "cannot make a drawing surface";
+bool drawOverlays(PngImage8& image, const scene::OverlaySpec& spec, const OverlayFacts& facts, const SourceLoc& at,
+                  Diagnostics& diags, OverlayRecord* record) {
+    const Owned<cairo_surface_t> surface =
+        image.channels == 3 || image.channels == 4 ? surfaceOf(image) : Owned<cairo_surface_t>(nullptr);
+    if (!surface) {
+        diags.error(at, fmt::format("the overlays cannot be drawn on a still of {} channels (they need RGB or RGBA)",
+                                    image.channels));
+        return false;
+    }
     const Owned<cairo_t> cr(cairo_create(surface.get()));
     const OverlayRecord drawn = paintOverlays(cr.get(), image.width, image.height, spec, facts, {});
     copyBack(surface.get(), image);
     if (record) *record = drawn;
-    return {};
+    return true;
 }
 
 }  // namespace relief::annotate

@@ -199,10 +199,7 @@ bool writeStill(const plan::RenderPlan& plan, OutputSet& outputs, RenderFacts& f
     annotate::DocumentRequest request{*document, at, plan.dpi > 0 ? plan.dpi : scene::RenderSpec::kDocumentDpi,
                                       plan.overlays, plan.overlaySpec, plan.overlayFacts};
     annotate::OverlayRecord drawn;
-    if (const std::string error = annotate::writeDocument(*still, request, &drawn); !error.empty()) {
-        diags.error({shownPath(plan.still).string(), 0, 0}, error);
-        return false;
-    }
+    if (!annotate::writeDocument(*still, request, {shownPath(plan.still).string(), 0, 0}, diags, &drawn)) return false;
     if (plan.overlays) facts.overlays = drawn;
     return true;
 }
@@ -250,11 +247,9 @@ std::optional<PngImage8> stillOfPlan(const plan::RenderPlan& plan, std::optional
     auto still = stitchedStill(plan, diags);
     if (!still || !plan.overlays) return still;
     annotate::OverlayRecord record;
-    if (const std::string error = annotate::drawOverlays(*still, plan.overlaySpec, plan.overlayFacts, &record);
-        !error.empty()) {
-        diags.error({shownPath(plan.still).string(), 0, 0}, "the overlays cannot be drawn: " + error);
+    if (!annotate::drawOverlays(*still, plan.overlaySpec, plan.overlayFacts, {shownPath(plan.still).string(), 0, 0},
+                                diags, &record))
         return std::nullopt;
-    }
     overlays = record;
     return still;
 }

@@ -116,7 +116,8 @@ TEST(Overlay, DrawsInTheCornersAndKeepsTheMiddle) {
     spec.title = "<b>x</b> &amp; #fopen {{terrain}} " + std::string(5000, 'W');
     OverlayFacts facts = sampleFacts("Data: someone, CC BY 4.0");
     OverlayRecord record;
-    ASSERT_EQ(drawOverlays(image, spec, facts, &record), "");
+    Diagnostics diags;
+    ASSERT_TRUE(drawOverlays(image, spec, facts, {}, diags, &record));
     EXPECT_EQ(record.drawn, (std::vector<std::string>{"title", "north_arrow", "credits", "scale_bar", "legend"}));
     // No terrain known: every item in its own place.
     EXPECT_EQ(record.placement, (std::map<std::string, std::string>{{"title", "top-left"},
@@ -159,7 +160,8 @@ TEST(Overlay, ItemsMoveOffTheTerrainWhereTheyCan) {
     EXPECT_TRUE(facts.terrain.covers(6, 10));  // between two points' bands: filled in
     EXPECT_FALSE(facts.terrain.covers(400, 240));
     OverlayRecord record;
-    ASSERT_EQ(drawOverlays(image, spec, facts, &record), "");
+    Diagnostics diags;
+    ASSERT_TRUE(drawOverlays(image, spec, facts, {}, diags, &record));
     EXPECT_EQ(record.placement.at("title"), "top-right");
     EXPECT_EQ(record.placement.at("north_arrow"), "bottom-right");
     EXPECT_EQ(record.placement.at("credits"), "bottom-left");
