@@ -87,6 +87,9 @@ private:
             cairo_set_source_rgb(cr_, 0.08, 0.08, 0.08);
             cairo_move_to(cr_, left - box.x, top - box.y);
             pango_cairo_show_layout(cr_, layout.get());
+            // The text leaves its start as the current point: the next path
+            // (a swatch's arc) would begin with a line from it.
+            cairo_new_path(cr_);
         } else {
             cairo_stroke_preserve(cr_);
             cairo_set_source_rgb(cr_, 0.08, 0.08, 0.08);

@@ -84,4 +84,33 @@ PY
 [ $code = 2 ] || fail "-o still.jpg: exit $code, expected 2"
 grep -qF "h/still.jpg: error: a still is written as .png, .pdf or .svg" h.txt || { fail "-o still.jpg:"; cat h.txt; }
 [ -e h ] && [ -n "$(ls -A h)" ] && fail "-o still.jpg left $(ls -A h)"
+
+# Two point layers in the layer legend: each swatch a path of its own in the SVG (before the fix,
+# the second swatch's path began with a line from where the first entry's text was drawn).
+python3 - "$src/tests/data/vectors/maungawhau-features.geojson" > points.geojson <<'PY'
+import json, sys
+j = json.load(open(sys.argv[1]))
+j['features'] = [f for f in j['features'] if f['geometry']['type'] == 'Point']
+print(json.dumps(j))
+PY
+cat s.toml - > layers.toml <<'TOML'
+[[layer]]
+path = "points.geojson"
+color = "#ff00ff"
+legend = "Summits"
+[[layer]]
+path = "points.geojson"
+color = "#00ffff"
+legend = "Others"
+TOML
+"$relief" render -q layers.toml -o l/still.svg 2> l.txt || { fail "the SVG with two point layers"; cat l.txt; }
+python3 - l/still.svg <<'PY' || fail "the layer legend's point swatches"
+import re, sys
+svg = open(sys.argv[1]).read()
+for colour in ('100%,0%,100%', '0%,100%,100%'):
+    paths = [d for style, d in re.findall(r'<path style="([^"]*)" d="([^"]*)"', svg) if f'fill:rgb({colour})' in style]
+    assert paths, f'no swatch filled rgb({colour})'
+    for d in paths:
+        assert ' L ' not in d and d.count('M ') == 1, f'the swatch rgb({colour}) has a stray line: {d}'
+PY
 exit $status
