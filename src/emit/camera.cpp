@@ -15,6 +15,8 @@ namespace relief::emit {
 
 namespace {
 constexpr double kDeg = std::numbers::pi / 180.0;
+// cos(elevation) below this is straight down: 90 degrees less 0.06 arcseconds.
+constexpr double kStraightDown = 3e-7;
 }  // namespace
 
 SceneVec3 sceneDirection(double azimuthDeg, double altitudeDeg) {
@@ -37,6 +39,14 @@ OrbitAxes orbitAxes(const scene::CameraSpec& camera, double aspect) {
     a.back = sceneDirection(camera.azimuthDeg, camera.elevationDeg);
     a.right = {a.back.z, 0, -a.back.x};
     a.rightLen = length(a.right);
+    if (a.rightLen < kStraightDown) {
+        // Straight down (or up) the azimuth no longer turns the view: the
+        // still is a map, north up and east right, as the orbit at azimuth
+        // 180 tends to (and as POV-Ray draws a camera its sky is parallel to).
+        a.back = {0, camera.elevationDeg > 0 ? 1.0 : -1.0, 0};
+        a.right = {-1, 0, 0};
+        a.rightLen = 1;
+    }
     a.r = (1.0 / a.rightLen) * a.right;
     a.u = cross(a.r, a.back);
     a.tanH = std::tan(0.5 * camera.fovDeg * kDeg);

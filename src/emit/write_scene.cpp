@@ -206,15 +206,21 @@ Bindings sceneBindings(const ScenePlacement& where, const CameraView& view, cons
     const double radius = view.radius;
     b["camera_location"].text = vec(view.eye);
     b["camera_look_at"].text = vec(target);
+    // Looking (nearly) straight down, the written eye's rounding could turn
+    // the view, and POV-Ray's sky (y) no longer orients it: the view's own up
+    // is written as the sky.
+    const SceneVec3 sight = target - view.eye;
+    const std::string sky =
+        std::hypot(sight.x, sight.z) < 1e-3 * length(sight) ? " sky " + vec(view.up) : std::string();
     if (view.perspective) {
         b["camera_projection"].text = std::string("perspective");
         b["camera_right"].text = fmt::format("x*{}", fixedNumber(view.aspect));
-        b["camera_up"].text = std::string("y");
+        b["camera_up"].text = "y" + sky;
         b["camera_angle"].text = fmt::format("angle {}", fixedNumber(camera.fovDeg));
     } else {
         b["camera_projection"].text = "orthographic";
         b["camera_right"].text = fmt::format("x*{}", fixedNumber(view.orthoHeight * view.aspect));
-        b["camera_up"].text = fmt::format("y*{}", fixedNumber(view.orthoHeight));
+        b["camera_up"].text = fmt::format("y*{}", fixedNumber(view.orthoHeight)) + sky;
         b["camera_angle"].text = "";
     }
     const SceneVec3 sunDir = sceneDirection(sun.azimuthDeg, sun.altitudeDeg);
