@@ -150,8 +150,11 @@ std::string documentOf(const PngImage8& still, const DocumentRequest& request, O
 
 bool writeDocument(const PngImage8& still, const DocumentRequest& request, const SourceLoc& at, Diagnostics& diags,
                    OverlayRecord* record) {
-    const std::string problem = documentOf(still, request, record);
+    OverlayRecord drawn;
+    const std::string problem = documentOf(still, request, &drawn);
     if (!problem.empty()) diags.error(at, problem);
+    else warnLeftOut(drawn, still.width, still.height, at, diags);
+    if (record) *record = drawn;
     return problem.empty();
 }
 

@@ -57,12 +57,27 @@ bool TerrainOnImage::covers(double x, double y) const {
     return b >= 0 && b < static_cast<int>(top.size()) && y >= top[b] && y <= bottom[b];
 }
 
-ScaleBar chooseScaleBar(double metresPerPixel, int widthPx) {
+ScaleBar chooseScaleBar(double metresPerPixel, int widthPx, const scene::OverlaySpec& spec) {
+    constexpr double kFootM = 0.3048, kMileM = 1609.344;  // international foot and mile
     ScaleBar bar;
     if (!(metresPerPixel > 0) || widthPx <= 0) return bar;
-    bar.metres = roundDown125(0.2 * widthPx * metresPerPixel);
+    const double wanted = 0.2 * widthPx * metresPerPixel;
+    if (spec.scaleBarUnit) {
+        bar.metres = spec.scaleBarLength * spec.scaleBarUnit->metres;
+        bar.label = formatShortest(spec.scaleBarLength) + " " + spec.scaleBarUnit->name;
+    } else if (spec.scaleBarImperial && wanted >= kMileM) {
+        const double miles = roundDown125(wanted / kMileM);
+        bar.metres = miles * kMileM;
+        bar.label = formatShortest(miles) + " mi";
+    } else if (spec.scaleBarImperial) {
+        const double feet = roundDown125(wanted / kFootM);
+        bar.metres = feet * kFootM;
+        bar.label = formatShortest(feet) + " ft";
+    } else {
+        bar.metres = roundDown125(wanted);
+        bar.label = metresLabel(bar.metres);
+    }
     bar.pixels = bar.metres / metresPerPixel;
-    bar.label = metresLabel(bar.metres);
     return bar;
 }
 

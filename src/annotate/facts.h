@@ -51,6 +51,9 @@ struct LegendEntry {
     bool dashed = false;
 };
 
+/// The legend's title when it shows elevations in metres.
+inline constexpr const char* kElevationTitle = "Elevation (m)";
+
 /// What the overlays say, computed from the scene, its placement and its
 /// camera (overlayFacts, below): the numbers, not how to draw them.
 struct OverlayFacts {
@@ -58,7 +61,7 @@ struct OverlayFacts {
     // The legend: the ramp as drawn (linear RGB), over true elevations.
     std::vector<LinearRgb> palette;
     double zMinM = 0, zMaxM = 0;
-    std::string legendTitle = "Elevation (m)";  ///< slope colouring: "Slope (°)", its range 0-60
+    std::string legendTitle = kElevationTitle;  ///< slope colouring: "Slope (°)", its range 0-60
     std::string legendNote;                     ///< a line under the bar, e.g. where rock begins
     double exaggeration = 1;
     // The scale bar: ground metres one pixel spans, along the image's x, at
@@ -83,14 +86,15 @@ struct OverlayFacts {
 OverlayFacts overlayFacts(const scene::LookSpec& look, const emit::ScenePlacement& where, const emit::CameraView& view,
                           const scene::RenderSpec& render, double convergenceDeg);
 
-/// A scale bar: a round length (1, 2 or 5 x 10^k m) near a fifth of the
-/// still's width, its length in pixels and its label ("500 m", "2 km").
+/// A scale bar: the length the spec gives, or a round one (1, 2 or 5 x 10^k
+/// m, or ft and mi for scale_bar_units = "imperial") near a fifth of the
+/// still's width; its length in pixels and its label ("500 m", "2 km", "1 mi").
 struct ScaleBar {
     double metres = 0;
     double pixels = 0;
     std::string label;
 };
-ScaleBar chooseScaleBar(double metresPerPixel, int widthPx);
+ScaleBar chooseScaleBar(double metresPerPixel, int widthPx, const scene::OverlaySpec& spec = {});
 
 /// Round tick values for a legend over [zMin, zMax]: about five, at 1, 2 or
 /// 5 x 10^k metres.

@@ -8,39 +8,48 @@ namespace relief::annotate {
 
 // The furniture.
 
-PixelBox FurniturePlacer::corner(const PixelBox& box, const std::string& where) const {
+PixelBox FurniturePlacer::at(const PixelBox& box, const std::string& where) const {
     const double m = 2 * u_;
-    const double x = where.find("left") != std::string::npos ? m : W_ - m - box.w();
-    const double y = where.find("top") != std::string::npos ? m : H_ - m - box.h();
+    const auto has = [&](const char* side) { return where.find(side) != std::string::npos; };
+    const double x = has("left") ? m : has("right") ? W_ - m - box.w() : (W_ - box.w()) / 2;
+    const double y = has("top") ? m : has("bottom") ? H_ - m - box.h() : (H_ - box.h()) / 2;
     return {x, y, x + box.w(), y + box.h()};
 }
 
-FurniturePlacer::Choice FurniturePlacer::place(const PixelBox& box, const std::string& defaultName,
-                                               const std::vector<std::string>& order) {
-    Candidates candidates{{box, defaultName}};
-    for (const std::string& where : order) candidates.push_back({corner(box, where), where});
-    return place(box, candidates);
-}
-
-FurniturePlacer::Choice FurniturePlacer::place(const PixelBox& box, const Candidates& candidates) {
-    const auto freeOfFurniture = [&](const PixelBox& b) {
-        return std::none_of(placed_.begin(), placed_.end(), [&](const PixelBox& p) { return b.meets(p, u_); });
-    };
+std::optional<FurniturePlacer::Choice> FurniturePlacer::place(const std::string& item, const PixelBox& box,
+                                                              const Candidates& candidates) {
+    const auto fits = [&](const PixelBox& b) { return inside(b) && !itemMet(b); };
     const std::pair<PixelBox, std::string>* chosen = nullptr;
     for (const auto& c : candidates)
-        if (freeOfFurniture(c.first) && !coversTerrain(c.first)) {
+        if (fits(c.first) && !coversTerrain(c.first)) {
             chosen = &c;
             break;
         }
     if (!chosen)
         for (const auto& c : candidates)
-            if (freeOfFurniture(c.first)) {
+            if (fits(c.first)) {
                 chosen = &c;
                 break;
             }
-    if (!chosen) chosen = &candidates.front();
+    if (!chosen) {
+        // What is in the way of the first place inside the still: the place the item would have had.
+        const auto within = std::find_if(candidates.begin(), candidates.end(), [&](const auto& c) { return inside(c.first); });
+        inTheWay_ = within == candidates.end() ? "the still's edge" : "the " + *itemMet(within->first);
+        return std::nullopt;
+    }
     placed_.push_back(chosen->first);
-    return {chosen->first.x0 - box.x0, chosen->first.y0 - box.y0, chosen->second, coversTerrain(chosen->first)};
+    names_.push_back(item);
+    return Choice{chosen->first.x0 - box.x0, chosen->first.y0 - box.y0, chosen->second, coversTerrain(chosen->first)};
+}
+
+bool FurniturePlacer::inside(const PixelBox& b) const {
+    return b.x0 >= 0 && b.y0 >= 0 && b.x1 <= W_ && b.y1 <= H_;
+}
+
+const std::string* FurniturePlacer::itemMet(const PixelBox& b) const {
+    for (size_t i = 0; i < placed_.size(); ++i)
+        if (b.meets(placed_[i], u_)) return &names_[i];
+    return nullptr;
 }
 
 bool FurniturePlacer::coversTerrain(const PixelBox& b) const {

@@ -17,9 +17,10 @@
 namespace relief::annotate {
 
 /// The furniture's places on a still W x H: each in the first of its places
-/// that neither the terrain nor furniture placed before it covers (a corner of
-/// it may touch the terrain: 2 of 81 points); else the first no furniture
-/// covers (its halo keeps it legible on the terrain).
+/// that is inside the still, clear of the furniture placed before it and off
+/// the terrain (a corner of it may touch the terrain: 2 of 81 points); else
+/// the first inside and clear (its halo keeps it legible on the terrain);
+/// else nowhere: an item is never drawn over another, nor cut by the edge.
 class FurniturePlacer {
 public:
     /// `unit`: the pixels the furniture's sizes and margins scale with.
@@ -35,25 +36,33 @@ public:
     /// Boxes the size of the one placed, each with the name of its place.
     using Candidates = std::vector<std::pair<PixelBox, std::string>>;
 
-    /// `box` moved to a corner of the still (2 units in from its edges).
-    PixelBox corner(const PixelBox& box, const std::string& where) const;
+    /// `box` moved to a place of scene::kFurniturePlaces: a corner of the
+    /// still (2 units in from its edges) or the middle of an edge.
+    PixelBox at(const PixelBox& box, const std::string& where) const;
 
-    /// `box` at its default place, named `defaultName`, then in each corner of `order`.
-    Choice place(const PixelBox& box, const std::string& defaultName, const std::vector<std::string>& order);
+    /// `box` (`item`'s, at its default place) at the first free of
+    /// `candidates` (boxes its size); nullopt when none is, and inTheWay()
+    /// then says what kept it out.
+    std::optional<Choice> place(const std::string& item, const PixelBox& box, const Candidates& candidates);
 
-    /// The first of `candidates` (boxes the size of `box`) that is free.
-    Choice place(const PixelBox& box, const Candidates& candidates);
+    /// Why the last item with no place has none: "the <item>" placed before,
+    /// or "the still's edge".
+    const std::string& inTheWay() const { return inTheWay_; }
 
     /// The boxes placed so far.
     const std::vector<PixelBox>& placed() const { return placed_; }
 
 private:
     bool coversTerrain(const PixelBox& b) const;
+    bool inside(const PixelBox& b) const;
+    const std::string* itemMet(const PixelBox& b) const;
 
     int W_, H_;
     double u_;
     const TerrainOnImage& terrain_;
     std::vector<PixelBox> placed_;
+    std::vector<std::string> names_;  ///< each placed box's item
+    std::string inTheWay_;
 };
 
 /// A label to place: its marker's top (the anchor) and half width, its text's

@@ -39,7 +39,14 @@ struct DrawnText {
 struct OverlayRecord {
     std::vector<std::string> drawn;  ///< "title", "legend", ...
     std::map<std::string, std::string> placement;  ///< each drawn item's place: "top-left", ..., "right"
+    std::map<std::string, PixelBox> boxes;         ///< each drawn item's box as placed, pixels
     std::vector<std::string> onTerrain;  ///< items no free place could keep off the terrain
+    /// The items with no free place, each with what was in its way ("the
+    /// credits", "the still's edge"): left out, never drawn over another.
+    struct LeftOut {
+        std::string item, inTheWay;
+    };
+    std::vector<LeftOut> leftOut;
     ScaleBar scaleBar;
     double northDeg = 0;
     std::vector<DrawnText> texts;  ///< every string, in the order drawn
@@ -49,6 +56,8 @@ struct OverlayRecord {
         int layer = 0;
         bool placed = false, leader = false;
         PixelBox box{};  ///< where it went, pixels; none when it was left out
+        PixelPoint anchor{};     ///< the marker's top or the line's point it labels
+        PixelPoint leaderEnd{};  ///< with a leader: where it meets the box
     };
     std::vector<Label> labels;
 };

@@ -133,12 +133,13 @@ void copyBack(cairo_surface_t* surface, PngImage8& image) {
 // place the placer chooses.
 class OverlayDrawing {
 public:
-    OverlayDrawing(cairo_t* c, int W, int H, const OverlayFacts& facts, const DrawingTarget& target)
-        : c(c), W(W), H(H), u(std::min(W, H * 4 / 3) / 100.0), paint(c, u, target, record.texts),
-          placer(W, H, u, facts.terrain) {}
+    OverlayDrawing(cairo_t* c, int W, int H, const scene::OverlaySpec& spec, const OverlayFacts& facts,
+                   const DrawingTarget& target)
+        : c(c), W(W), H(H), u(std::min(W, H * 4 / 3) / 100.0), spec(spec),
+          paint(c, u * spec.textScale, target, record.texts), placer(W, H, u, facts.terrain) {}
 
     // Title and subtitle, top left.
-    void title(const scene::OverlaySpec& spec) {
+    void title() {
         double w = 0, h = 0;
         if (!spec.title.empty()) {
             const auto [tw, th] = paint.measure(spec.title, 3.6, true, 0.62 * W, 2);
@@ -149,34 +150,43 @@ public:
             w = std::max(w, sw), h += sh + 0.3 * u;
         }
         const PixelBox box{2.5 * u, 2.2 * u, 2.5 * u + w, 2.2 * u + h};
-        const auto choice = placer.place(box, "top-left", {"top-right"});  // a title stays at the top
+        const auto choice = placeItem("title", box, around(box, "top-left", {"top-right"}));  // a title stays at the top
+        if (!choice) return;
         cairo_save(c);
-        cairo_translate(c, choice.dx, choice.dy);
-        // Right-aligned in a right-hand corner.
-        const bool right = choice.where.find("right") != std::string::npos;
-        const double x = right ? box.x1 : box.x0, anchor = right ? 1 : 0;
+        cairo_translate(c, choice->dx, choice->dy);
+        // Right-aligned in a right-hand place, centred in the middle of an edge.
+        const double anchor = alignmentAt(choice->where), x = box.x0 + anchor * box.w();
         double y = box.y0;
         if (!spec.title.empty()) {
             y += paint.text(spec.title, x, y, 3.6, true, anchor, 0.62 * W, 2).second;
-            placed("title", choice);
+            placed("title", *choice);
         }
         if (!spec.subtitle.empty()) {
             paint.text(spec.subtitle, x, y + 0.3 * u, 2.2, false, anchor, 0.62 * W, 2);
-            placed("subtitle", choice);
+            placed("subtitle", *choice);
         }
         cairo_restore(c);
     }
 
-    // North arrow, top right: an arrow pointing where true north lies.
+    // North arrow, top right: an arrow pointing where true north lies, an "N" beyond its tip.
     void northArrow(const OverlayFacts& facts) {
         const double cx = W - 6 * u, cy = 7.5 * u, len = 3.6 * u;
-        const PixelBox box{cx - 1.9 * len, cy - 1.9 * len - 1.3 * u, cx + 1.9 * len, cy + 1.9 * len};
-        const auto choice = placer.place(box, "top-right", {"top-left", "bottom-right", "bottom-left"});
+        const double a = facts.northDeg * std::numbers::pi / 180;
+        const PixelPoint nTop{cx + std::sin(a) * 1.75 * len, cy - std::cos(a) * 1.75 * len - 1.3 * u};
+        const auto [nw, nh] = paint.measure("N", 2.4, true);
+        // The arrow turned any way stays within `reach` of its centre (its tip
+        // at len, its stroke's half width beyond); the box holds the "N" whole too.
+        const double reach = len + 0.2 * u;
+        const PixelBox box{std::min(cx - reach, nTop.x - nw / 2), std::min(cy - reach, nTop.y),
+                           std::max(cx + reach, nTop.x + nw / 2), std::max(cy + reach, nTop.y + nh)};
+        const auto choice = placeItem("north_arrow", box,
+                                      places(box, {"top-right", "top-left", "bottom-right", "bottom-left"}));
+        if (!choice) return;
         cairo_save(c);
-        cairo_translate(c, choice.dx, choice.dy);
+        cairo_translate(c, choice->dx, choice->dy);
         cairo_save(c);
         cairo_translate(c, cx, cy);
-        cairo_rotate(c, facts.northDeg * std::numbers::pi / 180);
+        cairo_rotate(c, a);
         cairo_move_to(c, 0, -len);
         cairo_line_to(c, 0.55 * len, 0.75 * len);
         cairo_line_to(c, 0, 0.35 * len);
@@ -188,10 +198,9 @@ public:
         cairo_set_source_rgb(c, 0.08, 0.08, 0.08);
         cairo_fill(c);
         cairo_restore(c);
-        const double a = facts.northDeg * std::numbers::pi / 180;
-        paint.text("N", cx + std::sin(a) * 1.75 * len, cy - std::cos(a) * 1.75 * len - 1.3 * u, 2.4, true, 0.5);
+        paint.text("N", nTop.x, nTop.y, 2.4, true, 0.5);
         cairo_restore(c);
-        placed("north_arrow", choice);
+        placed("north_arrow", *choice);
         record.northDeg = facts.northDeg;
     }
 
@@ -199,56 +208,66 @@ public:
     void credits(const OverlayFacts& facts) {
         const auto [w, h] = paint.measure(facts.credits, 1.4, false, 0.55 * W, 4, 1);
         const PixelBox box{W - 2 * u - w, H - 1.2 * u - h, W - 2 * u, H - 1.2 * u};
-        const auto choice = placer.place(box, "bottom-right", {"bottom-left"});
-        const bool right = choice.where.find("right") != std::string::npos;
-        // Left-aligned in a left-hand corner.
-        paint.text(facts.credits, right ? box.x1 + choice.dx : box.x0 + choice.dx, box.y1 + choice.dy, 1.4, false,
-                   right ? 1 : 0, 0.55 * W, 4, 1);
-        placed("credits", choice);
+        const auto choice = placeItem("credits", box, around(box, "bottom-right", {"bottom-left"}));
+        if (!choice) return;
+        // Left-aligned in a left-hand place, centred in the middle of an edge.
+        const double anchor = alignmentAt(choice->where);
+        paint.text(facts.credits, box.x0 + anchor * box.w() + choice->dx, box.y1 + choice->dy, 1.4, false, anchor,
+                   0.55 * W, 4, 1);
+        placed("credits", *choice);
     }
 
-    // Scale bar, bottom left: four alternating segments.
+    // Scale bar, bottom left: four alternating segments, its length above
+    // them, and under them in a perspective view where it holds.
     void scaleBar(const OverlayFacts& facts) {
-        const ScaleBar bar = chooseScaleBar(facts.metresPerPixel, W);
-        if (bar.pixels > 0) {
-            const double x0 = 3 * u, y0 = H - 7 * u, h = 0.9 * u;
-            const double labelW = paint.measure(bar.label, 1.7, false).first;
-            const double noteW = facts.perspective ? paint.measure("at the centre of the view", 1.4, false).first : 0;
-            const PixelBox box{x0 - 1.2 * u, y0 - 2.8 * u, std::max(x0 + bar.pixels + labelW / 2, x0 + noteW),
-                          y0 + h + (facts.perspective ? 3.2 * u : 0.6 * u)};
-            const auto choice = placer.place(box, "bottom-left", {"bottom-right", "top-left", "top-right"});
-            cairo_save(c);
-            cairo_translate(c, choice.dx, choice.dy);
-            cairo_set_line_width(c, 0.15 * u);
-            for (int i = 0; i < 4; ++i) {
-                cairo_rectangle(c, x0 + i * bar.pixels / 4, y0, bar.pixels / 4, h);
-                if (i % 2 == 0)
-                    cairo_set_source_rgb(c, 0.08, 0.08, 0.08);
-                else
-                    cairo_set_source_rgb(c, 1, 1, 1);
-                cairo_fill_preserve(c);
+        const ScaleBar bar = chooseScaleBar(facts.metresPerPixel, W, spec);
+        if (!(bar.pixels > 0)) return;
+        const char* const kNote = "at the centre of the view";
+        const double x0 = 3 * u, y0 = H - 7 * u, h = 0.9 * u, gap = 0.4 * u;
+        const auto [zeroW, figureH] = paint.measure("0", 1.7, false);
+        const double labelW = paint.measure(bar.label, 1.7, false).first;
+        const auto [noteW, noteH] = facts.perspective ? paint.measure(kNote, 1.4, false) : std::pair{0.0, 0.0};
+        const PixelBox box{x0 - std::max(zeroW / 2, 0.3 * u), y0 - gap - figureH,
+                           std::max(x0 + bar.pixels + labelW / 2, x0 + noteW), y0 + h + gap + noteH};
+        const auto choice =
+            placeItem("scale_bar", box, places(box, {"bottom-left", "bottom-right", "top-left", "top-right"}));
+        if (!choice) return;
+        cairo_save(c);
+        cairo_translate(c, choice->dx, choice->dy);
+        cairo_set_line_width(c, 0.15 * u);
+        for (int i = 0; i < 4; ++i) {
+            cairo_rectangle(c, x0 + i * bar.pixels / 4, y0, bar.pixels / 4, h);
+            if (i % 2 == 0)
                 cairo_set_source_rgb(c, 0.08, 0.08, 0.08);
-                cairo_stroke(c);
-            }
-            paint.text("0", x0, y0 - 2.6 * u, 1.7, false, 0.5);
-            paint.text(bar.label, x0 + bar.pixels, y0 - 2.6 * u, 1.7, false, 0.5);
-            if (facts.perspective) paint.text("at the centre of the view", x0, y0 + h + 0.6 * u, 1.4, false, 0);
-            cairo_restore(c);
-            placed("scale_bar", choice);
-            record.scaleBar = bar;
+            else
+                cairo_set_source_rgb(c, 1, 1, 1);
+            cairo_fill_preserve(c);
+            cairo_set_source_rgb(c, 0.08, 0.08, 0.08);
+            cairo_stroke(c);
         }
+        paint.text("0", x0, y0 - gap, 1.7, false, 0.5, 0, 1, 1);
+        paint.text(bar.label, x0 + bar.pixels, y0 - gap, 1.7, false, 0.5, 0, 1, 1);
+        if (facts.perspective) paint.text(kNote, x0, y0 + h + gap, 1.4, false, 0);
+        cairo_restore(c);
+        placed("scale_bar", *choice);
+        record.scaleBar = bar;
     }
 
-    // Elevation legend, right: the ramp as a bar, ticks in true metres.
+    // Elevation legend, right: the ramp as a bar, ticks in true metres (or feet).
     void legend(const OverlayFacts& facts) {
+        constexpr double kFootM = 0.3048;
         const double barW = 2.0 * u, barH = 0.38 * H, x0 = W - 13 * u, y0 = 17 * u;
         const bool exaggerated = std::abs(facts.exaggeration - 1) > 1e-9;
-        const double titleW = paint.measure(facts.legendTitle, 1.9, true).first;
+        const bool feet = spec.legendFeet && facts.legendTitle == kElevationTitle;
+        const std::string title = !spec.legendTitle.empty() ? spec.legendTitle
+                                  : feet                    ? std::string("Elevation (ft)")
+                                                            : facts.legendTitle;
+        const double titleW = paint.measure(title, 1.9, true).first;
         const double noteW = facts.legendNote.empty() ? 0 : paint.measure(facts.legendNote, 1.6, false).first;
         const double bottom =
             y0 + barH + 1.2 * u + (exaggerated ? 2.4 * u : 0) + (facts.legendNote.empty() ? 0 : 2.4 * u);
         const PixelBox box{std::min({x0 - 1.5 * u, x0 + barW - titleW / 2, W - 2 * u - noteW}), y0 - 3.6 * u,
-                      std::max(W - 2 * u, x0 + barW + titleW / 2), bottom};
+                           std::max(W - 2 * u, x0 + barW + titleW / 2), bottom};
         // Down the right edge from below the north arrow, then down the left edge.
         FurniturePlacer::Candidates candidates;
         for (const bool left : {false, true})
@@ -256,10 +275,11 @@ public:
                 const double x = left ? 2 * u : box.x0;
                 candidates.push_back({{x, top, x + box.w(), top + box.h()}, left ? "left" : "right"});
             }
-        const auto choice = placer.place(box, candidates);
+        const auto choice = placeItem("legend", box, candidates);
+        if (!choice) return;
         cairo_save(c);
-        cairo_translate(c, choice.dx, choice.dy);
-        paint.text(facts.legendTitle, x0 + barW, y0 - 3.4 * u, 1.9, true, 0.5);
+        cairo_translate(c, choice->dx, choice->dy);
+        paint.text(title, x0 + barW, y0 - 3.4 * u, 1.9, true, 0.5);
         const int steps = static_cast<int>(std::ceil(barH));
         for (int i = 0; i < steps; ++i) {  // top: the highest
             const double t = 1.0 - (i + 0.5) / steps;
@@ -273,9 +293,10 @@ public:
         cairo_set_line_width(c, 0.15 * u);
         cairo_set_source_rgb(c, 0.08, 0.08, 0.08);
         cairo_stroke(c);
+        const double unitM = feet ? kFootM : 1;
         const double span = facts.zMaxM > facts.zMinM ? facts.zMaxM - facts.zMinM : 1;
-        for (double v : legendTicks(facts.zMinM, facts.zMaxM)) {
-            const double ty = y0 + barH * (1 - (v - facts.zMinM) / span);
+        for (double v : legendTicks(facts.zMinM / unitM, facts.zMaxM / unitM)) {
+            const double ty = y0 + barH * (1 - (v * unitM - facts.zMinM) / span);
             cairo_move_to(c, x0 + barW, ty);
             cairo_line_to(c, x0 + barW + 0.8 * u, ty);
             cairo_set_source_rgb(c, 0.08, 0.08, 0.08);
@@ -290,7 +311,7 @@ public:
         }
         if (!facts.legendNote.empty()) paint.text(facts.legendNote, W - 2 * u, noteY, 1.6, false, 1);
         cairo_restore(c);
-        placed("legend", choice);
+        placed("legend", *choice);
     }
 
     // The [[layer]]s' legend: a swatch and a line of text an entry, on a pale card.
@@ -300,9 +321,11 @@ public:
         for (const auto& e : facts.layerLegend) textW = std::max(textW, paint.measure(drawnText(e.text), size, false, 0.35 * W).first);
         const double w = 2 * pad + swatchW + 0.8 * u + textW, h = 2 * pad + rowH * facts.layerLegend.size();
         const PixelBox box{2.5 * u, H - 11 * u - h, 2.5 * u + w, H - 11 * u};
-        const auto choice = placer.place(box, "bottom-left", {"bottom-right", "top-left", "top-right"});
+        const auto choice =
+            placeItem("layer_legend", box, around(box, "bottom-left", {"bottom-right", "top-left", "top-right"}));
+        if (!choice) return;
         cairo_save(c);
-        cairo_translate(c, choice.dx, choice.dy);
+        cairo_translate(c, choice->dx, choice->dy);
         cairo_rectangle(c, box.x0, box.y0, w, h);
         cairo_set_source_rgba(c, 1, 1, 1, 0.8);
         cairo_fill_preserve(c);
@@ -316,7 +339,7 @@ public:
             y += rowH;
         }
         cairo_restore(c);
-        placed("layer_legend", choice);
+        placed("layer_legend", *choice);
     }
 
     // Every label at the first free place beside its anchor (placeLabels, layout.h),
@@ -341,11 +364,12 @@ public:
         for (size_t i = 0; i < places.size(); ++i) {
             const LabelFact& l = facts.labels[i];
             OverlayRecord::Label rec{texts[i], l.layer};
+            rec.anchor = l.anchor;
             if (places[i]) {
                 const PlacedLabel& p = *places[i];
                 if (p.leader) leader(l.anchor, p.leaderEnd);
                 paint.text(texts[i], p.box.x0, p.box.y0, l.sizePx / u, false, 0, 0.3 * W);
-                rec = {texts[i], l.layer, true, p.leader, p.box};
+                rec.placed = true, rec.leader = p.leader, rec.box = p.box, rec.leaderEnd = p.leaderEnd;
             }
             record.labels.push_back(rec);
         }
@@ -404,15 +428,49 @@ private:
         cairo_restore(c);
     }
 
+    // `item`'s place: where the scene puts it, else the first free of
+    // `automatic`; none (recorded as left out, with what is in its way) when
+    // that place is not free.
+    std::optional<FurniturePlacer::Choice> placeItem(const std::string& item, const PixelBox& box,
+                                                     const FurniturePlacer::Candidates& automatic) {
+        const auto named = spec.places.find(item);
+        const auto choice = named == spec.places.end()
+                                ? placer.place(item, box, automatic)
+                                : placer.place(item, box, {{placer.at(box, named->second), named->second}});
+        if (!choice) record.leftOut.push_back({item, placer.inTheWay()});
+        return choice;
+    }
+
+    // `box` where it is (named `here`), then at each of `others`.
+    FurniturePlacer::Candidates around(const PixelBox& box, const std::string& here,
+                                       const std::vector<std::string>& others) const {
+        FurniturePlacer::Candidates out{{box, here}};
+        for (const std::string& where : others) out.push_back({placer.at(box, where), where});
+        return out;
+    }
+    // `box` at each of `wheres`.
+    FurniturePlacer::Candidates places(const PixelBox& box, const std::vector<std::string>& wheres) const {
+        FurniturePlacer::Candidates out;
+        for (const std::string& where : wheres) out.push_back({placer.at(box, where), where});
+        return out;
+    }
+
+    // A text's alignment in a place: 0 left, 0.5 centred, 1 right.
+    static double alignmentAt(const std::string& where) {
+        return where.find("right") != std::string::npos ? 1 : where.find("left") != std::string::npos ? 0 : 0.5;
+    }
+
     void placed(const char* name, const FurniturePlacer::Choice& choice) {
         record.drawn.push_back(name);
         record.placement[name] = choice.where;
+        record.boxes[name] = placer.placed().back();
         if (choice.onTerrain) record.onTerrain.push_back(name);
     }
 
     cairo_t* c;
     const int W, H;
     const double u;  // sizes scale with the still
+    const scene::OverlaySpec& spec;
     Painter paint;
     FurniturePlacer placer;
 };
@@ -440,15 +498,32 @@ Owned<cairo_surface_t> surfaceOf(const PngImage8& image) {
 
 OverlayRecord paintOverlays(cairo_t* cr, int widthPx, int heightPx, const scene::OverlaySpec& spec,
                             const OverlayFacts& facts, const DrawingTarget& target) {
-    OverlayDrawing drawing(cr, widthPx, heightPx, facts, target);
-    if (!spec.title.empty() || !spec.subtitle.empty()) drawing.title(spec);
-    if (spec.northArrow) drawing.northArrow(facts);
-    if (!facts.credits.empty()) drawing.credits(facts);
-    if (spec.scaleBar) drawing.scaleBar(facts);
-    if (spec.legend && facts.palette.size() >= 2) drawing.legend(facts);
-    if (!facts.layerLegend.empty()) drawing.layerLegend(facts);
+    OverlayDrawing drawing(cr, widthPx, heightPx, spec, facts, target);
+    // In this order: an item placed first keeps its place; one with no free place left is left out.
+    const auto wanted = [&](const char* item) {
+        const auto p = spec.places.find(item);
+        return p == spec.places.end() || p->second != "off";
+    };
+    if ((!spec.title.empty() || !spec.subtitle.empty()) && wanted("title")) drawing.title();
+    if (spec.northArrow && wanted("north_arrow")) drawing.northArrow(facts);
+    if (!facts.credits.empty() && wanted("credits")) drawing.credits(facts);
+    if (spec.scaleBar && wanted("scale_bar")) drawing.scaleBar(facts);
+    if (spec.legend && facts.palette.size() >= 2 && wanted("legend")) drawing.legend(facts);
+    if (!facts.layerLegend.empty() && wanted("layer_legend")) drawing.layerLegend(facts);
     if (!facts.labels.empty()) drawing.labels(facts);
     return drawing.record;
+}
+
+void warnLeftOut(const OverlayRecord& record, int widthPx, int heightPx, const SourceLoc& at, Diagnostics& diags) {
+    const auto spoken = [](std::string item) {
+        std::replace(item.begin(), item.end(), '_', ' ');
+        return item;
+    };
+    for (const auto& [item, inTheWay] : record.leftOut)
+        diags.warningOnce("overlay left out: " + item, at,
+                          fmt::format("the {} is left out: no free place for it on a {} x {} still (in the way: "
+                                      "{}); give overlay.place.{} a free place, or make the still larger",
+                                      spoken(item), widthPx, heightPx, spoken(inTheWay), item));
 }
 
 bool drawOverlays(PngImage8& image, const scene::OverlaySpec& spec, const OverlayFacts& facts, const SourceLoc& at,
@@ -463,6 +538,7 @@ bool drawOverlays(PngImage8& image, const scene::OverlaySpec& spec, const Overla
     const Owned<cairo_t> cr(cairo_create(surface.get()));
     const OverlayRecord drawn = paintOverlays(cr.get(), image.width, image.height, spec, facts, {});
     copyBack(surface.get(), image);
+    warnLeftOut(drawn, image.width, image.height, at, diags);
     if (record) *record = drawn;
     return true;
 }

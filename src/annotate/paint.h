@@ -39,4 +39,7 @@ Owned<cairo_surface_t> surfaceOf(const PngImage8& image);
 OverlayRecord paintOverlays(cairo_t* cr, int widthPx, int heightPx, const scene::OverlaySpec& spec,
                             const OverlayFacts& facts, const DrawingTarget& target);
 
+/// A warning at `at` for each item the record left out, naming what was in its way.
+void warnLeftOut(const OverlayRecord& record, int widthPx, int heightPx, const SourceLoc& at, Diagnostics& diags);
+
 }  // namespace relief::annotate

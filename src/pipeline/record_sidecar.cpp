@@ -194,6 +194,11 @@ void warnIfSidecarNotUtf8(const scene::SceneSpec& scene, const CompileResult& c,
 
 namespace {
 
+// Pixels to a tenth: the sidecar's boxes and points.
+double tenth(double v) { return std::round(v * 10) / 10; }
+ordered_json tenthsOf(const PixelBox& b) { return {tenth(b.x0), tenth(b.y0), tenth(b.x1), tenth(b.y1)}; }
+ordered_json tenthsOf(const PixelPoint& p) { return {tenth(p.x), tenth(p.y)}; }
+
 void addRenderFacts(ordered_json& j, const RenderFacts& r) {
     double parse = 0, trace = 0;
     ordered_json tiles = ordered_json::array();
@@ -218,15 +223,26 @@ void addRenderFacts(ordered_json& j, const RenderFacts& r) {
                                      {"valid", r.perspective ? "at the centre of the view" : "everywhere"}};
     j["overlay"]["north_deg_clockwise_from_up"] = o.northDeg;
     j["overlay"]["placement"] = o.placement;
+    for (const auto& [name, box] : o.boxes) j["overlay"]["boxes_px"][name] = tenthsOf(box);
     j["overlay"]["on_terrain"] = o.onTerrain;
+    if (!o.leftOut.empty()) {
+        ordered_json leftOut = ordered_json::object();
+        for (const auto& l : o.leftOut) leftOut[l.item] = "in the way: " + l.inTheWay;
+        j["overlay"]["left_out"] = leftOut;
+    }
+    ordered_json texts = ordered_json::array();
+    for (const annotate::DrawnText& t : o.texts)
+        texts.push_back({{"text", t.text}, {"box_px", tenthsOf({t.x, t.y, t.x + t.w, t.y + t.h})}});
+    j["overlay"]["texts"] = texts;
     if (o.labels.empty()) return;
     ordered_json labels = ordered_json::array();
     for (const auto& l : o.labels) {
         ordered_json label = {{"text", l.text}, {"layer", l.layer}};
+        label["anchor_px"] = tenthsOf(l.anchor);
         if (l.placed) {
-            label["box_px"] = {std::round(l.box.x0 * 10) / 10, std::round(l.box.y0 * 10) / 10,
-                               std::round(l.box.x1 * 10) / 10, std::round(l.box.y1 * 10) / 10};
+            label["box_px"] = tenthsOf(l.box);
             label["leader"] = l.leader;
+            if (l.leader) label["leader_end_px"] = tenthsOf(l.leaderEnd);
         } else {
             label["left_out"] = "no free place beside its marker";
         }

@@ -100,6 +100,14 @@ ordered_json overlayJson(const RenderPlan& p) {
     ordered_json spec = {{"enabled", static_cast<int>(s.enabled)}, {"title", s.title}, {"subtitle", s.subtitle},
                          {"legend", s.legend}, {"scale_bar", s.scaleBar}, {"north_arrow", s.northArrow}};
     if (s.credits) spec["credits"] = *s.credits;
+    spec["places"] = s.places;
+    spec["text_scale"] = s.textScale;
+    spec["legend_title"] = s.legendTitle;
+    spec["legend_feet"] = s.legendFeet;
+    spec["scale_bar_imperial"] = s.scaleBarImperial;
+    if (s.scaleBarUnit)
+        spec["scale_bar_length"] = {{"length", s.scaleBarLength}, {"unit", s.scaleBarUnit->name},
+                                    {"metres", s.scaleBarUnit->metres}};
     ordered_json facts = {
         {"credits", f.credits},
         {"palette", coloursJson(f.palette)},
@@ -127,6 +135,28 @@ void readOverlay(const ordered_json& j, RenderPlan& p) {
     p.overlaySpec.scaleBar = s.at("scale_bar").get<bool>();
     p.overlaySpec.northArrow = s.at("north_arrow").get<bool>();
     if (s.contains("credits")) p.overlaySpec.credits = s.at("credits").get<std::string>();
+    for (const auto& [item, where] : s.at("places").items()) {
+        const auto known = [](const std::vector<std::string>& names, const std::string& name) {
+            return std::find(names.begin(), names.end(), name) != names.end();
+        };
+        if (!known(scene::kFurnitureItems, item) || !known(scene::kFurniturePlaces, where.get<std::string>()))
+            throw nlohmann::json::other_error::create(501, "an overlay place relief does not know", nullptr);
+        p.overlaySpec.places[item] = where.get<std::string>();
+    }
+    p.overlaySpec.textScale = s.at("text_scale").get<double>();
+    if (!(p.overlaySpec.textScale >= 0.5 && p.overlaySpec.textScale <= 3))
+        throw nlohmann::json::other_error::create(501, "an overlay text scale outside 0.5 to 3", nullptr);
+    p.overlaySpec.legendTitle = s.at("legend_title").get<std::string>();
+    p.overlaySpec.legendFeet = s.at("legend_feet").get<bool>();
+    p.overlaySpec.scaleBarImperial = s.at("scale_bar_imperial").get<bool>();
+    if (s.contains("scale_bar_length")) {
+        const auto& b = s.at("scale_bar_length");
+        p.overlaySpec.scaleBarUnit = scene::LengthUnit{b.at("unit").get<std::string>(), b.at("metres").get<double>()};
+        p.overlaySpec.scaleBarLength = b.at("length").get<double>();
+        if (!(p.overlaySpec.scaleBarLength > 0 && p.overlaySpec.scaleBarLength <= 1e7 &&
+              p.overlaySpec.scaleBarUnit->metres > 0 && p.overlaySpec.scaleBarUnit->metres <= 1e4))
+            throw nlohmann::json::other_error::create(501, "a scale bar's length out of range", nullptr);
+    }
     const auto& f = j.at("facts");
     annotate::OverlayFacts& o = p.overlayFacts;
     o.credits = f.at("credits").get<std::string>();

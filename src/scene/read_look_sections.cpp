@@ -1,6 +1,8 @@
 // The sections that say how the terrain looks: its exaggeration, colours,
 // light, camera, block, water, haze and the report's overlays.
+#include <algorithm>
 #include <cmath>
+#include <charconv>
 #include <cstdlib>
 
 #include <fmt/format.h>
@@ -259,6 +261,64 @@ std::optional<GraticuleSpec> graticuleOf(const toml::node& n) {
     return ok ? std::optional(g) : std::nullopt;
 }
 
+// overlay.place: an inline table, { legend = "top-left", north_arrow = "off" }.
+// False with the error at the key when an item or a place is not one relief knows.
+bool readPlaces(Section& s, OverlaySpec& overlay) {
+    s.markKnown("place");
+    const toml::node* n = s.find("place");
+    if (!n) return true;
+    const auto choices = [](const std::vector<std::string>& names) {
+        std::string out;
+        for (const auto& name : names) out += (out.empty() ? "\"" : ", \"") + name + "\"";
+        return out;
+    };
+    const toml::table* t = n->as_table();
+    if (!t) {
+        s.error("place", fmt::format("overlay.place must be a table {{ <item> = \"<place>\" }}; items: {}",
+                                     choices(kFurnitureItems)));
+        return false;
+    }
+    for (auto&& [k, v] : *t) {
+        const std::string item(k.str());
+        const auto where = v.value_exact<std::string>();
+        if (std::find(kFurnitureItems.begin(), kFurnitureItems.end(), item) == kFurnitureItems.end()) {
+            s.error("place", fmt::format("overlay.place.{}: no such item; the items are {}", printableExcerpt(item),
+                                         choices(kFurnitureItems)));
+            return false;
+        }
+        if (!where || std::find(kFurniturePlaces.begin(), kFurniturePlaces.end(), *where) == kFurniturePlaces.end()) {
+            s.error("place", fmt::format("overlay.place.{} must be one of {}", item, choices(kFurniturePlaces)));
+            return false;
+        }
+        if (*where != "auto") overlay.places[item] = *where;
+    }
+    return true;
+}
+
+// overlay.scale_bar_length: "2 km", "500 m", "1 mi", "2000 ft".
+void readScaleBarLength(Section& s, OverlaySpec& overlay) {
+    static const std::vector<LengthUnit> kUnits = {{"m", 1}, {"km", 1000}, {"ft", 0.3048}, {"mi", 1609.344}};
+    const auto v = s.string("scale_bar_length");
+    if (!v) return;
+    // from_chars: the C locale's number whatever the user's (a German "2,5 km" is not 2.5).
+    double length = 0;
+    const auto [end, ec] = std::from_chars(v->data(), v->data() + v->size(), length);
+    const std::string unit = ec == std::errc() ? std::string(end + (end < v->data() + v->size() && *end == ' '),
+                                                             v->data() + v->size())
+                                               : "";
+    const bool parsed = ec == std::errc() && std::isfinite(length) && length > 0 && length <= 1e7;
+    const auto u = std::find_if(kUnits.begin(), kUnits.end(), [&](const LengthUnit& x) { return x.name == unit; });
+    if (!parsed || u == kUnits.end()) {
+        s.error("scale_bar_length", fmt::format("overlay.scale_bar_length = \"{}\" must be a length and a unit: "
+                                                "\"500 m\", \"2 km\", \"2000 ft\" or \"1 mi\"",
+                                                printableExcerpt(*v)));
+        return;
+    }
+    overlay.scaleBarUnit = *u;
+    overlay.scaleBarLength = length;
+    overlay.scaleBarImperial = u->name == "ft" || u->name == "mi";
+}
+
 }  // namespace
 
 void readOverlay(Section& s, const SceneFile&, SceneSpec& scene) {
@@ -270,6 +330,12 @@ void readOverlay(Section& s, const SceneFile&, SceneSpec& scene) {
     if (auto v = s.boolean("legend")) overlay.legend = *v;
     if (auto v = s.boolean("scale_bar")) overlay.scaleBar = *v;
     if (auto v = s.boolean("north_arrow")) overlay.northArrow = *v;
+    readPlaces(s, overlay);
+    if (auto v = s.number("text_scale", 0.5, 3, "(times the automatic size)")) overlay.textScale = *v;
+    if (auto v = s.text("legend_title")) overlay.legendTitle = *v;
+    if (auto v = s.choice("legend_units", {"m", "ft"})) overlay.legendFeet = *v == "ft";
+    if (auto v = s.choice("scale_bar_units", {"metric", "imperial"})) overlay.scaleBarImperial = *v == "imperial";
+    readScaleBarLength(s, overlay);
     s.markKnown("graticule");
     if (const toml::node* n = s.find("graticule")) {
         if (auto graticule = graticuleOf(*n)) overlay.graticule = graticule;

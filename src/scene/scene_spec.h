@@ -343,6 +343,20 @@ struct GraticuleSpec {
     double widthPx = 1.2;
 };
 
+/// The furniture's items, as overlay.place names them (the title holds the subtitle).
+inline const std::vector<std::string> kFurnitureItems = {"title",     "north_arrow", "credits",
+                                                         "scale_bar", "legend",      "layer_legend"};
+/// Where overlay.place may put an item: a corner, the middle of an edge, or nowhere.
+inline const std::vector<std::string> kFurniturePlaces = {"auto",  "top-left",    "top",    "top-right",
+                                                          "left",  "right",       "bottom-left",
+                                                          "bottom", "bottom-right", "off"};
+
+/// A length unit of the scale bar and the legend: its name and metres.
+struct LengthUnit {
+    std::string name;  ///< "m", "km", "ft", "mi"
+    double metres = 1;
+};
+
 struct OverlaySpec {
     enum class Enabled { Auto, On, Off };
     Enabled enabled = Enabled::Auto;  ///< Auto: on for stills at least kMinAutoWidthPx wide
@@ -350,6 +364,15 @@ struct OverlaySpec {
     std::string title, subtitle;
     std::optional<std::string> credits;  ///< unset: the samples' attribution
     bool legend = true, scaleBar = true, northArrow = true;
+    /// Each item the author placed (kFurnitureItems) at one of kFurniturePlaces;
+    /// an item not named here is placed automatically.
+    std::map<std::string, std::string> places;
+    double textScale = 1;           ///< every text's size times this
+    std::string legendTitle;        ///< "": the colouring's ("Elevation (m)")
+    bool legendFeet = false;        ///< the elevation legend's ticks in feet
+    bool scaleBarImperial = false;  ///< the scale bar's automatic length in feet and miles
+    std::optional<LengthUnit> scaleBarUnit;  ///< with scaleBarLength: the bar's length as written
+    double scaleBarLength = 0;               ///< in scaleBarUnit; 0: chosen (about a fifth of the still)
     std::optional<ContourSpec> contours;  ///< unset: none
     std::optional<GraticuleSpec> graticule;  ///< unset: none
     KeyLocations locs;

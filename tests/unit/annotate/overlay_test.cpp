@@ -4,7 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "emit/mesh.h"
 
@@ -173,6 +177,133 @@ TEST(Overlay, ItemsMoveOffTheTerrainWhereTheyCan) {
     for (int y = 0; y < 40; ++y)
         for (int x = 320; x < 640; ++x) ink += image.pixels[(size_t(y) * 640 + x) * 3] != 128;
     EXPECT_GT(ink, 200);
+}
+
+bool inside(const PixelBox& b, int w, int h) { return b.x0 >= 0 && b.y0 >= 0 && b.x1 <= w && b.y1 <= h; }
+
+// Each item at each place the author may give it, alone on the still: it goes
+// there (its box in that corner or at the middle of that edge), wholly inside;
+// "off" draws nothing.
+TEST(Overlay, EachItemGoesWhereTheAuthorPutsIt) {
+    const OverlayFacts facts = sampleFacts("Data: someone, CC BY 4.0");
+    const std::vector<std::pair<std::string, std::string>> drawnAs = {
+        {"title", "title"}, {"north_arrow", "north_arrow"}, {"credits", "credits"},
+        {"scale_bar", "scale_bar"}, {"legend", "legend"}};
+    for (const auto& [item, name] : drawnAs)
+        for (const std::string& where : scene::kFurniturePlaces) {
+            scene::OverlaySpec spec;
+            spec.title = "Somewhere";
+            for (const std::string& other : scene::kFurnitureItems) spec.places[other] = "off";
+            spec.places[item] = where;
+            PngImage8 image = greyStill();
+            OverlayRecord record;
+            Diagnostics diags;
+            ASSERT_TRUE(drawOverlays(image, spec, facts, {}, diags, &record));
+            EXPECT_TRUE(record.leftOut.empty()) << item << " " << where;
+            if (where == "off") {
+                EXPECT_TRUE(record.drawn.empty()) << item;
+                continue;
+            }
+            ASSERT_EQ(record.drawn, std::vector<std::string>{name}) << item << " " << where;
+            const PixelBox b = record.boxes.at(name);
+            EXPECT_TRUE(inside(b, 640, 480)) << item << " " << where;
+            if (where == "auto") continue;
+            EXPECT_EQ(record.placement.at(name), where);
+            const double u = 6.4, cx = (b.x0 + b.x1) / 2, cy = (b.y0 + b.y1) / 2;
+            const auto has = [&](const char* side) { return where.find(side) != std::string::npos; };
+            const double x = has("left") ? b.x0 : has("right") ? b.x1 : cx;
+            const double y = has("top") ? b.y0 : has("bottom") ? b.y1 : cy;
+            EXPECT_NEAR(x, has("left") ? 2 * u : has("right") ? 640 - 2 * u : 320, 1e-9) << item << " " << where;
+            EXPECT_NEAR(y, has("top") ? 2 * u : has("bottom") ? 480 - 2 * u : 240, 1e-9) << item << " " << where;
+        }
+}
+
+// Two items the author put in one corner: the first keeps it, the second is
+// left out with a warning naming both, never drawn over the first. On a
+// still too small for the furniture, every item drawn is inside and apart,
+// and each left out is said.
+TEST(Overlay, ItemsThatWouldOverlapAreLeftOutAndSaid) {
+    scene::OverlaySpec spec;
+    spec.title = "Somewhere";
+    spec.places = {{"credits", "bottom-right"}, {"scale_bar", "bottom-right"}};
+    PngImage8 image = greyStill();
+    OverlayRecord record;
+    Diagnostics diags;
+    ASSERT_TRUE(drawOverlays(image, spec, sampleFacts("Data: someone"), {"still.png", 0, 0}, diags, &record));
+    EXPECT_EQ(record.drawn, (std::vector<std::string>{"title", "north_arrow", "credits", "legend"}));
+    ASSERT_EQ(record.leftOut.size(), 1u);
+    EXPECT_EQ(record.leftOut[0].item, "scale_bar");
+    EXPECT_EQ(record.leftOut[0].inTheWay, "the credits");
+    ASSERT_EQ(diags.all().size(), 1u);
+    EXPECT_EQ(formatDiagnostic(diags.all()[0]),
+              "still.png: warning: the scale bar is left out: no free place for it on a 640 x 480 still (in the "
+              "way: the credits); give overlay.place.scale_bar a free place, or make the still larger");
+
+    for (const auto& [w, h] : std::vector<std::pair<int, int>>{{120, 80}, {160, 100}, {200, 400}, {400, 120}}) {
+        PngImage8 small;
+        small.width = w, small.height = h, small.channels = 3;
+        small.pixels.assign(size_t(w) * h * 3, 128);
+        scene::OverlaySpec all;
+        all.title = "A title long enough to matter";
+        all.subtitle = "and a subtitle";
+        OverlayRecord r;
+        Diagnostics d;
+        ASSERT_TRUE(drawOverlays(small, all, sampleFacts("Data: someone, CC BY 4.0"), {}, d, &r));
+        for (const auto& [item, box] : r.boxes) {
+            EXPECT_TRUE(inside(box, w, h)) << item << " on " << w << " x " << h;
+            for (const auto& [other, otherBox] : r.boxes) {
+                if (other < item && !(box == otherBox))
+                    EXPECT_FALSE(box.meets(otherBox, 0)) << item << " meets " << other << " on " << w << " x " << h;
+            }
+        }
+        for (const std::string item : {"title", "north_arrow", "credits", "scale_bar", "legend"}) {
+            const auto out = std::count_if(r.leftOut.begin(), r.leftOut.end(),
+                                           [&](const OverlayRecord::LeftOut& l) { return l.item == item; });
+            EXPECT_EQ(r.boxes.count(item) + out, 1u) << item << " on " << w << " x " << h;  // drawn or said
+        }
+        EXPECT_EQ(d.warningCount(), static_cast<int>(r.leftOut.size()));
+    }
+}
+
+// Imperial and given lengths: feet under a mile, miles from one; a length as
+// written, its pixels true.
+TEST(Overlay, ScaleBarInTheUnitsAsked) {
+    scene::OverlaySpec imperial;
+    imperial.scaleBarImperial = true;
+    const ScaleBar ft = chooseScaleBar(2.5, 800, imperial);  // 400 m = 1312 ft -> 1000 ft
+    EXPECT_EQ(ft.label, "1000 ft");
+    EXPECT_DOUBLE_EQ(ft.metres, 304.8);
+    EXPECT_DOUBLE_EQ(ft.pixels, 304.8 / 2.5);
+    const ScaleBar mi = chooseScaleBar(31.3, 960, imperial);  // 6010 m = 3.7 mi -> 2 mi
+    EXPECT_EQ(mi.label, "2 mi");
+    EXPECT_DOUBLE_EQ(mi.metres, 2 * 1609.344);
+    scene::OverlaySpec given;
+    given.scaleBarUnit = scene::LengthUnit{"km", 1000};
+    given.scaleBarLength = 1.5;
+    const ScaleBar km = chooseScaleBar(10, 800, given);
+    EXPECT_EQ(km.label, "1.5 km");
+    EXPECT_DOUBLE_EQ(km.pixels, 150);
+}
+
+// The legend in feet: its title says so and its ticks are round feet, placed
+// at their heights in metres.
+TEST(Overlay, LegendInFeet) {
+    scene::OverlaySpec spec;
+    spec.legendFeet = true;
+    spec.places = {{"north_arrow", "off"}, {"credits", "off"}, {"scale_bar", "off"}};
+    PngImage8 image = greyStill();
+    OverlayRecord record;
+    Diagnostics diags;
+    ASSERT_TRUE(drawOverlays(image, spec, sampleFacts(""), {}, diags, &record));  // 10-300 m: 32.8-984 ft
+    std::vector<std::string> texts;
+    for (const auto& t : record.texts) texts.push_back(t.text);
+    EXPECT_EQ(texts, (std::vector<std::string>{"Elevation (ft)", "200", "400", "600", "800"}));
+    spec.legendTitle = "Höhe";
+    spec.legendFeet = false;
+    record = {};
+    ASSERT_TRUE(drawOverlays(image, spec, sampleFacts(""), {}, diags, &record));
+    EXPECT_EQ(record.texts.front().text, "Höhe");
+    EXPECT_EQ(record.texts[1].text, "50");
 }
 
 }  // namespace

@@ -3,9 +3,11 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <regex>
 #include <set>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -170,6 +172,63 @@ TEST(ReadScene, ReportKeysFromTheFileAndFromOverrides) {
         Diagnostics bad;
         readScene(dir / "s.toml", bad, {{key, value}});
         EXPECT_EQ(bad.errorCount(), 1) << key << " = " << value;
+    }
+    std::filesystem::remove_all(dir);
+}
+
+// The author's furniture: each item at a place or off, the text's scale, the
+// legend's title and unit, the scale bar's units and length; every wrong
+// value an error at overlay.<key> that names the choices.
+TEST(ReadScene, TheAuthorPlacesTheFurniture) {
+    const auto dir = relief::testing::freshTestDir("relief-scene-furniture-test");
+    std::ofstream(dir / "s.csv") << "lon,lat,elev\n";
+    std::ofstream(dir / "s.toml") << "[samples]\npath = \"s.csv\"\n"
+                                     "[overlay]\nplace = { legend = \"left\", north_arrow = \"off\", "
+                                     "title = \"auto\", scale_bar = \"top-right\" }\n"
+                                     "text_scale = 1.5\nlegend_title = \"Height\"\nlegend_units = \"ft\"\n"
+                                     "scale_bar_length = \"2.5 mi\"\n";
+    Diagnostics diags;
+    auto s = readScene(dir / "s.toml", diags);
+    ASSERT_TRUE(s);
+    ASSERT_FALSE(diags.hasErrors());
+    EXPECT_EQ(s->overlay.places, (std::map<std::string, std::string>{
+                                     {"legend", "left"}, {"north_arrow", "off"}, {"scale_bar", "top-right"}}));
+    EXPECT_DOUBLE_EQ(s->overlay.textScale, 1.5);
+    EXPECT_EQ(s->overlay.legendTitle, "Height");
+    EXPECT_TRUE(s->overlay.legendFeet);
+    ASSERT_TRUE(s->overlay.scaleBarUnit);
+    EXPECT_EQ(s->overlay.scaleBarUnit->name, "mi");
+    EXPECT_DOUBLE_EQ(s->overlay.scaleBarUnit->metres, 1609.344);
+    EXPECT_DOUBLE_EQ(s->overlay.scaleBarLength, 2.5);
+    EXPECT_TRUE(s->overlay.scaleBarImperial);
+
+    // Every place of every item is read (the space, not one point of it).
+    for (const std::string& item : kFurnitureItems)
+        for (const std::string& where : kFurniturePlaces) {
+            Diagnostics d;
+            const auto placed = readScene(dir / "s.toml", d, {{"overlay.place", "{" + item + " = \"" + where + "\"}"}});
+            ASSERT_TRUE(placed) << item << " " << where;
+            EXPECT_EQ(placed->overlay.places.count(item), where == "auto" ? 0u : 1u) << item << " " << where;
+        }
+
+    for (const auto& [key, value, says] : std::vector<std::tuple<std::string, std::string, std::string>>{
+             {"overlay.place", "{ legend = \"middle\" }", "overlay.place.legend must be one of \"auto\", \"top-left\""},
+             {"overlay.place", "{ legend = 3 }", "overlay.place.legend must be one of"},
+             {"overlay.place", "{ compass = \"top\" }", "overlay.place.compass: no such item; the items are \"title\""},
+             {"overlay.place", "\"top-left\"", "overlay.place must be a table"},
+             {"overlay.text_scale", "0.1", "overlay.text_scale"},
+             {"overlay.legend_units", "\"yd\"", "\"m\", \"ft\""},
+             {"overlay.scale_bar_units", "\"nautical\"", "\"metric\", \"imperial\""},
+             {"overlay.scale_bar_length", "\"2 leagues\"", "must be a length and a unit"},
+             {"overlay.scale_bar_length", "\"km\"", "must be a length and a unit"},
+             {"overlay.scale_bar_length", "\"-1 km\"", "must be a length and a unit"},
+             {"overlay.scale_bar_length", "\"2,5 km\"", "must be a length and a unit"}}) {
+        Diagnostics bad;
+        EXPECT_FALSE(readScene(dir / "s.toml", bad, {{key, value}})) << key << " = " << value;
+        ASSERT_EQ(bad.errorCount(), 1) << key << " = " << value;
+        const std::string text = formatDiagnostic(bad.all()[0]);
+        EXPECT_NE(text.find(says), std::string::npos) << text;
+        EXPECT_NE(text.find("--set " + key), std::string::npos) << text;
     }
     std::filesystem::remove_all(dir);
 }
