@@ -82,6 +82,22 @@ ordered_json exaggerationAdvice(const geo::ControlNet& net) {
     return a;
 }
 
+// A net finer than the still can show: more nodes than the still has pixels
+// costs memory and time for detail no pixel holds. Says so, with the spacing
+// at which the nodes would match the pixels.
+void netAgainstStill(const geo::ControlNet& net, const scene::RenderSpec& render, const SourceLoc& at,
+                     ordered_json& facts, Diagnostics& diags) {
+    const double nodes = static_cast<double>(net.rows()) * net.cols(), pixels = double(render.width) * render.height;
+    facts["nodes"] = nodes;
+    if (!(nodes > pixels)) return;
+    const double matching = net.dx * std::sqrt(nodes / pixels);
+    facts["advice"] = fmt::format("the net's {} x {} nodes ({:.3g}) are more than the still's {} x {} pixels ({:.3g}): "
+                                  "net.spacing_m = {} would match them",
+                                  net.cols(), net.rows(), nodes, render.width, render.height, pixels,
+                                  formatShortest(std::ceil(matching * 10) / 10));
+    diags.warning(at, facts["advice"].get<std::string>());
+}
+
 }  // namespace
 
 ordered_json sceneInfo(const LoadedScene& loaded, const Surface& s, Diagnostics& diags) {
@@ -90,6 +106,7 @@ ordered_json sceneInfo(const LoadedScene& loaded, const Surface& s, Diagnostics&
     j["scene"] = spec.madeForData.empty() ? spec.sceneFile.string() : "made for the data (relief init writes it)";
     j["data"] = dataFacts(spec, s.net);
     j["net"] = netFacts(s.net);
+    netAgainstStill(s.net, spec.render, spec.net.locs.at("net.spacing_m"), j["net"], diags);
     j["subdivision"] = {{"scheme", loaded.resolved.family},
                         {"certified", subdiv::certifiedClass(loaded.resolved.report)},
                         {"depth", s.depth},
