@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <span>
 
 namespace relief::annotate {
 
@@ -72,6 +73,9 @@ constexpr double kEdgePx = 2;      // a label stays this far inside the still
 // The eight directions a label may sit in, in the cartographers' order of preference
 // (Imhof): upper right first, then lower right, upper left, lower left, then the axes.
 constexpr std::array<std::array<double, 2>, 8> kDirections{{{1, -1}, {1, 1}, {-1, -1}, {-1, 1}, {1, 0}, {0, -1}, {-1, 0}, {0, 1}}};
+// A line's label: centred on its point, else beside it touching it (the same order).
+constexpr std::array<std::array<double, 2>, 9> kOnLine{
+    {{0, 0}, {1, -1}, {1, 1}, {-1, -1}, {-1, 1}, {1, 0}, {0, -1}, {-1, 0}, {0, 1}}};
 
 // The box of a label `w` x `h` whose nearest corner or side is `gap` from the anchor in direction `d`.
 PixelBox candidate(const LabelRequest& r, const std::array<double, 2>& d, double gap) {
@@ -118,9 +122,11 @@ std::vector<std::optional<PlacedLabel>> placeLabels(const std::vector<LabelReque
     };
     for (size_t i = 0; i < labels.size(); ++i) {
         const LabelRequest& r = labels[i];
-        for (int ring = 0; ring < kRings && !out[i]; ++ring) {
-            const double gap = r.markerPx + kPadPx + ring * (0.8 * r.h + 2 * kPadPx);
-            for (const auto& d : kDirections) {
+        for (int ring = 0; ring < (r.onLine ? 1 : kRings) && !out[i]; ++ring) {
+            const double gap = r.onLine ? 0 : r.markerPx + kPadPx + ring * (0.8 * r.h + 2 * kPadPx);
+            const std::span<const std::array<double, 2>> directions =
+                r.onLine ? std::span<const std::array<double, 2>>(kOnLine) : kDirections;
+            for (const auto& d : directions) {
                 const PixelBox box = candidate(r, d, gap);
                 if (!inside(box)) continue;
                 const PlacedLabel placed{box, ring > 0, nearestOn(box, r.anchor)};

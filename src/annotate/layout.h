@@ -72,6 +72,10 @@ struct LabelRequest {
     double markerPx = 0;  ///< the marker's half width: the label keeps clear of it
     double w = 0, h = 0;  ///< the text's box
     PixelBox marker;      ///< x0 == x1: no marker
+    /// A line's label (the graticule's): on its line, its box holding the
+    /// anchor (centred on it, else touching it), or left out; never moved
+    /// off with a leader, where it would read as another line's.
+    bool onLine = false;
 };
 
 /// Where a label went: its box, and the leader line from the marker when it

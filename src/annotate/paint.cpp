@@ -68,7 +68,9 @@ private:
             pango_layout_set_wrap(layout.get(), PANGO_WRAP_WORD_CHAR);
             pango_layout_set_height(layout.get(), -maxLines);
             pango_layout_set_ellipsize(layout.get(), PANGO_ELLIPSIZE_END);
-            pango_layout_set_alignment(layout.get(), anchorX >= 1 ? PANGO_ALIGN_RIGHT : PANGO_ALIGN_LEFT);
+            pango_layout_set_alignment(layout.get(), anchorX >= 1    ? PANGO_ALIGN_RIGHT
+                                                     : anchorX == 0.5 ? PANGO_ALIGN_CENTER
+                                                                      : PANGO_ALIGN_LEFT);
         }
         pango_layout_set_single_paragraph_mode(layout.get(), TRUE);  // line breaks in a string are spaces
         pango_layout_set_text(layout.get(), s.c_str(), static_cast<int>(s.size()));  // text, never markup
@@ -135,8 +137,8 @@ class OverlayDrawing {
 public:
     OverlayDrawing(cairo_t* c, int W, int H, const scene::OverlaySpec& spec, const OverlayFacts& facts,
                    const DrawingTarget& target)
-        : c(c), W(W), H(H), u(std::min(W, H * 4 / 3) / 100.0), spec(spec),
-          paint(c, u * spec.textScale, target, record.texts), placer(W, H, u, facts.terrain) {}
+        : c(c), W(W), H(H), u(std::min(W, H * 4 / 3) / 100.0 * spec.textScale), spec(spec),
+          paint(c, u, target, record.texts), placer(W, H, u, facts.terrain) {}
 
     // Title and subtitle, top left.
     void title() {
@@ -176,7 +178,7 @@ public:
         const auto [nw, nh] = paint.measure("N", 2.4, true);
         // The arrow turned any way stays within `reach` of its centre (its tip
         // at len, its stroke's half width beyond); the box holds the "N" whole too.
-        const double reach = len + 0.2 * u;
+        const double reach = len + 0.6 * u;  // the tip's mitre reaches 0.58 units past the point
         const PixelBox box{std::min(cx - reach, nTop.x - nw / 2), std::min(cy - reach, nTop.y),
                            std::max(cx + reach, nTop.x + nw / 2), std::max(cy + reach, nTop.y + nh)};
         const auto choice = placeItem("north_arrow", box,
@@ -227,7 +229,7 @@ public:
         const auto [zeroW, figureH] = paint.measure("0", 1.7, false);
         const double labelW = paint.measure(bar.label, 1.7, false).first;
         const auto [noteW, noteH] = facts.perspective ? paint.measure(kNote, 1.4, false) : std::pair{0.0, 0.0};
-        const PixelBox box{x0 - std::max(zeroW / 2, 0.3 * u), y0 - gap - figureH,
+        const PixelBox box{std::min(x0 - std::max(zeroW / 2, 0.3 * u), x0 + bar.pixels - labelW / 2), y0 - gap - figureH,
                            std::max(x0 + bar.pixels + labelW / 2, x0 + noteW), y0 + h + gap + noteH};
         const auto choice =
             placeItem("scale_bar", box, places(box, {"bottom-left", "bottom-right", "top-left", "top-right"}));
@@ -262,12 +264,22 @@ public:
         const std::string title = !spec.legendTitle.empty() ? spec.legendTitle
                                   : feet                    ? std::string("Elevation (ft)")
                                                             : facts.legendTitle;
+        const double unitM = feet ? kFootM : 1;
+        const std::vector<double> ticks = legendTicks(facts.zMinM / unitM, facts.zMaxM / unitM);
+        const std::string vertical = fmt::format("vertical \u00d7{}", formatShortest(facts.exaggeration));
+        // Every string in the box, measured: at small sizes (no text under 10 px) they outgrow the units.
         const double titleW = paint.measure(title, 1.9, true).first;
         const double noteW = facts.legendNote.empty() ? 0 : paint.measure(facts.legendNote, 1.6, false).first;
+        const double verticalW = exaggerated ? paint.measure(vertical, 1.6, false).first : 0;
+        double tickW = 0;
+        for (double v : ticks) tickW = std::max(tickW, paint.measure(formatShortest(v), 1.7, false).first);
         const double bottom =
             y0 + barH + 1.2 * u + (exaggerated ? 2.4 * u : 0) + (facts.legendNote.empty() ? 0 : 2.4 * u);
-        const PixelBox box{std::min({x0 - 1.5 * u, x0 + barW - titleW / 2, W - 2 * u - noteW}), y0 - 3.6 * u,
-                           std::max(W - 2 * u, x0 + barW + titleW / 2), bottom};
+        const PixelBox box{std::min({x0 - 1.5 * u, x0 + barW - titleW / 2, x0 + barW - verticalW / 2, W - 2 * u - noteW}),
+                           y0 - 3.6 * u,
+                           std::max({W - 2 * u, x0 + barW + titleW / 2, x0 + barW + verticalW / 2,
+                                     x0 + barW + 1.2 * u + tickW}),
+                           bottom};
         // Down the right edge from below the north arrow, then down the left edge.
         FurniturePlacer::Candidates candidates;
         for (const bool left : {false, true})
@@ -293,9 +305,8 @@ public:
         cairo_set_line_width(c, 0.15 * u);
         cairo_set_source_rgb(c, 0.08, 0.08, 0.08);
         cairo_stroke(c);
-        const double unitM = feet ? kFootM : 1;
         const double span = facts.zMaxM > facts.zMinM ? facts.zMaxM - facts.zMinM : 1;
-        for (double v : legendTicks(facts.zMinM / unitM, facts.zMaxM / unitM)) {
+        for (double v : ticks) {
             const double ty = y0 + barH * (1 - (v * unitM - facts.zMinM) / span);
             cairo_move_to(c, x0 + barW, ty);
             cairo_line_to(c, x0 + barW + 0.8 * u, ty);
@@ -305,8 +316,7 @@ public:
         }
         double noteY = y0 + barH + 1.2 * u;
         if (exaggerated) {
-            paint.text(fmt::format("vertical \u00d7{}", formatShortest(facts.exaggeration)), x0 + barW, noteY, 1.6,
-                       false, 0.5);
+            paint.text(vertical, x0 + barW, noteY, 1.6, false, 0.5);
             noteY += 2.4 * u;
         }
         if (!facts.legendNote.empty()) paint.text(facts.legendNote, W - 2 * u, noteY, 1.6, false, 1);
@@ -358,7 +368,7 @@ public:
             const PixelBox marker = l.markerPx > 0 ? PixelBox{l.anchor.x - l.markerPx, l.anchor.y - l.markerPx,
                                                               l.anchor.x + l.markerPx, l.groundY}
                                                    : PixelBox{};
-            requests.push_back({l.anchor, l.markerPx, w, h, marker});
+            requests.push_back({l.anchor, l.markerPx, w, h, marker, l.layer == 0});
         }
         const auto places = placeLabels(requests, W, H, obstacles);
         for (size_t i = 0; i < places.size(); ++i) {
@@ -434,7 +444,7 @@ private:
     std::optional<FurniturePlacer::Choice> placeItem(const std::string& item, const PixelBox& box,
                                                      const FurniturePlacer::Candidates& automatic) {
         const auto named = spec.places.find(item);
-        const auto choice = named == spec.places.end()
+        const auto choice = named == spec.places.end() || named->second == "auto"
                                 ? placer.place(item, box, automatic)
                                 : placer.place(item, box, {{placer.at(box, named->second), named->second}});
         if (!choice) record.leftOut.push_back({item, placer.inTheWay()});

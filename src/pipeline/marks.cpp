@@ -167,11 +167,23 @@ nlohmann::ordered_json describeSurfaceMarks(const SurfaceMarks& m, const scene::
         facts.labels.push_back({drawnText(p.label), {anchor[0], anchor[1]}, marker ? 0.25 * l.markerSizePx : 0,
                                 ground[1], l.labelSizePx, l.number});
     }
-    if (m.graticule)
+    nlohmann::ordered_json layers = nlohmann::ordered_json::array();
+    if (m.graticule) {
+        // Each line's label on the line (annotate places it there or leaves it out, and says so);
+        // a line with no point to hold one is said here.
+        nlohmann::ordered_json unlabelled = nlohmann::ordered_json::array();
         for (const emit::GraticuleLine& line : m.graticule->lines)
             if (const auto a = graticuleAnchor(line, refined, where, view, W, H))
                 facts.labels.push_back({line.label, {(*a)[0], (*a)[1]}, 0, (*a)[1], kGraticuleLabelPx, 0});
-    nlohmann::ordered_json layers = nlohmann::ordered_json::array();
+            else
+                unlabelled.push_back({{"label", line.label},
+                                      {"why", "no point of it that the eye sees inside the still, clear of the "
+                                              "furniture's band at its edges"}});
+        layers.push_back({{"number", 0},
+                          {"layer", "graticule"},
+                          {"lines", m.graticule->lines.size()},
+                          {"unlabelled", unlabelled}});
+    }
     for (size_t i = 0; i < spec.layers.size(); ++i) {
         const scene::LayerSpec& l = spec.layers[i];
         const emit::LayerCounts& c = m.layers.counts[i];

@@ -244,7 +244,7 @@ void addRenderFacts(ordered_json& j, const RenderFacts& r) {
             label["leader"] = l.leader;
             if (l.leader) label["leader_end_px"] = tenthsOf(l.leaderEnd);
         } else {
-            label["left_out"] = "no free place beside its marker";
+            label["left_out"] = l.layer == 0 ? "no free place on its line" : "no free place beside its marker";
         }
         labels.push_back(label);
     }

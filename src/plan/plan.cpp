@@ -26,7 +26,7 @@ using nlohmann::ordered_json;
 
 namespace {
 
-constexpr int kPlanFormat = 6;
+constexpr int kPlanFormat = 7;  // 7: the overlay spec holds the furniture's places, units and text scale
 constexpr std::uintmax_t kMaxPlanBytes = 64'000'000;
 // A template folder holds a template and its #include files: a few kB.
 constexpr size_t kMaxTemplateFiles = 64;
@@ -141,7 +141,7 @@ void readOverlay(const ordered_json& j, RenderPlan& p) {
         };
         if (!known(scene::kFurnitureItems, item) || !known(scene::kFurniturePlaces, where.get<std::string>()))
             throw nlohmann::json::other_error::create(501, "an overlay place relief does not know", nullptr);
-        p.overlaySpec.places[item] = where.get<std::string>();
+        if (where.get<std::string>() != "auto") p.overlaySpec.places[item] = where.get<std::string>();
     }
     p.overlaySpec.textScale = s.at("text_scale").get<double>();
     if (!(p.overlaySpec.textScale >= 0.5 && p.overlaySpec.textScale <= 3))

@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
-# The view space swept, not one point of it: small stills of Maungawhau with two labelled points
+# The view space swept, not one point of it: small stills of Maungawhau with two labelled points and a graticule
 # (each its own layer and marker colour) at camera elevation 5, 15, 45, 75, 89 and 90 degrees x
 # azimuth 0, 45, ..., 315, perspective and orthographic (96 stills). In every one:
 # - each marker is where relief says it is: the marker's colour in the still's pixels beside the
 #   label's anchor (the projection relief places labels with agrees with POV-Ray's camera; straight
 #   down they once disagreed by the azimuth less 180 degrees);
 # - each label stands by its own marker: its box within 12 px of the anchor, or its leader ending
-#   on the box;
+#   on the box; each graticule label on its line (the line's point within 4 px of its box);
 # - every furniture item (title, north arrow with its "N", scale bar, credits, legend) and every
 #   string drawn is wholly inside the still, and no two items overlap; an item with no free place
 #   is left out and the sidecar says what was in its way; the north arrow is in every still;
@@ -37,6 +37,7 @@ antialias = false
 [overlay]
 enabled = true
 title = "Mt Eden"
+graticule = { step_deg = 0.005 }
 [[layer]]
 path = "summit.geojson"
 label = "name"
@@ -92,7 +93,7 @@ def box_distance(p, b):
     return math.hypot(dx, dy)
 
 colours = {1: lambda r, g, b: r > g + 60 and b > g + 60, 2: lambda r, g, b: g > r + 60 and b > r + 60}
-problems, labelled = [], 0
+problems, labelled, graticule_labels = [], 0, 0
 for view in sys.argv[1:]:
     el, az, proj = view.split()
     name = f'v/{el}-{az}-{proj}'
@@ -102,6 +103,12 @@ for view in sys.argv[1:]:
     where = f'elevation {el}, azimuth {az}, {proj}'
     for label in o.get('labels', []):
         if 'box_px' not in label:
+            continue
+        if label['layer'] == 0:  # a graticule line's: on its line (its point within the box, 4 px at most)
+            d = box_distance(label['anchor_px'], label['box_px'])
+            if label['leader'] or d > 4:
+                problems.append(f'{where}: the graticule label {label["text"]!r} is {d:.1f} px from its line')
+            graticule_labels += 1
             continue
         labelled += 1
         ax, ay = label['anchor_px']
@@ -137,8 +144,9 @@ for view in sys.argv[1:]:
             problems.append(f'{where}: north is {o["north_deg_clockwise_from_up"]:.1f} degrees from up on a map')
 for p in problems:
     print('FAIL:', p)
-print(f'{len(sys.argv) - 1} views, {labelled} labels placed, {len(problems)} problems')
+print(f'{len(sys.argv) - 1} views, {labelled} labels and {graticule_labels} graticule labels placed, {len(problems)} problems')
 assert labelled >= 2 * 48, 'too few labels placed for the sweep to mean anything'
+assert graticule_labels >= 48, 'too few graticule labels placed for the sweep to mean anything'
 sys.exit(1 if problems else 0)
 PY
 exit $status

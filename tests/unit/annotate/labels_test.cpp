@@ -107,5 +107,37 @@ TEST(PlaceLabels, NoLeaderCrossesTheFurniture) {
     EXPECT_TRUE(placeLabels({at(100, 200)}, 400, 300, {title})[0]);
 }
 
+// A line's label (the graticule's) sits on its line: centred on its point
+// where that is free, else touching it; with no such place, left out, never
+// moved off with a leader (where it would read as another line's). Swept over
+// the still's points on a grid, with an obstacle beside each.
+TEST(PlaceLabels, ALinesLabelStaysOnItsLine) {
+    LabelRequest onLine{{200, 150}, 0, 40, 14, {}, true};
+    auto placed = placeLabels({onLine}, 400, 300, {});
+    ASSERT_TRUE(placed[0]);
+    EXPECT_EQ(placed[0]->box, (PixelBox{180, 143, 220, 157}));
+    EXPECT_FALSE(placed[0]->leader);
+    const auto holds = [](const PixelBox& b, const PixelPoint& p) {
+        return b.x0 <= p.x && p.x <= b.x1 && b.y0 <= p.y && p.y <= b.y1;
+    };
+    int onItsLine = 0, leftOut = 0;
+    for (double x = 5; x < 400; x += 15)
+        for (double y = 5; y < 300; y += 15) {
+            onLine.anchor = {x, y};
+            const std::vector<PixelBox> obstacles{{x - 10, y - 12, x + 10, y - 3}};  // over the centred place
+            placed = placeLabels({onLine}, 400, 300, obstacles);
+            if (!placed[0]) {
+                ++leftOut;
+                continue;
+            }
+            ++onItsLine;
+            EXPECT_TRUE(holds(placed[0]->box, onLine.anchor)) << x << ", " << y;
+            EXPECT_FALSE(placed[0]->leader);
+            expectValid(placed, {onLine}, obstacles, 400, 300);
+        }
+    EXPECT_GT(onItsLine, 450);  // all but the still's edges
+    EXPECT_GT(leftOut, 0);      // a corner has no place touching its point
+}
+
 }  // namespace
 }  // namespace relief::annotate

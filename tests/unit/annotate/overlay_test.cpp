@@ -252,8 +252,9 @@ TEST(Overlay, ItemsThatWouldOverlapAreLeftOutAndSaid) {
         for (const auto& [item, box] : r.boxes) {
             EXPECT_TRUE(inside(box, w, h)) << item << " on " << w << " x " << h;
             for (const auto& [other, otherBox] : r.boxes) {
-                if (other < item && !(box == otherBox))
+                if (other < item && !(box == otherBox)) {
                     EXPECT_FALSE(box.meets(otherBox, 0)) << item << " meets " << other << " on " << w << " x " << h;
+                }
             }
         }
         for (const std::string item : {"title", "north_arrow", "credits", "scale_bar", "legend"}) {
