@@ -16,6 +16,7 @@
 // overlays on a document's page) and document.cpp (writeDocument).
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -49,6 +50,7 @@ struct OverlayRecord {
     std::vector<LeftOut> leftOut;
     ScaleBar scaleBar;
     double northDeg = 0;
+    std::optional<PixelPoint> northCentre;  ///< the point the north arrow turns about, pixels
     std::vector<DrawnText> texts;  ///< every string, in the order drawn
     /// Every label asked for: where it went, or that no free place was left.
     struct Label {
@@ -66,6 +68,20 @@ struct OverlayRecord {
 /// changed in place). False with the error at `at` (the still's file).
 bool drawOverlays(PngImage8& image, const scene::OverlaySpec& spec, const OverlayFacts& facts, const SourceLoc& at,
                   Diagnostics& diags, OverlayRecord* record = nullptr);
+
+/// One frame of a film as its overlays see it.
+struct FrameOverlays {
+    const scene::OverlaySpec* spec = nullptr;
+    const OverlayFacts* facts = nullptr;
+};
+
+/// The places a film's furniture keeps in every frame, as overlay.place
+/// holds them: the scene's own, and for each other item the place the
+/// automatic choice gives it in most frames (the earliest on a tie). Each
+/// frame is laid out, not drawn. With every item at a named place, nothing
+/// moves from frame to frame (the north arrow's centre included: a named
+/// place holds it at every angle).
+std::map<std::string, std::string> steadyPlaces(const std::vector<FrameOverlays>& frames, int widthPx, int heightPx);
 
 enum class DocumentFormat { Pdf, Svg };
 

@@ -181,8 +181,12 @@ public:
         const double reach = len + 0.6 * u;  // the tip's mitre reaches 0.58 units past the point
         const PixelBox box{std::min(cx - reach, nTop.x - nw / 2), std::min(cy - reach, nTop.y),
                            std::max(cx + reach, nTop.x + nw / 2), std::max(cy + reach, nTop.y + nh)};
+        // At a named place the arrow's centre stays where the arrow and its "N" fit at any angle:
+        // a film's arrow turns in place instead of sliding as its box changes shape.
+        const double around = 1.75 * len + 1.3 * u + std::hypot(nw / 2, nh);
+        const PixelBox anyAngle{cx - around, cy - around, cx + around, cy + around};
         const auto choice = placeItem("north_arrow", box,
-                                      places(box, {"top-right", "top-left", "bottom-right", "bottom-left"}));
+                                      places(box, {"top-right", "top-left", "bottom-right", "bottom-left"}), &anyAngle);
         if (!choice) return;
         cairo_save(c);
         cairo_translate(c, choice->dx, choice->dy);
@@ -204,6 +208,7 @@ public:
         cairo_restore(c);
         placed("north_arrow", *choice);
         record.northDeg = facts.northDeg;
+        record.northCentre = PixelPoint{cx + choice->dx, cy + choice->dy};
     }
 
     // Credits, bottom right: whose data (CC BY and the OGL ask for it).
@@ -287,7 +292,12 @@ public:
                 const double x = left ? 2 * u : box.x0;
                 candidates.push_back({{x, top, x + box.w(), top + box.h()}, left ? "left" : "right"});
             }
-        const auto choice = placeItem("legend", box, candidates);
+        // Put at "right" or "left" by name: down that edge as above, the first free place there.
+        const auto named = spec.places.find("legend");
+        const bool column = named != spec.places.end() && (named->second == "right" || named->second == "left");
+        std::erase_if(candidates, [&](const auto& c) { return column && c.second != named->second; });
+        const auto choice =
+            column ? leftOutIfNone("legend", placer.place("legend", box, candidates)) : placeItem("legend", box, candidates);
         if (!choice) return;
         cairo_save(c);
         cairo_translate(c, choice->dx, choice->dy);
@@ -441,12 +451,20 @@ private:
     // `item`'s place: where the scene puts it, else the first free of
     // `automatic`; none (recorded as left out, with what is in its way) when
     // that place is not free.
+    // `steady`: a box around `box` that places it at a named place instead (`box` moved with it).
     std::optional<FurniturePlacer::Choice> placeItem(const std::string& item, const PixelBox& box,
-                                                     const FurniturePlacer::Candidates& automatic) {
+                                                     const FurniturePlacer::Candidates& automatic,
+                                                     const PixelBox* steady = nullptr) {
         const auto named = spec.places.find(item);
-        const auto choice = named == spec.places.end() || named->second == "auto"
-                                ? placer.place(item, box, automatic)
-                                : placer.place(item, box, {{placer.at(box, named->second), named->second}});
+        if (named == spec.places.end() || named->second == "auto")
+            return leftOutIfNone(item, placer.place(item, box, automatic));
+        // A steady item holds its whole square, the same in every frame of a film.
+        const PixelBox& by = steady ? *steady : box;
+        return leftOutIfNone(item, placer.place(item, by, {{placer.at(by, named->second), named->second}}));
+    }
+    // Records an item with no place as left out.
+    std::optional<FurniturePlacer::Choice> leftOutIfNone(const std::string& item,
+                                                         std::optional<FurniturePlacer::Choice> choice) {
         if (!choice) record.leftOut.push_back({item, placer.inTheWay()});
         return choice;
     }
@@ -522,6 +540,31 @@ OverlayRecord paintOverlays(cairo_t* cr, int widthPx, int heightPx, const scene:
     if (!facts.layerLegend.empty() && wanted("layer_legend")) drawing.layerLegend(facts);
     if (!facts.labels.empty()) drawing.labels(facts);
     return drawing.record;
+}
+
+std::map<std::string, std::string> steadyPlaces(const std::vector<FrameOverlays>& frames, int widthPx, int heightPx) {
+    std::map<std::string, std::map<std::string, int>> counts;  // item -> place -> frames
+    std::map<std::string, std::string> earliest;
+    const Owned<cairo_surface_t> nowhere(cairo_recording_surface_create(CAIRO_CONTENT_COLOR_ALPHA, nullptr));
+    for (const FrameOverlays& f : frames) {
+        const Owned<cairo_t> cr(cairo_create(nowhere.get()));
+        for (const auto& [item, where] : paintOverlays(cr.get(), widthPx, heightPx, *f.spec, *f.facts, {}).placement)
+            if (std::find(scene::kFurnitureItems.begin(), scene::kFurnitureItems.end(), item) !=
+                scene::kFurnitureItems.end()) {
+                ++counts[item][where];
+                earliest.emplace(item, where);
+            }
+    }
+    std::map<std::string, std::string> places = frames.empty() ? std::map<std::string, std::string>{}
+                                                               : frames.front().spec->places;
+    for (const auto& [item, byPlace] : counts) {
+        if (places.count(item) && places.at(item) != "auto") continue;  // the scene's own
+        std::string best = earliest.at(item);
+        for (const auto& [where, n] : byPlace)
+            if (n > byPlace.at(best)) best = where;
+        places[item] = best;
+    }
+    return places;
 }
 
 void warnLeftOut(const OverlayRecord& record, int widthPx, int heightPx, const SourceLoc& at, Diagnostics& diags) {

@@ -328,6 +328,9 @@ const geo::GeoGrid& SharedTerrain::refined() const {
 int SharedTerrain::depth() const {
     return state_->surface.depth;
 }
+const emit::ScenePlacement& SharedTerrain::placement() const {
+    return state_->view.where;
+}
 
 namespace {
 

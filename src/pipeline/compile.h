@@ -154,6 +154,8 @@ public:
     /// The net refined to the depth rendered: the surface the frames show.
     const geo::GeoGrid& refined() const;
     int depth() const;  ///< the subdivision depth refined() has
+    /// The terrain in the scene: its bounds, in scene units of metresPerUnit.
+    const emit::ScenePlacement& placement() const;
 
 private:
     std::unique_ptr<State> state_;

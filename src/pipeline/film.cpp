@@ -5,7 +5,9 @@
 #include "pipeline/film.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
+#include <numbers>
 #include <thread>
 
 #include <fmt/format.h>
@@ -71,6 +73,24 @@ std::optional<std::vector<LoadedScene>> loadFrames(const FilmScene& film, const 
     return scenes;
 }
 
+// An orbit whose camera the scene frames by itself (no distance, no position):
+// one distance for every frame, at which the terrain's bounding sphere fills
+// the narrower side of the frame, so that the framing does not breathe as each
+// frame's own outline would make it (a frame's fit is tight to what it sees).
+// The target is then the terrain's centre in every frame. As a key, so that
+// relief render of a frame's keys makes that frame.
+std::optional<std::string> steadyOrbitDistance(const scene::SceneSpec& spec, const emit::ScenePlacement& where) {
+    const scene::CameraSpec& camera = spec.look.camera;
+    if (spec.animation.path != scene::CameraPath::Orbit || camera.distanceM > 0 || camera.position) return std::nullopt;
+    for (const auto& v : spec.animation.vary)
+        if (v.key == "camera.distance_m") return std::nullopt;
+    const double radiusM = 0.5 * length(where.boundsMax - where.boundsMin) * where.metresPerUnit;
+    const double tanH = std::tan(camera.fovDeg * std::numbers::pi / 360);
+    const double tanNarrow = std::min(tanH, tanH * spec.render.height / spec.render.width);
+    const double distanceM = 1.02 * radiusM / std::sin(std::atan(tanNarrow));  // 2 % margin
+    return formatShortest(std::ceil(distanceM * 100) / 100);
+}
+
 // The keys the compiled terrain gives the group's frames: the depth, when it
 // was chosen for the scene's own view (a frame's own camera would choose
 // another, and relief render of the frame's keys must make this terrain);
@@ -81,13 +101,16 @@ bool addTerrainKeys(const FilmScene& film, const SharedTerrain& terrain, const s
     const scene::SceneSpec& spec = scenes[group.front()].scene;
     const scene::AnimationSpec& a = spec.animation;
     const bool chosenDepth = !spec.subdivision.depthGiven && !spec.subdivision.depthAuto;
-    if (!chosenDepth && a.path != scene::CameraPath::Flyover) return true;
+    const auto steady = steadyOrbitDistance(spec, terrain.placement());
+    if (!chosenDepth && a.path != scene::CameraPath::Flyover && !steady) return true;
     std::vector<scene::SceneOverrides> cameras(group.size());
     if (a.path == scene::CameraPath::Flyover) {
         auto keys = flyoverKeys(a, terrain.refined(), group, diags);
         if (!keys) return false;
         cameras = std::move(*keys);
     }
+    if (steady)
+        for (auto& c : cameras) c.emplace_back("camera.distance_m", *steady);
     for (size_t g = 0; g < group.size(); ++g) {
         const size_t i = group[g];
         auto& overrides = frames[i].settings.overrides;
@@ -178,8 +201,7 @@ bool planFrame(const AnimateJob& job, const LoadedScene& scene, const SharedTerr
     paths.sidecar = plan.dir / "frame.json";
     describeRender(plan, scene.scene, *compiled, paths, job.tiles);
     plan::copyTemplates(plan, job.templatesDir);
-    if (!writePlan(plan, diags)) return false;
-    work.plans.push_back(std::move(plan));
+    work.plans.push_back(std::move(plan));  // written once the film's furniture has its places
     return true;
 }
 
@@ -397,6 +419,25 @@ bool finishFrames(const film::FilmRecord& record, const FilmWork& work, OutputSe
     return true;
 }
 
+// The furniture at the same places in every frame (annotate::steadyPlaces), each
+// frame's key overlay.place saying them, so that relief render of a frame's
+// keys makes that frame.
+void keepFurnitureSteady(film::FilmRecord& record, FilmWork& work) {
+    std::vector<annotate::FrameOverlays> frames;
+    for (const auto& p : work.plans)
+        if (p.overlays) frames.push_back({&p.overlaySpec, &p.overlayFacts});
+    if (frames.empty()) return;
+    const auto places = annotate::steadyPlaces(frames, work.plans.front().width, work.plans.front().height);
+    if (places.empty()) return;
+    std::string table;  // items and places are relief's own names (kFurnitureItems, kFurniturePlaces)
+    for (const auto& [item, where] : places) table += (table.empty() ? "{ " : ", ") + item + " = \"" + where + "\"";
+    table += " }";
+    for (size_t i = 0; i < work.plans.size(); ++i) {
+        work.plans[i].overlaySpec.places = places;
+        record.frames[work.planFrame[i]].settings.overrides.emplace_back("overlay.place", table);
+    }
+}
+
 // Compiling: the frames' scenes, a terrain for each group of them, a plan a frame.
 bool planFilm(const FilmScene& film, const LoadedScene& base, film::FilmRecord& record, FilmWork& work,
               Diagnostics& diags, const ProgressFn& progress) {
@@ -432,6 +473,9 @@ bool planFilm(const FilmScene& film, const LoadedScene& base, film::FilmRecord& 
         sorted.planFrame.push_back(work.planFrame[i]);
     }
     work = std::move(sorted);
+    keepFurnitureSteady(record, work);
+    for (auto& plan : work.plans)
+        if (!writePlan(plan, diags)) return false;
     return true;
 }
 

@@ -222,6 +222,7 @@ void addRenderFacts(ordered_json& j, const RenderFacts& r) {
                                      {"pixels", o.scaleBar.pixels},
                                      {"valid", r.perspective ? "at the centre of the view" : "everywhere"}};
     j["overlay"]["north_deg_clockwise_from_up"] = o.northDeg;
+    if (o.northCentre) j["overlay"]["north_arrow_centre_px"] = tenthsOf(*o.northCentre);
     j["overlay"]["placement"] = o.placement;
     for (const auto& [name, box] : o.boxes) j["overlay"]["boxes_px"][name] = tenthsOf(box);
     j["overlay"]["on_terrain"] = o.onTerrain;

@@ -211,7 +211,29 @@ TEST(Overlay, EachItemGoesWhereTheAuthorPutsIt) {
             EXPECT_EQ(record.placement.at(name), where);
             const double u = 6.4, cx = (b.x0 + b.x1) / 2, cy = (b.y0 + b.y1) / 2;
             const auto has = [&](const char* side) { return where.find(side) != std::string::npos; };
+            if (item == "north_arrow") {
+                // Placed by the square it fills at any angle: its centre as far from each edge it keeps to.
+                const PixelPoint c = *record.northCentre;
+                const double fromX = has("left") ? c.x - 2 * u : has("right") ? 640 - 2 * u - c.x : -1;
+                const double fromY = has("top") ? c.y - 2 * u : has("bottom") ? 480 - 2 * u - c.y : -1;
+                if (fromX < 0) {
+                    EXPECT_NEAR(c.x, 320, 1e-9) << where;
+                }
+                if (fromY < 0) {
+                    EXPECT_NEAR(c.y, 240, 1e-9) << where;
+                }
+                if (fromX >= 0 && fromY >= 0) {
+                    EXPECT_NEAR(fromX, fromY, 1e-9) << where;
+                }
+                EXPECT_GT(std::max(fromX, fromY), 0) << where;
+                continue;
+            }
             const double x = has("left") ? b.x0 : has("right") ? b.x1 : cx;
+            if (item == "legend" && (where == "left" || where == "right")) {  // down that edge from the top
+                EXPECT_NEAR(x, where == "left" ? 2 * u : 640 - 2 * u, 1e-9) << where;
+                EXPECT_NEAR(b.y0, 13.4 * u, 1e-9) << where;
+                continue;
+            }
             const double y = has("top") ? b.y0 : has("bottom") ? b.y1 : cy;
             EXPECT_NEAR(x, has("left") ? 2 * u : has("right") ? 640 - 2 * u : 320, 1e-9) << item << " " << where;
             EXPECT_NEAR(y, has("top") ? 2 * u : has("bottom") ? 480 - 2 * u : 240, 1e-9) << item << " " << where;
