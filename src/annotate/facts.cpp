@@ -131,6 +131,8 @@ OverlayFacts overlayFacts(const scene::LookSpec& look, const emit::ScenePlacemen
     }
     f.exaggeration = where.exaggeration;
     f.perspective = view.perspective;
+    f.mapFurniture = !view.wide;
+    if (view.wide) return f;  // no pinhole: nothing projects onto it as below
     f.metresPerPixel = metresPerPixelAtTarget(view, where.metresPerUnit, render.width);
     f.northDeg = northOnImageDeg(view, convergenceDeg, render.width, render.height);
     // Where the terrain lies on the still (points in front of the eye only).

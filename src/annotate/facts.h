@@ -58,6 +58,9 @@ inline constexpr const char* kElevationTitle = "Elevation (m)";
 /// camera (overlayFacts, below): the numbers, not how to draw them.
 struct OverlayFacts {
     std::string credits;  ///< the scene's, or the samples' attribution
+    /// The legend, scale bar, north arrow, labels and layers' legend mean
+    /// something on the still: not on a panorama or a sphere (title and credits only).
+    bool mapFurniture = true;
     // The legend: the ramp as drawn (linear RGB), over true elevations.
     std::vector<LinearRgb> palette;
     double zMinM = 0, zMaxM = 0;

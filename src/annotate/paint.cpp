@@ -533,12 +533,13 @@ OverlayRecord paintOverlays(cairo_t* cr, int widthPx, int heightPx, const scene:
         return p == spec.places.end() || p->second != "off";
     };
     if ((!spec.title.empty() || !spec.subtitle.empty()) && wanted("title")) drawing.title();
-    if (spec.northArrow && wanted("north_arrow")) drawing.northArrow(facts);
+    const bool map = facts.mapFurniture;
+    if (map && spec.northArrow && wanted("north_arrow")) drawing.northArrow(facts);
     if (!facts.credits.empty() && wanted("credits")) drawing.credits(facts);
-    if (spec.scaleBar && wanted("scale_bar")) drawing.scaleBar(facts);
-    if (spec.legend && facts.palette.size() >= 2 && wanted("legend")) drawing.legend(facts);
-    if (!facts.layerLegend.empty() && wanted("layer_legend")) drawing.layerLegend(facts);
-    if (!facts.labels.empty()) drawing.labels(facts);
+    if (map && spec.scaleBar && wanted("scale_bar")) drawing.scaleBar(facts);
+    if (map && spec.legend && facts.palette.size() >= 2 && wanted("legend")) drawing.legend(facts);
+    if (map && !facts.layerLegend.empty() && wanted("layer_legend")) drawing.layerLegend(facts);
+    if (map && !facts.labels.empty()) drawing.labels(facts);
     return drawing.record;
 }
 

@@ -135,8 +135,13 @@ std::pair<SceneVec3, SceneVec3> placeAtPoints(const ScenePlacement& where, const
 
 }  // namespace
 
-CameraView placeCamera(const ScenePlacement& where, const scene::CameraSpec& camera, const CameraPoints& points,
+CameraView placeCamera(const ScenePlacement& where, const scene::CameraSpec& given, const CameraPoints& points,
                        const scene::RenderSpec& render) {
+    // A panorama or a sphere is placed as the default perspective camera would be: its eye there.
+    using scene::Projection;
+    const bool wide = given.projection == Projection::Panoramic || given.projection == Projection::Spherical;
+    scene::CameraSpec camera = given;
+    if (wide) camera.fovDeg = scene::CameraSpec{}.fovDeg, camera.projection = Projection::Perspective;
     const SceneVec3 lo = where.boundsMin, hi = where.boundsMax;
     const SceneVec3 target{0.5 * (lo.x + hi.x), 0.5 * (lo.y + hi.y), 0.5 * (lo.z + hi.z)};
     const double radius = 0.5 * length(hi - lo);
@@ -161,6 +166,18 @@ CameraView placeCamera(const ScenePlacement& where, const scene::CameraSpec& cam
     view.aspect = aspect;
     view.tanHalfFov = axes.tanH;
     view.perspective = camera.projection == scene::Projection::Perspective;
+    view.wide = wide;
+    if (wide) {
+        view.tanHalfFov = (given.projection == Projection::Spherical ? 360 : given.fovDeg) * kDeg / 2;
+        // Looking level, towards the target: the cylinder's axis and the sphere's poles vertical,
+        // the horizon straight across the still's middle. Straight down: towards north.
+        SceneVec3 level{view.target.x - view.eye.x, 0, view.target.z - view.eye.z};
+        if (length(level) < 1e-9 * std::max(1.0, length(view.target - view.eye))) level = {0, 0, 1};
+        view.target = view.eye + (std::max(length(view.target - view.eye), 1e-9) / length(level)) * level;
+        const SceneVec3 side{level.z, 0, -level.x};
+        view.right = (1.0 / length(side)) * side;
+        view.up = {0, 1, 0};
+    }
     return view;
 }
 

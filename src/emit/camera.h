@@ -27,8 +27,12 @@ struct CameraView {
     double radius = 0;      ///< of the bounding box
     double aspect = 1;      ///< width / height
     double tanHalfFov = 0;  ///< horizontal
-    bool perspective = true;
+    bool perspective = true;  ///< from one point (a pinhole, a panorama, a sphere), not parallel
     double orthoHeight = 0; ///< orthographic: the view's height
+    /// Panoramic or spherical: the image is no pinhole's (projectToImage does
+    /// not apply), and tanHalfFov is half the angle across it, in radians, so
+    /// that 2 d tanHalfFov / width is still a pixel's footprint at distance d.
+    bool wide = false;
 };
 /// A camera placed by geography ([camera] position and look_at), in the
 /// frame's metres: the eye, and the point it looks at (unset: the terrain's

@@ -212,7 +212,20 @@ Bindings sceneBindings(const ScenePlacement& where, const CameraView& view, cons
     const SceneVec3 sight = target - view.eye;
     const std::string sky =
         std::hypot(sight.x, sight.z) < 1e-3 * length(sight) ? " sky " + vec(view.up) : std::string();
-    if (view.perspective) {
+    if (view.wide && camera.projection == scene::Projection::Spherical) {
+        b["camera_projection"].text = std::string("spherical");
+        b["camera_right"].text = fmt::format("x*{}", fixedNumber(view.aspect));
+        b["camera_up"].text = "y" + sky;
+        b["camera_angle"].text = "angle 360 180";
+    } else if (view.wide) {
+        // A vertical cylinder of radius 1 about the eye: `up` its height across the still, as wide
+        // in radians a pixel as the angle across it, so that pixels are square at the horizon.
+        const double acrossRad = camera.fovDeg * std::numbers::pi / 180;
+        b["camera_projection"].text = std::string("cylinder 1");
+        b["camera_right"].text = fmt::format("x*{}", fixedNumber(acrossRad));
+        b["camera_up"].text = fmt::format("y*{}", fixedNumber(acrossRad / view.aspect)) + sky;
+        b["camera_angle"].text = fmt::format("angle {}", fixedNumber(camera.fovDeg));
+    } else if (view.perspective) {
         b["camera_projection"].text = std::string("perspective");
         b["camera_right"].text = fmt::format("x*{}", fixedNumber(view.aspect));
         b["camera_up"].text = "y" + sky;

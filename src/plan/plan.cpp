@@ -110,6 +110,7 @@ ordered_json overlayJson(const RenderPlan& p) {
                                     {"metres", s.scaleBarUnit->metres}};
     ordered_json facts = {
         {"credits", f.credits},
+        {"map_furniture", f.mapFurniture},
         {"palette", coloursJson(f.palette)},
         {"z_min_m", f.zMinM},
         {"z_max_m", f.zMaxM},
@@ -160,6 +161,7 @@ void readOverlay(const ordered_json& j, RenderPlan& p) {
     const auto& f = j.at("facts");
     annotate::OverlayFacts& o = p.overlayFacts;
     o.credits = f.at("credits").get<std::string>();
+    o.mapFurniture = f.at("map_furniture").get<bool>();
     o.palette = coloursOf(f.at("palette"));
     o.zMinM = f.at("z_min_m").get<double>();
     o.zMaxM = f.at("z_max_m").get<double>();

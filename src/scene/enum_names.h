@@ -38,7 +38,9 @@ struct EnumNames<Gridding> {
 template <>
 struct EnumNames<Projection> {
     static constexpr NameRow<Projection> rows[] = {{Projection::Perspective, "perspective"},
-                                                   {Projection::Orthographic, "orthographic"}};
+                                                   {Projection::Orthographic, "orthographic"},
+                                                   {Projection::Panoramic, "panoramic"},
+                                                   {Projection::Spherical, "spherical"}};
 };
 template <>
 struct EnumNames<Resample> {

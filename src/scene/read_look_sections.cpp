@@ -172,13 +172,31 @@ void readLighting(Section& s, const SceneFile&, SceneSpec& scene) {
             s.warning(angle, fmt::format("lighting.{} is not used: lighting.datetime places the sun", angle));
 }
 
+namespace {
+
+// camera.fov_deg as the projection takes it: a perspective's up to 170
+// degrees, a panorama's up to 360 (180 unless given), none for a sphere.
+void readFieldOfView(Section& s, std::optional<double> fov, CameraSpec& camera) {
+    if (camera.projection == Projection::Panoramic) camera.fovDeg = fov.value_or(180);
+    else if (fov) camera.fovDeg = *fov;
+    if (camera.projection == Projection::Perspective && camera.fovDeg > 170)
+        s.error("fov_deg", fmt::format("camera.fov_deg = {} is wider than a perspective camera takes (170): for a "
+                                       "wider view use camera.projection = \"panoramic\"",
+                                       formatShortest(camera.fovDeg)));
+    if (camera.projection == Projection::Spherical && fov)
+        s.warning("fov_deg", "camera.fov_deg is not used: a spherical camera sees the whole sphere (360 x 180 degrees)");
+}
+
+}  // namespace
+
 void readCamera(Section& s, const SceneFile&, SceneSpec& scene) {
     CameraSpec& camera = scene.look.camera;
     if (auto v = s.number("azimuth_deg", 0, 360, "degrees (compass bearing)", false, true)) camera.azimuthDeg = *v;
     if (auto v = s.number("elevation_deg", 0, 90, "degrees", true)) camera.elevationDeg = *v;
     if (auto v = s.number("distance_m", 0, 1e8, "m", true)) camera.distanceM = *v;
-    if (auto v = s.number("fov_deg", 1, 170, "degrees")) camera.fovDeg = *v;
+    const auto fov = s.number("fov_deg", 1, 360, "degrees");
     if (auto p = s.named<Projection>("projection")) camera.projection = *p;
+    readFieldOfView(s, fov, camera);
     camera.position = s.lonLatHeight("position");
     camera.lookAt = s.lonLatHeight("look_at");
     if (camera.lookAt && !camera.position)

@@ -59,7 +59,11 @@ struct KeyLocations {
 /// centre, or a raster DEM's own projected CRS in metres (no reprojection).
 enum class FrameKind { Utm, Local, Raster };
 enum class Gridding { Linear, InverseDistance, Nearest, Fit };
-enum class Projection { Perspective, Orthographic };
+/// A camera's projection. Panoramic: a vertical cylinder about the eye
+/// (POV-Ray's cylinder 1), fov_deg of it across the still, the horizon level
+/// and its pixels square there. Spherical: the whole sphere about the eye as
+/// an equirectangular image (POV-Ray's spherical, 360 x 180 degrees).
+enum class Projection { Perspective, Orthographic, Panoramic, Spherical };
 
 /// A colour of a ramp at an elevation.
 struct ColorStop {
@@ -197,7 +201,7 @@ struct CameraSpec {
     double azimuthDeg = 200;    ///< compass bearing of the camera from the terrain centre
     double elevationDeg = 35;   ///< above the horizontal
     double distanceM = 0;       ///< 0: fit the terrain in view
-    double fovDeg = 40;
+    double fovDeg = 40;         ///< across the still: perspective up to 170, panoramic up to 360 (default 180)
     Projection projection = Projection::Perspective;
     /// Placed by geography instead: [lon, lat, height above sea level in m]
     /// for the eye and (optional; else the terrain's centre) the point looked at.

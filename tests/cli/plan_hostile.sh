@@ -20,36 +20,42 @@ enter_fresh_work
 scene="$src/tests/golden/small/scene.toml"   # 160 x 120: tiles of 40 rows
 mkdir -p outside
 
-# forge PLAN: the hashes made right again for what the folder now holds, as relief makes them.
-forge() {
-  python3 - "$1" <<'PY'
-import hashlib, json, os, sys
-d = sys.argv[1]
-j = json.load(open(os.path.join(d, "plan.json"), encoding="utf-8"))
+# plan.py: plan.json read and written with its numbers as relief wrote them (Python's shortest
+# float text is not always nlohmann's, and a number written otherwise would change the fields' hash
+# and make the forge, not the attack, what relief refuses).
+cat > plan.py <<'PY'
+import hashlib, json, os, re
+MARK = "@@relief-number@@"
+def load(path):
+    return json.load(open(path, encoding="utf-8"), parse_float=lambda text: MARK + text)
+def text(j, **kw):
+    return re.sub('"' + MARK + '([^"]*)"', r"\1", json.dumps(j, ensure_ascii=False, **kw))
 def sha(p):
     return "sha256:" + hashlib.sha256(open(p, "rb").read()).hexdigest() if os.path.isfile(p) else ""
-j["pov"]["sha256"] = sha(os.path.join(d, j["pov"]["name"]))
-for key in ("reads", "extras"):
-    for f in j[key]:
-        f["sha256"] = sha(os.path.join(d, f["name"]))
-for f in j["templates"]:
-    f["sha256"] = sha(os.path.join(d, "templates", f["name"]))
-del j["hash"]
-text = json.dumps(j, separators=(",", ":"), ensure_ascii=False)
-j["hash"] = "sha256:" + hashlib.sha256(text.encode("utf-8")).hexdigest()
-json.dump(j, open(os.path.join(d, "plan.json"), "w", encoding="utf-8"), indent=1, ensure_ascii=False)
+def forge(d, change=None):
+    p = os.path.join(d, "plan.json")
+    j = load(p)
+    if change:
+        change(j)
+    j["pov"]["sha256"] = sha(os.path.join(d, j["pov"]["name"]))
+    for key in ("reads", "extras"):
+        for f in j[key]:
+            f["sha256"] = sha(os.path.join(d, f["name"]))
+    for f in j["templates"]:
+        f["sha256"] = sha(os.path.join(d, "templates", f["name"]))
+    del j["hash"]
+    j["hash"] = "sha256:" + hashlib.sha256(text(j, separators=(",", ":")).encode("utf-8")).hexdigest()
+    open(p, "w", encoding="utf-8").write(text(j, indent=1))
 PY
-}
+# forge PLAN: the hashes made right again for what the folder now holds, as relief makes them.
+forge() { PYTHONPATH=$work python3 -c 'import plan, sys; plan.forge(sys.argv[1])' "$1"; }
 # edit PLAN PYTHON: plan.json's JSON as j, changed by PYTHON, then forged.
 edit() {
-  python3 - "$1" "$2" <<'PY'
-import json, os, sys
-p = os.path.join(sys.argv[1], "plan.json")
-j = json.load(open(p, encoding="utf-8"))
-exec(sys.argv[2])
-json.dump(j, open(p, "w", encoding="utf-8"), indent=1, ensure_ascii=False)
-PY
-  forge "$1"
+  PYTHONPATH=$work python3 -c '
+import plan, sys
+def change(j):
+    exec(sys.argv[2])
+plan.forge(sys.argv[1], change)' "$1" "$2"
 }
 # refused NAME EXPECTED_CODE PATTERN command...: the command exits so, saying PATTERN.
 refused() {

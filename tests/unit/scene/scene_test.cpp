@@ -232,6 +232,32 @@ TEST(ReadScene, TheAuthorPlacesTheFurniture) {
     std::filesystem::remove_all(dir);
 }
 
+// A panorama is 180 degrees wide unless fov_deg says otherwise (up to 360);
+// a perspective camera stops at 170; a sphere takes no fov_deg (a warning).
+TEST(ReadScene, WideCamerasTakeTheirFieldsOfView) {
+    const auto dir = relief::testing::freshTestDir("relief-scene-wide-cameras");
+    std::ofstream(dir / "s.csv") << "lon,lat,elev\n";
+    std::ofstream(dir / "s.toml") << "[samples]\npath = \"s.csv\"\n";
+    const auto read = [&](const SceneOverrides& sets, Diagnostics& d) { return readScene(dir / "s.toml", d, sets); };
+    Diagnostics d;
+    auto s = read({{"camera.projection", "\"panoramic\""}}, d);
+    ASSERT_TRUE(s);
+    EXPECT_EQ(s->look.camera.projection, Projection::Panoramic);
+    EXPECT_EQ(s->look.camera.fovDeg, 180);
+    s = read({{"camera.projection", "\"panoramic\""}, {"camera.fov_deg", "360"}}, d);
+    ASSERT_TRUE(s);
+    EXPECT_EQ(s->look.camera.fovDeg, 360);
+    EXPECT_FALSE(d.hasErrors());
+    s = read({{"camera.projection", "\"spherical\""}, {"camera.fov_deg", "90"}}, d);
+    ASSERT_TRUE(s);
+    EXPECT_EQ(s->look.camera.projection, Projection::Spherical);
+    EXPECT_EQ(d.warningCount(), 1);
+    Diagnostics bad;
+    read({{"camera.fov_deg", "171"}}, bad);
+    EXPECT_EQ(bad.errorCount(), 1);
+    std::filesystem::remove_all(dir);
+}
+
 TEST(ColorRamp, HexAndInterpolation) {
     LinearRgb c;
     ASSERT_TRUE(parseHexColor("#ff0000", c));
