@@ -178,6 +178,10 @@ std::optional<DepthCost> costAt(const LoadedScene& loaded, const geo::ControlNet
 
 namespace {
 
+// The least height above the ground an eye's footprint is taken at (an eye on
+// or under the surface would otherwise see a pixel nanometres wide).
+constexpr double kLowestEyeM = 1.7;
+
 // The depth whose refined spacing is nearest one pixel of the still where the
 // terrain is nearest the camera (within a factor sqrt(arity) of it): no more
 // detail than the picture can show, and none less.
@@ -189,6 +193,13 @@ int depthForStill(const LoadedScene& loaded, const geo::ControlNet& net, double&
     const emit::CameraView camera =
         emit::placeCamera(where, spec.look.camera, points.value_or(emit::CameraPoints{}), spec.render);
     pixelM = emit::finestMetresPerPixel(camera, where, spec.render.width);
+    // An eye among the terrain's heights is inside its bounding box, whose nearest point is then
+    // the eye itself: the footprint of a pixel at its height above the ground under it instead.
+    if (points && points->eyeM)
+        if (const auto ground = net.sample(points->eyeM->x, points->eyeM->y)) {
+            const double aboveM = std::max(points->eyeM->z - *ground, kLowestEyeM);
+            pixelM = std::max(pixelM, 2 * aboveM * camera.tanHalfFov / spec.render.width);
+        }
     const double arity = loaded.resolved.scheme.arity, spacing = std::max(net.dx, net.dy);
     int depth = 0;
     while (depth < scene::kMaxDepth && spacing / std::pow(arity, depth) > pixelM * std::sqrt(arity)) ++depth;
@@ -223,24 +234,46 @@ bool chooseAutoDepth(const LoadedScene& loaded, const geo::ControlNet& net, int 
     return true;
 }
 
+// The refined nodes a still's pixels are worth: a pixel shows at most about
+// this many. Where the nearest terrain asks for more (a camera at a place, a
+// low view: the footprint there is far finer than over the rest), refining
+// the whole terrain to it would cost the nodes the far ground shows as one
+// pixel: the depth stops at this, the foreground as fine as it allows.
+constexpr double kNodesPerPixel = 4;
+
 // No depth in the scene: the still's (depthForStill), or the deepest below it
-// that [limits] allow; a default never refuses a scene that fits at depth 0.
+// that the pixels are worth and [limits] allow; a default never refuses a
+// scene that fits at depth 0.
 void chooseStillDepth(const LoadedScene& loaded, const geo::ControlNet& net, SurfaceDepth& s) {
     double pixelM = 0;
     const int wanted = depthForStill(loaded, net, pixelM);
+    const double pixels = double(loaded.scene.render.width) * loaded.scene.render.height;
+    const auto nodesAt = [&](int d) {
+        const auto e = subdiv::estimateOutput(loaded.resolved.scheme, net.rows(), net.cols(), d);
+        return double(e.rows) * double(e.cols);
+    };
     int depth = wanted;
+    while (depth > 0 && nodesAt(depth) > kNodesPerPixel * pixels) --depth;
+    const int worth = depth;
     for (; depth > 0; --depth) {
         Diagnostics quiet;
         const auto cost = costAt(loaded, net, depth, quiet);
         if (cost && subdiv::withinBudget(cost->estimate, loaded.budget)) break;
     }
     s.depth = depth;
-    const double refinedM = std::max(net.dx, net.dy) / std::pow(loaded.resolved.scheme.arity, depth);
-    s.reason = fmt::format(
-        "chosen for the still: the net's {:.3g} m refined to {:.3g} m, about the {:.3g} m "
-        "one pixel of the {} px wide still covers where the terrain is nearest the camera",
-        std::max(net.dx, net.dy), refinedM, pixelM, loaded.scene.render.width);
-    if (depth < wanted) s.reason += fmt::format(" (depth {} would be over [limits])", wanted);
+    const double netM = std::max(net.dx, net.dy), refinedM = netM / std::pow(loaded.resolved.scheme.arity, depth);
+    const int width = loaded.scene.render.width;
+    if (worth == wanted)
+        s.reason = fmt::format("chosen for the still: the net's {:.3g} m refined to {:.3g} m, about the {:.3g} m one "
+                               "pixel of the {} px wide still covers where the terrain is nearest the camera",
+                               netM, refinedM, pixelM, width);
+    else
+        s.reason = fmt::format("chosen for the still: the net's {:.3g} m refined to {:.3g} m; the {:.3g} m one pixel "
+                               "of the {} px wide still covers where the terrain is nearest the camera would take "
+                               "depth {}, {:.3g} nodes, more than the still's {:.3g} pixels are worth ({} a pixel)",
+                               netM, refinedM, pixelM, width, wanted, nodesAt(wanted), pixels,
+                               formatShortest(kNodesPerPixel));
+    if (depth < worth) s.reason += fmt::format(" (depth {} would be over [limits])", worth);
 }
 
 }  // namespace
