@@ -305,9 +305,13 @@ namespace {
 
 // About one pixel of a still `widthPx` wide that shows the extent across it,
 // rounded up to two significant digits (a spacing worth writing down); 0 without a still.
-double stillSpacingM(double width, double height, int widthPx) {
-    if (widthPx <= 0) return 0;
-    const double pixel = std::max(width, height) / widthPx;
+// About one pixel of the still on the ground, rounded up to two figures: the
+// extent's longer side over the still's width, or where the eye comes nearest.
+double stillSpacingM(double width, double height, const NetBudget& budget) {
+    if (budget.stillWidthPx <= 0) return 0;
+    const double pixel = budget.nearestPixelM ? budget.nearestPixelM(std::max(width, height))
+                                              : std::max(width, height) / budget.stillWidthPx;
+    if (!(pixel > 0)) return 0;
     const double unit = std::pow(10.0, std::floor(std::log10(pixel)) - 1);
     return std::ceil(pixel / unit - 1e-9) * unit;
 }
@@ -335,7 +339,7 @@ bool layoutNet(const scene::NetSpec& spec, FrameBox dataBox, double defaultSpaci
     double spacing = spec.spacingM > 0 ? spec.spacingM : countsGiven ? 0 : defaultSpacingM;
     // Data with a spacing of their own (a raster, a lattice) finer than the still shows: a coarser net.
     // (At least twice as fine: a net a few per cent coarser than the cells would lose them for nothing.)
-    if (const double still = stillSpacingM(width, height, budget.stillWidthPx);
+    if (const double still = stillSpacingM(width, height, budget);
         spacing > 0 && spec.spacingM <= 0 && still >= 2 * spacing)
         spacing = still;
     if (spacing > 0) {
@@ -385,14 +389,14 @@ bool layoutNet(const scene::NetSpec& spec, FrameBox dataBox, double defaultSpaci
     return !budget.fits || budget.fits(rows, cols, diags);
 }
 
-std::string netSpacingReason(const scene::NetSpec& spec, const GeoGrid& net, double dataSpacingM, int stillWidthPx) {
+std::string netSpacingReason(const scene::NetSpec& spec, const GeoGrid& net, double dataSpacingM, const NetBudget& budget) {
     if (spec.spacingM > 0) return "net.spacing_m";
     if (spec.locs.has("net.rows") || spec.locs.has("net.cols")) return "net.rows and net.cols";
     if (dataSpacingM > 0 && net.dx > dataSpacingM * (1 + 1e-9))
-        return fmt::format(
-            "about one pixel of the {} px wide still, coarser than the data's {:.3g} m, which it cannot "
-            "show",
-            stillWidthPx, dataSpacingM);
+        return fmt::format("about one pixel of the {} px wide still{}, coarser than the data's {:.3g} m, which it "
+                           "cannot show",
+                           budget.stillWidthPx, budget.nearestPixelM ? " where the eye comes nearest the ground" : "",
+                           dataSpacingM);
     return "the data's own spacing";
 }
 

@@ -98,6 +98,11 @@ struct NetBudget {
     /// laid at about one pixel, the extent's longer side over this (0: the
     /// data's own spacing).
     int stillWidthPx = 0;
+    /// Where the eye comes nearest the ground (a flyover's path): a pixel's
+    /// footprint there, given the extent's longer side in metres; the net is
+    /// laid at about that instead (never coarser than the data there). Empty:
+    /// the still's width over the extent.
+    std::function<double(double extentM)> nearestPixelM;
     /// Whether the work on a net of rows x cols fits (the refinement and the
     /// geometry [limits] allow), asked once it is laid out and before any
     /// height is read or gridded; false after an error. Empty: it fits.
@@ -107,7 +112,7 @@ struct NetBudget {
 /// Why a net has the spacing it has, for the header, `relief info` and
 /// `relief init`: "net.spacing_m", "the data's own spacing", or about one
 /// pixel of the still.
-std::string netSpacingReason(const scene::NetSpec& spec, const GeoGrid& net, double dataSpacingM, int stillWidthPx);
+std::string netSpacingReason(const scene::NetSpec& spec, const GeoGrid& net, double dataSpacingM, const NetBudget& budget);
 
 /// Lays a net (origin, spacing, rows and cols; no heights) over net.extent_m,
 /// else the box inside net.extent_lonlat, else `dataBox` (in net.frame,

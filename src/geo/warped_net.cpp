@@ -84,7 +84,7 @@ std::optional<ControlNet> laidOutNet(GDALDatasetH src, const RasterPlace& place,
     net.sampleCount = static_cast<size_t>(place.width) * place.height;
     net.attribution = rasterCredit(src);
     if (!layoutNet(netSpec, extent.box, extent.cellM, net, diags, budget)) return std::nullopt;
-    net.spacingReason = netSpacingReason(netSpec, net, extent.cellM, budget.stillWidthPx);
+    net.spacingReason = netSpacingReason(netSpec, net, extent.cellM, budget);
     net.resample = resampleFor(samples, netSpec, net, extent.cellM);
     if (noDataTellsAll(heightBand(src, samples.band)))
         onBlocksWhenAveraged(net, place, extent, samples, netSpec, budget);

@@ -106,7 +106,9 @@ ordered_json sceneInfo(const LoadedScene& loaded, const Surface& s, Diagnostics&
     j["scene"] = spec.madeForData.empty() ? spec.sceneFile.string() : "made for the data (relief init writes it)";
     j["data"] = dataFacts(spec, s.net);
     j["net"] = netFacts(s.net);
-    netAgainstStill(s.net, spec.render, spec.net.locs.at("net.spacing_m"), j["net"], diags);
+    // A view of the whole terrain: an eye at a place or flying low sees the net's nodes near it.
+    if (!spec.look.camera.position && spec.animation.path != scene::CameraPath::Flyover)
+        netAgainstStill(s.net, spec.render, spec.net.locs.at("net.spacing_m"), j["net"], diags);
     j["subdivision"] = {{"scheme", loaded.resolved.family},
                         {"certified", subdiv::certifiedClass(loaded.resolved.report)},
                         {"depth", s.depth},

@@ -3,6 +3,7 @@
 #include "pipeline/surface.h"
 
 #include <cmath>
+#include <numbers>
 
 #include <fmt/format.h>
 
@@ -61,6 +62,18 @@ geo::NetLimits netLimitsOf(const LoadedScene& loaded) {
     geo::NetLimits l{netBudgetOf(loaded), loaded.budget.maxMemoryMB, std::nullopt};
     if (spec.limits.locs.has("limits.max_memory_mb")) l.memoryKey = spec.limits.locs.at("limits.max_memory_mb");
     l.nodes.stillWidthPx = spec.render.width;
+    // A flyover's eye comes down to its height above the ground (a twentieth of the terrain's
+    // diagonal unless the scene says): the net from a pixel's footprint there, not from the
+    // whole terrain across the still, which would average away what it flies over.
+    if (spec.animation.path == scene::CameraPath::Flyover) {
+        const auto heightM = spec.animation.flyover.heightAboveTerrainM;
+        const double tanHalf = std::tan(spec.look.camera.fovDeg * std::numbers::pi / 360);
+        const int width = spec.render.width;
+        l.nodes.nearestPixelM = [heightM, tanHalf, width](double extentM) {
+            const double eyeM = heightM ? *heightM : extentM * std::numbers::sqrt2 / 20;
+            return 2 * eyeM * tanHalf / width;
+        };
+    }
     l.nodes.fits = [&loaded](int rows, int cols, Diagnostics& diags) {
         const scene::SceneSpec& spec = loaded.scene;
         const int depth = spec.subdivision.depthGiven ? spec.subdivision.depth : 0;

@@ -34,4 +34,18 @@ if not (nodes <= max(4 * pixels, own) and (nodes == own or nodes <= 4 * pixels))
 print(f'{sys.argv[1]}: depth {sub["depth"]}, {nodes} nodes ({nodes / pixels:.2f} a pixel)')
 PY
 done
+# A flyover's net from a pixel's footprint where its eye comes down to (a twentieth of the diagonal
+# above the ground): Maungawhau's 2 m LiDAR at the data's own spacing, where a still of the whole
+# terrain 160 px wide averages it to 8 m (flyovers once flew over the still's net, hills as blobs).
+cp "$src/scenes/data/rasters/volcano2hires.tif" lidar.tif
+printf '[samples]\npath = "lidar.tif"\nvertical_unit = "m"\n[render]\nwidth = 160\nheight = 100\n' > still.toml
+{ cat still.toml; printf '[animation]\nframes = 4\npath = "flyover"\nwaypoints = [[174.7615, -36.8800], [174.7650, -36.8760]]\n'; } > fly.toml
+for scene in still fly; do "$relief" info --json "$scene.toml" > "$scene.json" 2> "$scene.txt" || { fail "relief info $scene"; cat "$scene.txt"; }; done
+python3 - <<'PY' || fail "the flyover's net"
+import json
+still, fly = (json.load(open(f'{n}.json'))['net'] for n in ('still', 'fly'))
+assert still['spacing_m'] > 3 * fly['spacing_m'], (still['spacing_m'], fly['spacing_m'])
+assert fly['spacing_reason'] == "the data's own spacing", fly['spacing_reason']
+print(f"the still's net {still['spacing_m']:.3g} m, the flyover's {fly['spacing_m']:.3g} m (the data's)")
+PY
 exit $status

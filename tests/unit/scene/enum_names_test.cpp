@@ -31,7 +31,7 @@ void expectOneNameEach(E last) {
 TEST(EnumNames, EveryValueHasOneName) {
     expectOneNameEach(FrameKind::Raster);
     expectOneNameEach(Gridding::Fit);
-    expectOneNameEach(Projection::Orthographic);
+    expectOneNameEach(Projection::Spherical);
     expectOneNameEach(Resample::Nearest);
     expectOneNameEach(NodataPolicy::Error);
     expectOneNameEach(TextureSpec::Colouring::Image);
