@@ -77,7 +77,8 @@ struct FrameOverlays {
 
 /// The places a film's furniture keeps in every frame, as overlay.place
 /// holds them: the scene's own, and for each other item the place the
-/// automatic choice gives it in most frames (the earliest on a tie). Each
+/// automatic choice gives it in most frames (the first frame's unless another
+/// is chosen in more), kept only if it holds the item in every frame. Each
 /// frame is laid out, not drawn. With every item at a named place, nothing
 /// moves from frame to frame (the north arrow's centre included: a named
 /// place holds it at every angle).

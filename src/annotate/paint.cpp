@@ -565,6 +565,15 @@ std::map<std::string, std::string> steadyPlaces(const std::vector<FrameOverlays>
             if (n > byPlace.at(best)) best = where;
         places[item] = best;
     }
+    // A named place may not hold an item in every frame (the north arrow holds the square it turns
+    // in there, larger than its box in any one frame): such an item stays automatic.
+    for (const FrameOverlays& f : frames) {
+        scene::OverlaySpec named = *f.spec;
+        named.places = places;
+        const Owned<cairo_t> cr(cairo_create(nowhere.get()));
+        for (const auto& l : paintOverlays(cr.get(), widthPx, heightPx, named, *f.facts, {}).leftOut)
+            if (!f.spec->places.count(l.item)) places.erase(l.item);
+    }
     return places;
 }
 

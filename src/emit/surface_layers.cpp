@@ -163,7 +163,8 @@ SurfaceLayers placeLayers(const std::vector<scene::LayerSpec>& specs, const std:
 double unitsPerPixelAt(const CameraView& view, const SceneVec3& p, int widthPx) {
     if (!view.perspective) return view.orthoHeight * view.aspect / widthPx;
     const SceneVec3 forward = view.target - view.eye;
-    const double depth = dot(p - view.eye, forward) / length(forward);
+    // A panorama or a sphere sees every way: the distance itself, not the depth along the axis.
+    const double depth = view.wide ? length(p - view.eye) : dot(p - view.eye, forward) / length(forward);
     return 2 * std::max(depth, 1e-9) * view.tanHalfFov / widthPx;
 }
 

@@ -100,8 +100,8 @@ struct NetBudget {
     int stillWidthPx = 0;
     /// Where the eye comes nearest the ground (a flyover's path): a pixel's
     /// footprint there, given the extent's longer side in metres; the net is
-    /// laid at about that instead (never coarser than the data there). Empty:
-    /// the still's width over the extent.
+    /// laid at about that instead (at the data's own spacing while that is
+    /// less than twice as fine). Empty: the still's width over the extent.
     std::function<double(double extentM)> nearestPixelM;
     /// Whether the work on a net of rows x cols fits (the refinement and the
     /// geometry [limits] allow), asked once it is laid out and before any

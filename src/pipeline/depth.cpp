@@ -195,7 +195,7 @@ int depthForStill(const LoadedScene& loaded, const geo::ControlNet& net, double&
     pixelM = emit::finestMetresPerPixel(camera, where, spec.render.width);
     // An eye among the terrain's heights is inside its bounding box, whose nearest point is then
     // the eye itself: the footprint of a pixel at its height above the ground under it instead.
-    if (points && points->eyeM)
+    if (points && points->eyeM && camera.perspective)
         if (const auto ground = net.sample(points->eyeM->x, points->eyeM->y)) {
             const double aboveM = std::max(points->eyeM->z - *ground, kLowestEyeM);
             pixelM = std::max(pixelM, 2 * aboveM * camera.tanHalfFov / spec.render.width);

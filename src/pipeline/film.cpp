@@ -81,11 +81,16 @@ std::optional<std::vector<LoadedScene>> loadFrames(const FilmScene& film, const 
 // relief render of a frame's keys makes that frame.
 std::optional<std::string> steadyOrbitDistance(const scene::SceneSpec& spec, const emit::ScenePlacement& where) {
     const scene::CameraSpec& camera = spec.look.camera;
-    if (spec.animation.path != scene::CameraPath::Orbit || camera.distanceM > 0 || camera.position) return std::nullopt;
+    // An orthographic orbit keeps its own fit (its height, not a distance, frames it).
+    if (spec.animation.path != scene::CameraPath::Orbit || camera.distanceM > 0 || camera.position ||
+        camera.projection == scene::Projection::Orthographic)
+        return std::nullopt;
     for (const auto& v : spec.animation.vary)
         if (v.key == "camera.distance_m") return std::nullopt;
     const double radiusM = 0.5 * length(where.boundsMax - where.boundsMin) * where.metresPerUnit;
-    const double tanH = std::tan(camera.fovDeg * std::numbers::pi / 360);
+    // A panorama or a sphere stands where the default perspective camera would (emit::placeCamera).
+    const bool pinhole = camera.projection == scene::Projection::Perspective;
+    const double tanH = std::tan((pinhole ? camera.fovDeg : scene::CameraSpec{}.fovDeg) * std::numbers::pi / 360);
     const double tanNarrow = std::min(tanH, tanH * spec.render.height / spec.render.width);
     const double distanceM = 1.02 * radiusM / std::sin(std::atan(tanNarrow));  // 2 % margin
     return formatShortest(std::ceil(distanceM * 100) / 100);

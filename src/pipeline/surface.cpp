@@ -67,11 +67,17 @@ geo::NetLimits netLimitsOf(const LoadedScene& loaded) {
     // whole terrain across the still, which would average away what it flies over.
     if (spec.animation.path == scene::CameraPath::Flyover) {
         const auto heightM = spec.animation.flyover.heightAboveTerrainM;
-        const double tanHalf = std::tan(spec.look.camera.fovDeg * std::numbers::pi / 360);
-        const int width = spec.render.width;
-        l.nodes.nearestPixelM = [heightM, tanHalf, width](double extentM) {
-            const double eyeM = heightM ? *heightM : extentM * std::numbers::sqrt2 / 20;
-            return 2 * eyeM * tanHalf / width;
+        // The angle a pixel spans at the middle of the still: a pinhole's, a panorama's, a sphere's.
+        using scene::Projection;
+        const scene::CameraSpec& camera = spec.look.camera;
+        const double across = camera.projection == Projection::Spherical ? 2 * std::numbers::pi
+                              : camera.projection == Projection::Panoramic
+                                  ? camera.fovDeg * std::numbers::pi / 180
+                                  : 2 * std::tan(camera.fovDeg * std::numbers::pi / 360);
+        const double perPixel = across / spec.render.width;
+        l.nodes.nearestPixelM = [heightM, perPixel](double extentM) {
+            const double eyeM = heightM ? *heightM : extentM * std::numbers::sqrt2 / 20;  // the diagonal's 20th
+            return eyeM * perPixel;
         };
     }
     l.nodes.fits = [&loaded](int rows, int cols, Diagnostics& diags) {

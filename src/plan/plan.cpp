@@ -26,7 +26,7 @@ using nlohmann::ordered_json;
 
 namespace {
 
-constexpr int kPlanFormat = 7;  // 7: the overlay spec holds the furniture's places, units and text scale
+constexpr int kPlanFormat = 8;  // 8: the overlay facts say whether map furniture is true on the still
 constexpr std::uintmax_t kMaxPlanBytes = 64'000'000;
 // A template folder holds a template and its #include files: a few kB.
 constexpr size_t kMaxTemplateFiles = 64;

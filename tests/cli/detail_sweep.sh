@@ -31,7 +31,13 @@ pixels = still['width'] * still['height']
 own = net['rows'] * net['cols']
 if not (nodes <= max(4 * pixels, own) and (nodes == own or nodes <= 4 * pixels)):
     sys.exit(f'{sys.argv[1]}: depth {sub["depth"]}: {nodes} nodes for {pixels} pixels ({sub["depth_reason"]})')
-print(f'{sys.argv[1]}: depth {sub["depth"]}, {nodes} nodes ({nodes / pixels:.2f} a pixel)')
+# The footprint the depth was chosen for: never nanometres (an eye among the terrain's heights once
+# measured it at the bounding box's nearest point, the eye itself).
+import re
+footprint = float(re.search(r'the ([0-9.e+-]+) m one pixel', sub['depth_reason']).group(1))
+if footprint < 1e-3:
+    sys.exit(f'{sys.argv[1]}: a pixel taken as {footprint} m on the ground ({sub["depth_reason"]})')
+print(f'{sys.argv[1]}: depth {sub["depth"]}, {nodes} nodes ({nodes / pixels:.2f} a pixel), a pixel {footprint:.3g} m')
 PY
 done
 # A flyover's net from a pixel's footprint where its eye comes down to (a twentieth of the diagonal

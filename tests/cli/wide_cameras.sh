@@ -58,6 +58,14 @@ ground = sum(not (b > r + 20) for r, g, b in row(119)) / 240  # the bottom row: 
 assert sky > 0.9 and ground > 0.9, (sky, ground)
 PY
 done
+# An orbit film of panoramas wider than 180 degrees: one distance for its frames, placed as the
+# default perspective camera would be (its angle once gave a negative distance).
+if command -v ffmpeg > /dev/null; then
+  sed -e '/^position/d' -e '/^look_at/d' wide.toml > orbit.toml
+  printf '[animation]\nframes = 2\npath = "orbit"\n' >> orbit.toml
+  "$relief" animate -q orbit.toml --set 'camera.projection="panoramic"' --set camera.fov_deg=200 -o film/orbit.mp4 \
+    2> orbit.txt || { fail "an orbit of 200 degree panoramas"; cat orbit.txt; }
+fi
 # Only a panorama is wider than a perspective camera: fov_deg 200 is refused there, with the way out.
 "$relief" compile -q wide.toml --set camera.fov_deg=200 -o bad/x.pov 2> bad.txt; code=$?
 [ "$code" = 2 ] && grep -q 'camera.fov_deg = 200 is wider than a perspective camera takes (170): for a wider view use camera.projection = "panoramic"' bad.txt ||
