@@ -58,7 +58,7 @@ bool TerrainOnImage::covers(double x, double y) const {
 }
 
 ScaleBar chooseScaleBar(double metresPerPixel, int widthPx, const scene::OverlaySpec& spec) {
-    constexpr double kFootM = 0.3048, kMileM = 1609.344;  // international foot and mile
+    using scene::kFootM, scene::kMileM;
     ScaleBar bar;
     if (!(metresPerPixel > 0) || widthPx <= 0) return bar;
     const double wanted = 0.2 * widthPx * metresPerPixel;

@@ -183,8 +183,8 @@ public:
                            std::max(cx + reach, nTop.x + nw / 2), std::max(cy + reach, nTop.y + nh)};
         // At a named place the arrow's centre stays where the arrow and its "N" fit at any angle:
         // a film's arrow turns in place instead of sliding as its box changes shape.
-        const double around = 1.75 * len + 1.3 * u + std::hypot(nw / 2, nh);
-        const PixelBox anyAngle{cx - around, cy - around, cx + around, cy + around};
+        const double turning = 1.75 * len + 1.3 * u + std::hypot(nw / 2, nh);
+        const PixelBox anyAngle{cx - turning, cy - turning, cx + turning, cy + turning};
         const auto choice = placeItem("north_arrow", box,
                                       places(box, {"top-right", "top-left", "bottom-right", "bottom-left"}), &anyAngle);
         if (!choice) return;
@@ -262,14 +262,13 @@ public:
 
     // Elevation legend, right: the ramp as a bar, ticks in true metres (or feet).
     void legend(const OverlayFacts& facts) {
-        constexpr double kFootM = 0.3048;
         const double barW = 2.0 * u, barH = 0.38 * H, x0 = W - 13 * u, y0 = 17 * u;
         const bool exaggerated = std::abs(facts.exaggeration - 1) > 1e-9;
         const bool feet = spec.legendFeet && facts.legendTitle == kElevationTitle;
         const std::string title = !spec.legendTitle.empty() ? spec.legendTitle
                                   : feet                    ? std::string("Elevation (ft)")
                                                             : facts.legendTitle;
-        const double unitM = feet ? kFootM : 1;
+        const double unitM = feet ? scene::kFootM : 1;
         const std::vector<double> ticks = legendTicks(facts.zMinM / unitM, facts.zMaxM / unitM);
         const std::string vertical = fmt::format("vertical \u00d7{}", formatShortest(facts.exaggeration));
         // Every string in the box, measured: at small sizes (no text under 10 px) they outgrow the units.

@@ -315,7 +315,7 @@ bool readPlaces(Section& s, OverlaySpec& overlay) {
 
 // overlay.scale_bar_length: "2 km", "500 m", "1 mi", "2000 ft".
 void readScaleBarLength(Section& s, OverlaySpec& overlay) {
-    static const std::vector<LengthUnit> kUnits = {{"m", 1}, {"km", 1000}, {"ft", 0.3048}, {"mi", 1609.344}};
+    static const std::vector<LengthUnit> kUnits = {{"m", 1}, {"km", 1000}, {"ft", kFootM}, {"mi", kMileM}};
     const auto v = s.string("scale_bar_length");
     if (!v) return;
     // from_chars: the C locale's number whatever the user's (a German "2,5 km" is not 2.5).

@@ -355,6 +355,9 @@ inline const std::vector<std::string> kFurniturePlaces = {"auto",  "top-left",  
                                                           "left",  "right",       "bottom-left",
                                                           "bottom", "bottom-right", "off"};
 
+/// The international foot and mile, in metres.
+inline constexpr double kFootM = 0.3048, kMileM = 1609.344;
+
 /// A length unit of the scale bar and the legend: its name and metres.
 struct LengthUnit {
     std::string name;  ///< "m", "km", "ft", "mi"
