@@ -22,20 +22,21 @@ struct DataOptions {
     bool json = false, force = false, quiet = false;
 };
 
-std::optional<std::pair<relief::LoadedScene, relief::Surface>> planned(const DataOptions& o,
+// The scene and its surface as planned: `estimated` (relief info) reads no net too large to read in a second.
+std::optional<std::pair<relief::LoadedScene, relief::Surface>> planned(const DataOptions& o, bool estimated,
                                                                        relief::Diagnostics& diags) {
     scene::SceneOverrides overrides;
     if (!parseOverrides(o.sets, overrides)) return std::nullopt;
     auto loaded = relief::loadScene(o.input, diags, overrides);
     if (!loaded) return std::nullopt;
-    auto surface = relief::planSurface(*loaded, diags);
+    auto surface = estimated ? relief::estimateSurface(*loaded, diags) : relief::planSurface(*loaded, diags);
     if (!surface) return std::nullopt;
     return std::pair{std::move(*loaded), std::move(*surface)};
 }
 
 int runInfo(const DataOptions& o) {
     relief::Diagnostics diags;
-    const auto plan = planned(o, diags);
+    const auto plan = planned(o, true, diags);
     const auto info = plan ? relief::sceneInfo(plan->first, plan->second, diags) : nlohmann::ordered_json();
     printDiagnostics(diags, plan.has_value());
     if (!plan) return code(Exit::BadInput);
@@ -60,7 +61,7 @@ int runInit(const DataOptions& o) {
         printDiagnostics(diags, false);
         return code(Exit::BadInput);
     }
-    const auto plan = planned(o, diags);
+    const auto plan = planned(o, false, diags);
     if (plan && plan->first.scene.madeForData.empty())
         diags.error({o.input, 0, 0},
                     "relief init makes a scene for elevation data (a raster or a CSV of samples); "

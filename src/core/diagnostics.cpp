@@ -22,6 +22,13 @@ void Diagnostics::warningOnce(std::string_view topic, SourceLoc loc, std::string
     if (topicsWarned_.emplace(topic).second) warning(std::move(loc), std::move(message));
 }
 
+void Diagnostics::append(const Diagnostics& other) {
+    items_.insert(items_.end(), other.items_.begin(), other.items_.end());
+    errors_ += other.errors_;
+    warnings_ += other.warnings_;
+    topicsWarned_.insert(other.topicsWarned_.begin(), other.topicsWarned_.end());
+}
+
 std::string formatDiagnostic(const Diagnostic& d) {
     std::string where;
     if (!d.loc.file.empty()) {

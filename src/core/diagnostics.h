@@ -28,6 +28,8 @@ public:
     /// A warning said once a run however often its cause recurs (every name
     /// that is not UTF-8): the first call for `topic` adds it, the rest nothing.
     void warningOnce(std::string_view topic, SourceLoc loc, std::string message);
+    /// Every diagnostic of `other` after these (a pass whose findings are kept only when it stops).
+    void append(const Diagnostics& other);
 
     bool hasErrors() const { return errors_ > 0; }
     int errorCount() const { return errors_; }

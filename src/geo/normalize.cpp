@@ -386,7 +386,7 @@ bool layoutNet(const scene::NetSpec& spec, FrameBox dataBox, double defaultSpaci
     }
     net.grid.rows = rows;
     net.grid.cols = cols;
-    return !budget.fits || budget.fits(rows, cols, diags);
+    return !budget.fits || budget.fits(net, diags);
 }
 
 std::string netSpacingReason(const scene::NetSpec& spec, const GeoGrid& net, double dataSpacingM, const NetBudget& budget) {

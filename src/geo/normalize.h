@@ -103,10 +103,11 @@ struct NetBudget {
     /// laid at about that instead (at the data's own spacing while that is
     /// less than twice as fine). Empty: the still's width over the extent.
     std::function<double(double extentM)> nearestPixelM;
-    /// Whether the work on a net of rows x cols fits (the refinement and the
-    /// geometry [limits] allow), asked once it is laid out and before any
-    /// height is read or gridded; false after an error. Empty: it fits.
-    std::function<bool(int rows, int cols, Diagnostics& diags)> fits;
+    /// Whether the work on the net laid out (its frame, origin, spacing, rows
+    /// and cols; no heights) fits: the refinement and the geometry [limits]
+    /// allow, asked before any height is read or gridded. False after an
+    /// error, or with none to stop there (relief info's estimate). Empty: it fits.
+    std::function<bool(const GeoGrid& laidOut, Diagnostics& diags)> fits;
 };
 
 /// Why a net has the spacing it has, for the header, `relief info` and

@@ -64,7 +64,7 @@ void onBlocksWhenAveraged(ControlNet& net, const RasterPlace& place, const NetEx
         if (!onBlockCentres(blocks, place, extent.box)) return;
         const bool more = double(blocks.rows()) * blocks.cols() > double(net.rows()) * net.cols();
         Diagnostics aside;
-        if (more && budget.fits && !budget.fits(blocks.rows(), blocks.cols(), aside)) {
+        if (more && budget.fits && !budget.fits(blocks, aside)) {
             if (chosen && k < up) continue;  // one block wider a side, fewer nodes
             return;
         }

@@ -157,17 +157,18 @@ emit::GeometryFacts geometryFacts(const LoadedScene& loaded, const geo::ControlN
 
 }  // namespace
 
-std::optional<DepthCost> costAt(const LoadedScene& loaded, const geo::ControlNet& net, int depth, Diagnostics& diags) {
+std::optional<DepthCost> costAt(const LoadedScene& loaded, const geo::ControlNet& net, const NetSize& size, int depth,
+                                Diagnostics& diags) {
     const scene::SceneSpec& spec = loaded.scene;
     const subdiv::Scheme& scheme = loaded.resolved.scheme;
-    const auto mesh = subdiv::estimateOutput(scheme, net.rows(), net.cols(), depth);
+    const auto mesh = subdiv::estimateOutput(scheme, size.rows, size.cols, depth);
     auto geometry = emit::chooseGeometry(spec.geometry, geometryFacts(loaded, net, depth, mesh.triangles), diags);
     if (!geometry) return std::nullopt;
     DepthCost c{*geometry, mesh};
     if (geometry->kind == scene::GeometryKind::HeightField)
-        c.estimate = subdiv::estimateOutput(scheme, net.rows(), net.cols(), depth, subdiv::GeometryCost::HeightField);
+        c.estimate = subdiv::estimateOutput(scheme, size.rows, size.cols, depth, subdiv::GeometryCost::HeightField);
     else if (geometry->kind == scene::GeometryKind::Adaptive)
-        c.estimate = subdiv::estimateOutput(scheme, net.rows(), net.cols(), depth, subdiv::GeometryCost::Adaptive);
+        c.estimate = subdiv::estimateOutput(scheme, size.rows, size.cols, depth, subdiv::GeometryCost::Adaptive);
     // The colours held beside the grid: a height field's drape (16-bit RGBA, a
     // node each); an image drape's too on any kind, and the image on the grid (RGB and coverage).
     const bool heightField = geometry->kind == scene::GeometryKind::HeightField;
@@ -185,7 +186,7 @@ constexpr double kLowestEyeM = 1.7;
 // The depth whose refined spacing is nearest one pixel of the still where the
 // terrain is nearest the camera (within a factor sqrt(arity) of it): no more
 // detail than the picture can show, and none less.
-int depthForStill(const LoadedScene& loaded, const geo::ControlNet& net, double& pixelM) {
+int depthForStill(const LoadedScene& loaded, const geo::ControlNet& net, const NetSize& size, double& pixelM) {
     const scene::SceneSpec& spec = loaded.scene;
     Diagnostics quiet;  // a camera point that cannot be placed is reported once, with the view
     const auto points = emit::cameraPointsInFrame(spec.look.camera, net.frame, quiet);
@@ -200,7 +201,7 @@ int depthForStill(const LoadedScene& loaded, const geo::ControlNet& net, double&
             const double aboveM = std::max(points->eyeM->z - *ground, kLowestEyeM);
             pixelM = std::max(pixelM, 2 * aboveM * camera.tanHalfFov / spec.render.width);
         }
-    const double arity = loaded.resolved.scheme.arity, spacing = std::max(net.dx, net.dy);
+    const double arity = loaded.resolved.scheme.arity, spacing = std::max(size.dx, size.dy);
     int depth = 0;
     while (depth < scene::kMaxDepth && spacing / std::pow(arity, depth) > pixelM * std::sqrt(arity)) ++depth;
     return depth;
@@ -208,13 +209,13 @@ int depthForStill(const LoadedScene& loaded, const geo::ControlNet& net, double&
 
 // depth = "auto": the smallest depth whose last level moves the terrain by at
 // most tolerance_m, searched up to the deepest the budget allows.
-bool chooseAutoDepth(const LoadedScene& loaded, const geo::ControlNet& net, int threads, SurfaceDepth& s,
-                     Diagnostics& diags) {
+bool chooseAutoDepth(const LoadedScene& loaded, const geo::ControlNet& net, const NetSize& size, int threads,
+                     SurfaceDepth& s, Diagnostics& diags) {
     const scene::SubdivisionSpec& sub = loaded.scene.subdivision;
     const subdiv::Scheme& scheme = loaded.resolved.scheme;
     // When not even level 1 fits, the budget check after says so.
     const int maxDepth =
-        subdiv::deepestWithinBudget(scheme, net.rows(), net.cols(), loaded.budget, scene::kMaxDepth);
+        subdiv::deepestWithinBudget(scheme, size.rows, size.cols, loaded.budget, scene::kMaxDepth);
     s.depth = 1;
     if (maxDepth <= 0) return true;
     s.autoDepth = chooseDepth(scheme, net, sub.toleranceM, maxDepth, threads);
@@ -244,12 +245,12 @@ constexpr double kNodesPerPixel = 4;
 // No depth in the scene: the still's (depthForStill), or the deepest below it
 // that the pixels are worth and [limits] allow; a default never refuses a
 // scene that fits at depth 0.
-void chooseStillDepth(const LoadedScene& loaded, const geo::ControlNet& net, SurfaceDepth& s) {
+void chooseStillDepth(const LoadedScene& loaded, const geo::ControlNet& net, const NetSize& size, SurfaceDepth& s) {
     double pixelM = 0;
-    const int wanted = depthForStill(loaded, net, pixelM);
+    const int wanted = depthForStill(loaded, net, size, pixelM);
     const double pixels = double(loaded.scene.render.width) * loaded.scene.render.height;
     const auto nodesAt = [&](int d) {
-        const auto e = subdiv::estimateOutput(loaded.resolved.scheme, net.rows(), net.cols(), d);
+        const auto e = subdiv::estimateOutput(loaded.resolved.scheme, size.rows, size.cols, d);
         return double(e.rows) * double(e.cols);
     };
     int depth = wanted;
@@ -257,11 +258,11 @@ void chooseStillDepth(const LoadedScene& loaded, const geo::ControlNet& net, Sur
     const int worth = depth;
     for (; depth > 0; --depth) {
         Diagnostics quiet;
-        const auto cost = costAt(loaded, net, depth, quiet);
+        const auto cost = costAt(loaded, net, size, depth, quiet);
         if (cost && subdiv::withinBudget(cost->estimate, loaded.budget)) break;
     }
     s.depth = depth;
-    const double netM = std::max(net.dx, net.dy), refinedM = netM / std::pow(loaded.resolved.scheme.arity, depth);
+    const double netM = std::max(size.dx, size.dy), refinedM = netM / std::pow(loaded.resolved.scheme.arity, depth);
     const int width = loaded.scene.render.width;
     if (worth == wanted)
         s.reason = fmt::format("chosen for the still: the net's {:.3g} m refined to {:.3g} m, about the {:.3g} m one "
@@ -278,17 +279,17 @@ void chooseStillDepth(const LoadedScene& loaded, const geo::ControlNet& net, Sur
 
 }  // namespace
 
-std::optional<SurfaceDepth> chooseSurfaceDepth(const LoadedScene& loaded, const geo::ControlNet& net, int threads,
-                                               Diagnostics& diags) {
+std::optional<SurfaceDepth> chooseSurfaceDepth(const LoadedScene& loaded, const geo::ControlNet& net,
+                                               const NetSize& size, int threads, Diagnostics& diags) {
     const scene::SubdivisionSpec& sub = loaded.scene.subdivision;
     SurfaceDepth s;
     if (sub.depthAuto) {
-        if (!chooseAutoDepth(loaded, net, threads, s, diags)) return std::nullopt;
+        if (!chooseAutoDepth(loaded, net, size, threads, s, diags)) return std::nullopt;
     } else if (sub.depthGiven) {
         s.depth = sub.depth;
         s.reason = "subdivision.depth";
     } else {
-        chooseStillDepth(loaded, net, s);
+        chooseStillDepth(loaded, net, size, s);
     }
     return s;
 }

@@ -54,6 +54,17 @@ std::string depthLabel(const scene::SubdivisionSpec& subdivision);
 /// For depth = "auto": "depth 4 chosen: level 1 moved the terrain 220 m, ..., 4: 4.1 m <= 5 m".
 std::string autoDepthSummary(const DepthChoice& choice, double toleranceM);
 
+/// The net a surface refines, by its size. The net's own; or, for relief
+/// info's estimate (surface.h), a net too large to read, whose heights a
+/// coarser net over the same extent stands in for.
+struct NetSize {
+    int rows = 0, cols = 0;
+    double x0 = 0, y0 = 0, dx = 0, dy = 0;
+    static NetSize of(const geo::GeoGrid& net) { return {net.rows(), net.cols(), net.x0, net.y0, net.dx, net.dy}; }
+    double xMax() const { return x0 + (cols - 1) * dx; }
+    double yMax() const { return y0 + (rows - 1) * dy; }
+};
+
 /// The depth a surface is refined to, and why.
 struct SurfaceDepth {
     int depth = 0;
@@ -66,15 +77,16 @@ struct SurfaceDepth {
 /// allows (an error when not reached); no depth: the shallowest whose refined
 /// spacing is within sqrt(arity) of one pixel where the terrain is nearest the
 /// camera, lowered until the budget allows it (a default never refuses a scene
-/// that fits at depth 0).
-std::optional<SurfaceDepth> chooseSurfaceDepth(const LoadedScene& loaded, const geo::ControlNet& net, int threads,
-                                               Diagnostics& diags);
+/// that fits at depth 0). `net`'s heights, refined at `size`.
+std::optional<SurfaceDepth> chooseSurfaceDepth(const LoadedScene& loaded, const geo::ControlNet& net,
+                                               const NetSize& size, int threads, Diagnostics& diags);
 
 /// The geometry the net refined `depth` times becomes, and what it costs.
 struct DepthCost {
     emit::GeometryChoice geometry;
     subdiv::OutputEstimate estimate;
 };
-std::optional<DepthCost> costAt(const LoadedScene& loaded, const geo::ControlNet& net, int depth, Diagnostics& diags);
+std::optional<DepthCost> costAt(const LoadedScene& loaded, const geo::ControlNet& net, const NetSize& size, int depth,
+                                Diagnostics& diags);
 
 }  // namespace relief

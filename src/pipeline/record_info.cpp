@@ -41,17 +41,28 @@ ordered_json dataFacts(const scene::SceneSpec& spec, const geo::ControlNet& net)
     return d;
 }
 
-ordered_json netFacts(const geo::ControlNet& net) {
+// The net's facts. An estimate's (estimateSurface) are its size's, its
+// heights' and its nodes without data the stand-in's, counted in proportion.
+ordered_json netFacts(const Surface& s) {
+    const geo::ControlNet& net = s.net;
+    const NetSize& size = s.size;
     const auto [zmin, zmax] = net.grid.zRange();
-    return {{"frame", net.frame.describe()},
-            {"rows", net.rows()},
-            {"cols", net.cols()},
-            {"spacing_m", net.dx},
-            {"spacing_reason", net.spacingReason},
-            {"extent_m", {net.x0, net.y0, net.xMax(), net.yMax()}},
-            {"elevation_range_m", {zmin, zmax}},
-            {"masked_nodata", net.maskedCount()},
-            {"filled_nodata", net.filledNodata}};
+    const double perNode = double(size.rows) * size.cols / (double(net.rows()) * net.cols());
+    const auto counted = [perNode](size_t n) { return static_cast<size_t>(std::llround(double(n) * perNode)); };
+    ordered_json facts = {{"frame", net.frame.describe()},
+                          {"rows", size.rows},
+                          {"cols", size.cols},
+                          {"spacing_m", size.dx},
+                          {"spacing_reason", net.spacingReason},
+                          {"extent_m", {size.x0, size.y0, size.xMax(), size.yMax()}},
+                          {"elevation_range_m", {zmin, zmax}},
+                          {"masked_nodata", counted(net.maskedCount())},
+                          {"filled_nodata", counted(net.filledNodata)}};
+    if (s.heightsReadAtM > 0)
+        facts["estimated"] = fmt::format("the net is not read ({:.3g} nodes): its heights and nodes without data are "
+                                         "those of a net at {:.3g} m over the same extent",
+                                         double(size.rows) * size.cols, s.heightsReadAtM);
+    return facts;
 }
 
 // Each figure of the estimate and the limit it meets ("-" where it does not apply).
@@ -82,20 +93,25 @@ ordered_json exaggerationAdvice(const geo::ControlNet& net) {
     return a;
 }
 
-// A net finer than the still can show: more nodes than the still has pixels
+constexpr double kNetPixelsWarning = 2;
+
+// A net finer than the still can show: more than twice the nodes the still has pixels
 // costs memory and time for detail no pixel holds. Says so, with the spacing
-// at which the nodes would match the pixels.
-void netAgainstStill(const geo::ControlNet& net, const scene::RenderSpec& render, const SourceLoc& at,
+// at which the nodes would match the pixels: a warning when the scene sized
+// the net, advice when relief chose it (the data's own spacing).
+void netAgainstStill(const NetSize& net, const scene::RenderSpec& render, const scene::NetSpec& spec,
                      ordered_json& facts, Diagnostics& diags) {
-    const double nodes = static_cast<double>(net.rows()) * net.cols(), pixels = double(render.width) * render.height;
+    const double nodes = static_cast<double>(net.rows) * net.cols, pixels = double(render.width) * render.height;
     facts["nodes"] = nodes;
-    if (!(nodes > pixels)) return;
+    // Up to twice: a still's own net over a terrain whose shape is not the still's (808 x 808 nodes for 800 x 600).
+    if (!(nodes > kNetPixelsWarning * pixels)) return;
     const double matching = net.dx * std::sqrt(nodes / pixels);
-    facts["advice"] = fmt::format("the net's {} x {} nodes ({:.3g}) are more than the still's {} x {} pixels ({:.3g}): "
+    facts["advice"] = fmt::format("the net's {} x {} nodes ({:.3g}) are more than twice the still's {} x {} pixels ({:.3g}): "
                                   "net.spacing_m = {} would match them",
-                                  net.cols(), net.rows(), nodes, render.width, render.height, pixels,
+                                  net.cols, net.rows, nodes, render.width, render.height, pixels,
                                   formatShortest(std::ceil(matching * 10) / 10));
-    diags.warning(at, facts["advice"].get<std::string>());
+    for (const char* key : {"net.spacing_m", "net.rows", "net.cols"})
+        if (spec.locs.has(key)) return diags.warning(spec.locs.at(key), facts["advice"].get<std::string>());
 }
 
 }  // namespace
@@ -105,10 +121,10 @@ ordered_json sceneInfo(const LoadedScene& loaded, const Surface& s, Diagnostics&
     ordered_json j;
     j["scene"] = spec.madeForData.empty() ? spec.sceneFile.string() : "made for the data (relief init writes it)";
     j["data"] = dataFacts(spec, s.net);
-    j["net"] = netFacts(s.net);
+    j["net"] = netFacts(s);
     // A view of the whole terrain: an eye at a place or flying low sees the net's nodes near it.
     if (!spec.look.camera.position && spec.animation.path != scene::CameraPath::Flyover)
-        netAgainstStill(s.net, spec.render, spec.net.locs.at("net.spacing_m"), j["net"], diags);
+        netAgainstStill(s.size, spec.render, spec.net, j["net"], diags);
     j["subdivision"] = {{"scheme", loaded.resolved.family},
                         {"certified", subdiv::certifiedClass(loaded.resolved.report)},
                         {"depth", s.depth},

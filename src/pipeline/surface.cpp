@@ -80,11 +80,11 @@ geo::NetLimits netLimitsOf(const LoadedScene& loaded) {
             return eyeM * perPixel;
         };
     }
-    l.nodes.fits = [&loaded](int rows, int cols, Diagnostics& diags) {
+    l.nodes.fits = [&loaded](const geo::GeoGrid& laidOut, Diagnostics& diags) {
         const scene::SceneSpec& spec = loaded.scene;
         const int depth = spec.subdivision.depthGiven ? spec.subdivision.depth : 0;
-        const auto est =
-            subdiv::estimateOutput(loaded.resolved.scheme, rows, cols, depth, cheapestCost(spec.geometry.kind));
+        const auto est = subdiv::estimateOutput(loaded.resolved.scheme, laidOut.rows(), laidOut.cols(), depth,
+                                                cheapestCost(spec.geometry.kind));
         return subdiv::checkBudget(est, loaded.budget, budgetKey(spec), depth, diags);
     };
     return l;
@@ -133,37 +133,98 @@ bool fitToScheme(const LoadedScene& loaded, int depth, geo::ControlNet& net, Sur
 
 }  // namespace
 
-std::optional<Surface> planSurface(const LoadedScene& loaded, Diagnostics& diags, int threads,
-                                   const ProgressFn& progress) {
-    const scene::SceneSpec& spec = loaded.scene;
-    const scene::SubdivisionSpec& sub = spec.subdivision;
-    auto t0 = Clock::now();
-    geo::NetProgressFn netProgress;
-    if (progress)
-        netProgress = [&](const std::string& task, int percent) {
-            progress({ProgressEvent::Stage::Compiling, task, percent});
-        };
-    scene::NetSpec netSpec = spec.net;
-    netSpec.linearBeforeFit = sub.depthAuto;
-    auto net = geo::controlNet(spec.samples, spec.frame, netSpec, netLimitsOf(loaded), diags, netProgress);
-    if (!net) return std::nullopt;
+namespace {
+
+// The net laid out and read as the scene says, and what geo hears of it.
+geo::NetProgressFn netProgressOf(const ProgressFn& progress) {
+    if (!progress) return {};
+    return [progress](const std::string& task, int percent) {
+        progress({ProgressEvent::Stage::Compiling, task, percent});
+    };
+}
+scene::NetSpec netSpecOf(const scene::SceneSpec& spec) {
+    scene::NetSpec net = spec.net;
+    net.linearBeforeFit = spec.subdivision.depthAuto;
+    return net;
+}
+
+// The depth, the fit and the cost of a surface on `net`'s heights at `size`,
+// checked against [limits]. `fit`: fit the scheme where the scene asks
+// (false for a stand-in net, whose fit would not be the net's).
+std::optional<Surface> planOnNet(const LoadedScene& loaded, geo::ControlNet net, const NetSize& size, bool fit,
+                                 Diagnostics& diags, int threads, const ProgressFn& progress) {
+    const auto t0 = Clock::now();
     Surface s;
-    s.normalizeSeconds = secondsSince(t0);
-    t0 = Clock::now();
-    auto depth = chooseSurfaceDepth(loaded, *net, threads, diags);
+    s.size = size;
+    auto depth = chooseSurfaceDepth(loaded, net, size, threads, diags);
     if (!depth) return std::nullopt;
     s.depth = depth->depth;
     s.depthReason = std::move(depth->reason);
     s.autoDepth = std::move(depth->autoDepth);
-    s.dataPeak = net->highestSample.value_or(measure::highestNode(*net));
-    if (!fitToScheme(loaded, s.depth, *net, s, diags, progress)) return std::nullopt;
-    auto cost = costAt(loaded, *net, s.depth, diags);
+    s.dataPeak = net.highestSample.value_or(measure::highestNode(net));
+    if (fit && !fitToScheme(loaded, s.depth, net, s, diags, progress)) return std::nullopt;
+    auto cost = costAt(loaded, net, size, s.depth, diags);
     if (!cost) return std::nullopt;
     s.geometry = cost->geometry;
     s.estimate = cost->estimate;
-    if (!subdiv::checkBudget(s.estimate, loaded.budget, budgetKey(spec), s.depth, diags)) return std::nullopt;
+    if (!subdiv::checkBudget(s.estimate, loaded.budget, budgetKey(loaded.scene), s.depth, diags)) return std::nullopt;
     s.subdivideSeconds = secondsSince(t0);
-    s.net = std::move(*net);
+    s.net = std::move(net);
+    return s;
+}
+
+// relief info's stand-in heights: a still's default net about this many nodes
+// across (block means of whole cells where the data allow), 0.4 s on a
+// 53 M-cell raster.
+constexpr int kEstimateReadWidthPx = 1000;
+
+}  // namespace
+
+std::optional<Surface> planSurface(const LoadedScene& loaded, Diagnostics& diags, int threads,
+                                   const ProgressFn& progress) {
+    const scene::SceneSpec& spec = loaded.scene;
+    const auto t0 = Clock::now();
+    auto net = geo::controlNet(spec.samples, spec.frame, netSpecOf(spec), netLimitsOf(loaded), diags,
+                               netProgressOf(progress));
+    if (!net) return std::nullopt;
+    const double normalizeSeconds = secondsSince(t0);
+    const NetSize size = NetSize::of(*net);
+    auto s = planOnNet(loaded, std::move(*net), size, true, diags, threads, progress);
+    if (s) s->normalizeSeconds = normalizeSeconds;
+    return s;
+}
+
+std::optional<Surface> estimateSurface(const LoadedScene& loaded, Diagnostics& diags) {
+    const scene::SceneSpec& spec = loaded.scene;
+    geo::NetLimits limits = netLimitsOf(loaded);
+    std::optional<NetSize> tooLarge;
+    limits.nodes.fits = [&tooLarge, fits = limits.nodes.fits](const geo::GeoGrid& laidOut, Diagnostics& d) {
+        if (!fits(laidOut, d)) return false;
+        if (double(laidOut.rows()) * laidOut.cols() <= kEstimateReadNodes) return true;
+        tooLarge = NetSize::of(laidOut);
+        return false;  // laid out, not read
+    };
+    Diagnostics laying;
+    auto net = geo::controlNet(spec.samples, spec.frame, netSpecOf(spec), limits, laying);
+    if (!tooLarge || laying.hasErrors()) {
+        diags.append(laying);
+        if (!net) return std::nullopt;
+        const NetSize size = NetSize::of(*net);
+        return planOnNet(loaded, std::move(*net), size, true, diags, 0, {});
+    }
+    // The stand-in: the net a still kEstimateReadWidthPx wide would have, over the same extent.
+    scene::NetSpec coarse = netSpecOf(spec);
+    coarse.spacingM = 0;
+    for (const char* key : {"net.spacing_m", "net.rows", "net.cols"}) coarse.locs.keys.erase(key);
+    geo::NetLimits read = netLimitsOf(loaded);
+    read.nodes.stillWidthPx = kEstimateReadWidthPx;
+    read.nodes.nearestPixelM = nullptr;
+    auto standIn = geo::controlNet(spec.samples, spec.frame, coarse, read, diags);
+    if (!standIn) return std::nullopt;
+    const double readAtM = std::max(standIn->dx, standIn->dy);
+    standIn->spacingReason = geo::netSpacingReason(spec.net, *standIn, 0, limits.nodes);
+    auto s = planOnNet(loaded, std::move(*standIn), *tooLarge, false, diags, 0, {});
+    if (s) s->heightsReadAtM = readAtM;
     return s;
 }
 

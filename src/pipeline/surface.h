@@ -28,6 +28,8 @@ SourceLoc budgetKey(const scene::SceneSpec& spec);
 /// by compileScene and by measurements such as profiles.
 struct Surface {
     geo::ControlNet net;
+    NetSize size;               ///< net's own; estimateSurface's: the net too large to read
+    double heightsReadAtM = 0;  ///< estimateSurface: the spacing `net`'s heights were read at in its place
     geo::GeoGrid refined;  ///< the net refined `depth` times: same frame and extent
     subdiv::OutputEstimate estimate;  ///< of the chosen geometry
     emit::GeometryChoice geometry;
@@ -50,6 +52,14 @@ struct Surface {
 /// the terrain is nearest the camera, lowered until [limits] allow it.
 std::optional<Surface> planSurface(const LoadedScene& loaded, Diagnostics& diags, int threads = 0,
                                    const ProgressFn& progress = {});
+/// planSurface for `relief info`, answered in under a second on any data:
+/// a net of more than kEstimateReadNodes is laid out and not read. Its
+/// heights (the elevation range, the camera's framing, the footprint that
+/// chooses the depth) are read on a coarser net over the same extent, as a
+/// still's default net is (block means); its size, depth and cost are the
+/// net's own. net.gridding = "fit" is not fitted then (net is the stand-in).
+inline constexpr double kEstimateReadNodes = 2e6;
+std::optional<Surface> estimateSurface(const LoadedScene& loaded, Diagnostics& diags);
 /// `progress` (may be empty) hears how far the gridding is.
 std::optional<Surface> buildSurface(const LoadedScene& loaded, Diagnostics& diags, int threads = 0,
                                     const ProgressFn& progress = {});

@@ -39,7 +39,7 @@ diff info.txt "$expected/info.txt" > info.diff || { fail "relief info says other
 # A net finer than the still's pixels: said, with the spacing that would match them.
 "$relief" info "$dem" --set net.spacing_m=2 --set render.width=160 --set render.height=100 2> fine.err > /dev/null ||
   fail "relief info of a fine net exited $?"
-grep -qE "warning: the net's [0-9]+ x [0-9]+ nodes \(.*\) are more than the still's 160 x 100 pixels \(1\.6e\+04\): net\.spacing_m = [0-9.]+ would match them" fine.err ||
+grep -qE "warning: the net's [0-9]+ x [0-9]+ nodes \(.*\) are more than twice the still's 160 x 100 pixels \(1\.6e\+04\): net\.spacing_m = [0-9.]+ would match them" fine.err ||
   { fail "relief info did not warn of a net finer than the still:"; cat fine.err; }
 "$relief" info --json "$dem" 2>/dev/null | grep -q '"depth": 5,' || fail "relief info --json gives no depth 5"
 

@@ -427,8 +427,8 @@ TEST(Raster, BlocksOneCellWiderWhenTheNearestPassTheLimits) {
     ASSERT_TRUE(nearest) << (diags.all().empty() ? "" : formatDiagnostic(diags.all()[0]));
     ASSERT_EQ(nearest->dx, 4 * kCell);
     const int blockNodes = nearest->rows() * nearest->cols();
-    still.fits = [&](int rows, int cols, Diagnostics& d) {
-        if (rows * cols < blockNodes) return true;
+    still.fits = [&](const GeoGrid& laidOut, Diagnostics& d) {
+        if (laidOut.rows() * laidOut.cols() < blockNodes) return true;
         d.error({}, "over the limits");
         return false;
     };

@@ -414,5 +414,49 @@ TEST(Pipeline, AFineRasterGetsANetForTheStill) {
     EXPECT_TRUE(s->net.spacingReason.starts_with("about one pixel of the 160 px wide still")) << s->net.spacingReason;
 }
 
+// relief info's estimate (estimateSurface) over nets too large to read in a second: the same size,
+// depth, geometry and cost as the plan that reads the net, swept over the ways a scene makes a net
+// that large (a spacing, rows and columns, a still wide enough for the data's own spacing) and over
+// the cameras that choose the depth; a net small enough to read is read.
+TEST(Pipeline, InfoEstimatesWhatThePlanThatReadsTheNetFinds) {
+    const std::vector<scene::SceneOverrides> sweep = {
+        {{"net.spacing_m", "0.9"}},
+        {{"net.rows", "1500"}, {"net.cols", "1700"}},
+        {{"net.spacing_m", "0.9"}, {"camera.elevation_deg", "5"}},
+        {{"net.spacing_m", "0.9"}, {"camera.position", "[174.7620,-36.8790,120]"},
+         {"camera.look_at", "[174.7640,-36.8765,150]"}},
+        {{"net.spacing_m", "0.9"}, {"subdivision.depth", "1"}},
+        {{"net.spacing_m", "1.2"}, {"render.width", "3000"}, {"render.height", "2000"}},
+        {{"net.spacing_m", "4"}},  // 360 x 360 nodes: read
+    };
+    for (const auto& sets : sweep) {
+        std::string said;
+        for (const auto& [k, v] : sets) said += k + "=" + v + " ";
+        Diagnostics diags;
+        const auto loaded = loadScene(kSource / "scenes/data/rasters/volcano2hires.tif", diags, sets);
+        ASSERT_TRUE(loaded) << said << firstWarning(diags);
+        const auto read = planSurface(*loaded, diags, 1);
+        const auto estimated = estimateSurface(*loaded, diags);
+        ASSERT_TRUE(read && estimated) << said << firstWarning(diags);
+        const double nodes = double(read->net.rows()) * read->net.cols();
+        EXPECT_EQ(estimated->heightsReadAtM > 0, nodes > kEstimateReadNodes) << said;
+        EXPECT_EQ(estimated->size.rows, read->net.rows()) << said;
+        EXPECT_EQ(estimated->size.cols, read->net.cols()) << said;
+        EXPECT_EQ(estimated->size.dx, read->net.dx) << said;
+        EXPECT_EQ(estimated->size.x0, read->net.x0) << said;
+        EXPECT_EQ(estimated->size.y0, read->net.y0) << said;
+        EXPECT_EQ(estimated->depth, read->depth) << said << estimated->depthReason << " | " << read->depthReason;
+        EXPECT_EQ(estimated->geometry.kind, read->geometry.kind) << said;
+        EXPECT_EQ(estimated->estimate.triangles, read->estimate.triangles) << said;
+        EXPECT_EQ(estimated->estimate.memoryBytes, read->estimate.memoryBytes) << said;
+        EXPECT_EQ(estimated->net.spacingReason, read->net.spacingReason) << said;
+        // The stand-in's heights: block means, a little inside the net's own extremes.
+        const auto [zmin, zmax] = read->net.grid.zRange();
+        const auto [emin, emax] = estimated->net.grid.zRange();
+        EXPECT_NEAR(emin, zmin, 0.02 * (zmax - zmin)) << said;
+        EXPECT_NEAR(emax, zmax, 0.02 * (zmax - zmin)) << said;
+    }
+}
+
 }  // namespace
 }  // namespace relief
