@@ -51,6 +51,33 @@ struct LegendEntry {
     bool dashed = false;
 };
 
+/// [overlay] frame: a map's frame around a still from straight above, as
+/// GMT's -Baf draws one: the neat line (the terrain's edge), ticks out of it
+/// at every frame interval, and an annotation outside at every annotation
+/// interval, on all four sides.
+struct MapFrame {
+    enum class Side { Bottom, Right, Top, Left };
+    struct Tick {
+        Side side = Side::Bottom;
+        double px = 0;      ///< along its side: x for bottom and top, y for left and right
+        std::string label;  ///< the annotation ("174°46′E", "1757000"); empty: a frame tick
+    };
+    PixelBox map{};  ///< the neat line, pixels
+    std::vector<Tick> ticks;
+};
+
+/// A map frame's annotations' size and its ticks' length, in furniture units.
+inline constexpr double kFrameTextSize = 1.5, kFrameTickUnits = 0.9;
+
+/// The pixels the furniture's sizes and margins scale with on a still W x H.
+double furnitureUnitPx(const scene::OverlaySpec& spec, int widthPx, int heightPx);
+
+/// What a framed map leaves of the still on each side for its annotations
+/// (the widest `widestLabelChars` long) and, outside them, the furniture the
+/// spec draws: the title above, the legend to the right, the scale bar and
+/// credits below. Left, top, right, bottom, pixels.
+std::array<double, 4> mapFrameInset(const scene::OverlaySpec& spec, int widthPx, int heightPx, size_t widestLabelChars);
+
 /// The legend's title when it shows elevations in metres.
 inline constexpr const char* kElevationTitle = "Elevation (m)";
 
@@ -79,6 +106,7 @@ struct OverlayFacts {
     // [[layer]]s and the graticule: the labels to place (in order), the legend's entries.
     std::vector<LabelFact> labels;
     std::vector<LegendEntry> layerLegend;
+    std::optional<MapFrame> mapFrame;  ///< [overlay] frame
 };
 
 /// The facts of the overlays from the still's view: the legend (the ramp over

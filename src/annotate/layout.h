@@ -51,6 +51,11 @@ public:
 
     /// The boxes placed so far.
     const std::vector<PixelBox>& placed() const { return placed_; }
+    /// `box` kept for `item`, which is where it is (a map frame's annotations): the furniture keeps off it.
+    void reserve(const std::string& item, const PixelBox& box) {
+        placed_.push_back(box);
+        names_.push_back(item);
+    }
 
 private:
     bool coversTerrain(const PixelBox& b) const;

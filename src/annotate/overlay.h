@@ -62,6 +62,16 @@ struct OverlayRecord {
         PixelPoint leaderEnd{};  ///< with a leader: where it meets the box
     };
     std::vector<Label> labels;
+    /// [overlay] frame: the neat line, the ticks, and each annotation drawn
+    /// (one left out where it would meet the one before it or leave the still).
+    std::optional<MapFrame> frame;
+    struct FrameAnnotation {
+        std::string text;
+        MapFrame::Side side = MapFrame::Side::Bottom;
+        double tickPx = 0;
+        PixelBox box{};
+    };
+    std::vector<FrameAnnotation> frameAnnotations;
 };
 
 /// Draws the overlays the spec asks for onto `image` (8-bit RGB or RGBA,

@@ -137,8 +137,65 @@ class OverlayDrawing {
 public:
     OverlayDrawing(cairo_t* c, int W, int H, const scene::OverlaySpec& spec, const OverlayFacts& facts,
                    const DrawingTarget& target)
-        : c(c), W(W), H(H), u(std::min(W, H * 4 / 3) / 100.0 * spec.textScale), spec(spec),
+        : c(c), W(W), H(H), u(furnitureUnitPx(spec, W, H)), spec(spec),
           paint(c, u, target, record.texts), placer(W, H, u, facts.terrain) {}
+
+    // [overlay] frame, as GMT's plain frame: the neat line, ticks out of it
+    // (a frame tick half an annotation's), the annotations beyond them, each
+    // left out where it would overlap the one before it on its side or leave
+    // the still. The furniture keeps off each side's annotations.
+    void mapFrame(const MapFrame& frame) {
+        using Side = MapFrame::Side;
+        const PixelBox& m = frame.map;
+        const double tick = kFrameTickUnits * u, gap = 0.5 * u;
+        cairo_save(c);
+        cairo_set_source_rgb(c, 0.08, 0.08, 0.08);
+        cairo_set_line_width(c, 0.2 * u);
+        cairo_rectangle(c, m.x0, m.y0, m.w(), m.h());
+        cairo_stroke(c);
+        cairo_set_line_width(c, 0.12 * u);
+        // Each side's foot of a tick at `px` along it, and the way out of the map.
+        const auto foot = [&m](Side side, double px) -> std::array<double, 4> {
+            switch (side) {
+                case Side::Bottom: return {px, m.y1, 0, 1};
+                case Side::Top: return {px, m.y0, 0, -1};
+                case Side::Left: return {m.x0, px, -1, 0};
+                default: return {m.x1, px, 1, 0};
+            }
+        };
+        for (const MapFrame::Tick& t : frame.ticks) {
+            const auto [x, y, ox, oy] = foot(t.side, t.px);
+            const double len = t.label.empty() ? tick / 2 : tick;
+            cairo_move_to(c, x, y);
+            cairo_line_to(c, x + ox * len, y + oy * len);
+            cairo_stroke(c);
+        }
+        cairo_restore(c);
+        std::map<Side, PixelBox> bands;  // each side's annotations
+        std::map<Side, PixelBox> last;
+        for (const MapFrame::Tick& t : frame.ticks) {
+            if (t.label.empty()) continue;
+            const auto [x, y, ox, oy] = foot(t.side, t.px);
+            const double ax = x + ox * (tick + gap), ay = y + oy * (tick + gap);
+            const double anchorX = ox < 0 ? 1 : ox > 0 ? 0 : 0.5, anchorY = oy < 0 ? 1 : oy > 0 ? 0 : 0.5;
+            const auto [w, h] = paint.measure(t.label, kFrameTextSize, false);
+            const PixelBox box{ax - anchorX * w, ay - anchorY * h, ax - anchorX * w + w, ay - anchorY * h + h};
+            const bool inside = box.x0 >= 0 && box.y0 >= 0 && box.x1 <= W && box.y1 <= H;
+            const auto before = last.find(t.side);
+            if (!inside || (before != last.end() && before->second.meets(box, 0.5 * u))) continue;
+            paint.text(t.label, ax, ay, kFrameTextSize, false, anchorX, 0, 1, anchorY);
+            record.frameAnnotations.push_back({t.label, t.side, t.px, box});
+            last[t.side] = box;
+            auto [band, fresh] = bands.try_emplace(t.side, box);
+            if (!fresh)
+                band->second = {std::min(band->second.x0, box.x0), std::min(band->second.y0, box.y0),
+                                std::max(band->second.x1, box.x1), std::max(band->second.y1, box.y1)};
+        }
+        record.drawn.push_back("frame");
+        record.boxes["frame"] = m;
+        record.frame = frame;
+        for (const auto& [side, band] : bands) placer.reserve("frame", band);
+    }
 
     // Title and subtitle, top left.
     void title() {
@@ -531,8 +588,9 @@ OverlayRecord paintOverlays(cairo_t* cr, int widthPx, int heightPx, const scene:
         const auto p = spec.places.find(item);
         return p == spec.places.end() || p->second != "off";
     };
-    if ((!spec.title.empty() || !spec.subtitle.empty()) && wanted("title")) drawing.title();
     const bool map = facts.mapFurniture;
+    if (map && facts.mapFrame) drawing.mapFrame(*facts.mapFrame);
+    if ((!spec.title.empty() || !spec.subtitle.empty()) && wanted("title")) drawing.title();
     if (map && spec.northArrow && wanted("north_arrow")) drawing.northArrow(facts);
     if (!facts.credits.empty() && wanted("credits")) drawing.credits(facts);
     if (map && spec.scaleBar && wanted("scale_bar")) drawing.scaleBar(facts);

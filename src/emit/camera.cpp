@@ -68,15 +68,32 @@ double boxFitDistance(const ScenePlacement& where, const SceneVec3& target, cons
     return fitDistance * 1.06;
 }
 
-// A tight fit: the terrain's own outline, not its bounding box, fills the
-// frame with a small margin, centred (the target moves across the view, the
-// eye back or forth); a few rounds settle a perspective view.
+// The box of the frame an outline fills, in the frame's units (x right, y up,
+// -1 to 1): its centre and half sizes. The whole frame less a margin, or what
+// an inset leaves (a framed map's annotations and furniture around it).
+struct FitBox {
+    double cx = 0, cy = 0, hx = 0, hy = 0;
+};
+constexpr double kMargin = 0.04;  // of the half-frame, on the widest side
+FitBox fitBoxOf(const FrameInsetPx& inset, const scene::RenderSpec& render) {
+    if (inset == FrameInsetPx{}) return {0, 0, 1 - kMargin, 1 - kMargin};
+    const double W = render.width, H = render.height;
+    const auto [left, top, right, bottom] = inset;
+    const double x0 = -1 + 2 * left / W, x1 = 1 - 2 * right / W, y0 = -1 + 2 * bottom / H, y1 = 1 - 2 * top / H;
+    return {0.5 * (x0 + x1), 0.5 * (y0 + y1), std::max(0.5 * (x1 - x0), 0.05), std::max(0.5 * (y1 - y0), 0.05)};
+}
+
+// A tight fit: the terrain's own outline, not its bounding box, fills `box`
+// of the frame, centred in it (the target moves across the view, the eye back
+// or forth); a few rounds settle a perspective view. The outline's extent is
+// measured in units where `box` is the default one, whose arithmetic is then
+// the plain fit's, bit for bit.
 void fitOutline(const ScenePlacement& where, const scene::CameraSpec& camera, const OrbitAxes& a, double aspect,
-                double distance, CameraView& view) {
+                double distance, const FitBox& box, CameraView& view) {
     const bool perspective = camera.projection == scene::Projection::Perspective;
     const SceneVec3 screenRight = (-1.0 / a.rightLen) * a.right, screenUp = (-1.0 / length(a.u)) * a.u;
     const SceneVec3 forward = -1.0 * a.back;
-    constexpr double kMargin = 0.04;  // of the half-frame, on the widest side
+    const double sx = (1 - kMargin) / box.hx, sy = (1 - kMargin) / box.hy;  // 1 for the default box
     SceneVec3 t = view.target;
     double d = distance;
     for (int round = 0; round < 40; ++round) {
@@ -96,6 +113,7 @@ void fitOutline(const ScenePlacement& where, const scene::CameraSpec& camera, co
             } else {
                 x /= view.orthoHeight * aspect / 2, y /= view.orthoHeight / 2;
             }
+            x = (x - box.cx) * sx, y = (y - box.cy) * sy;
             xmin = std::min(xmin, x), xmax = std::max(xmax, x), ymin = std::min(ymin, y), ymax = std::max(ymax, y);
         }
         if (behind) {
@@ -104,12 +122,15 @@ void fitOutline(const ScenePlacement& where, const scene::CameraSpec& camera, co
         }
         const double cx = 0.5 * (xmin + xmax), cy = 0.5 * (ymin + ymax);
         const double half = std::max(0.5 * (xmax - xmin), 0.5 * (ymax - ymin));
+        const double scale = half / (1 - kMargin);
+        // The move, in the frame's units, that brings the outline's centre to the box's once scaled.
+        const double mx = cx / sx + box.cx - scale * box.cx, my = cy / sy + box.cy - scale * box.cy;
         if (perspective) {
-            t = t + (cx * d * a.tanH) * screenRight + (cy * d * a.tanV) * screenUp;
-            d *= half / (1 - kMargin);
+            t = t + (mx * d * a.tanH) * screenRight + (my * d * a.tanV) * screenUp;
+            d *= scale;
         } else {
-            t = t + (cx * view.orthoHeight * aspect / 2) * screenRight + (cy * view.orthoHeight / 2) * screenUp;
-            view.orthoHeight *= half / (1 - kMargin);
+            t = t + (mx * view.orthoHeight * aspect / 2) * screenRight + (my * view.orthoHeight / 2) * screenUp;
+            view.orthoHeight *= scale;
         }
         if (std::abs(cx) < 1e-6 && std::abs(cy) < 1e-6 && std::abs(half - (1 - kMargin)) < 1e-6) break;
     }
@@ -136,7 +157,7 @@ std::pair<SceneVec3, SceneVec3> placeAtPoints(const ScenePlacement& where, const
 }  // namespace
 
 CameraView placeCamera(const ScenePlacement& where, const scene::CameraSpec& given, const CameraPoints& points,
-                       const scene::RenderSpec& render) {
+                       const scene::RenderSpec& render, const FrameInsetPx& insetPx) {
     // A panorama or a sphere is placed as the default perspective camera would be: its eye there.
     using scene::Projection;
     const bool wide = given.projection == Projection::Panoramic || given.projection == Projection::Spherical;
@@ -154,7 +175,7 @@ CameraView placeCamera(const ScenePlacement& where, const scene::CameraSpec& giv
     view.target = target;
     view.orthoHeight = 2.1 * radius;
     if (camera.distanceM <= 0 && !points.eyeM && !where.outline.empty())
-        fitOutline(where, camera, axes, aspect, distance, view);
+        fitOutline(where, camera, axes, aspect, distance, fitBoxOf(insetPx, render), view);
     // The image's axes as plain numbers (r and u for the orbit).
     SceneVec3 leftPlain = axes.r, downPlain = axes.u;
     if (points.eyeM) std::tie(leftPlain, downPlain) = placeAtPoints(where, points, view);

@@ -44,8 +44,12 @@ struct CameraPoints {
 /// error at the key, when one cannot be placed there or both are one point.
 std::optional<CameraPoints> cameraPointsInFrame(const scene::CameraSpec& camera, const geo::Frame& frame,
                                                 Diagnostics& diags);
+/// Pixels of the still the terrain's outline keeps clear of (left, top,
+/// right, bottom): a framed map's annotations and furniture. All zero: a
+/// margin of 4 % of the half-frame on its widest side.
+using FrameInsetPx = std::array<double, 4>;
 CameraView placeCamera(const ScenePlacement& where, const scene::CameraSpec& camera, const CameraPoints& points,
-                       const scene::RenderSpec& render);
+                       const scene::RenderSpec& render, const FrameInsetPx& insetPx = {});
 /// The orbit camera of a look (no camera points): for tests and tools.
 inline CameraView placeCamera(const ScenePlacement& where, const scene::LookSpec& look, const scene::RenderSpec& render) {
     return placeCamera(where, look.camera, {}, render);

@@ -148,6 +148,9 @@ ViewSummary describeView(const scene::SceneSpec& spec, const geo::ControlNet& ne
     v.overlayFacts = annotate::overlayFacts(spec.look, where, camera, spec.render,
                                             geo::gridConvergenceDeg(net.frame, where.originM.x, where.originM.y));
     v.overlayFacts.credits = spec.overlay.credits ? *spec.overlay.credits : credits;
+    if (view.frameTicks)
+        v.overlayFacts.mapFrame =
+            mapFrameOnImage(*view.frameTicks, where, camera, spec.render.width, spec.render.height);
     v.widthPx = spec.render.width;
     v.heightPx = spec.render.height;
     // The eye and the target back in metres (heights unexaggerated), then degrees.

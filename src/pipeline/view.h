@@ -13,6 +13,7 @@
 #include "emit/write_scene.h"
 #include "geo/normalize.h"
 #include "geo/sun_position.h"
+#include "pipeline/map_frame.h"
 #include "scene/scene_spec.h"
 
 namespace relief {
@@ -37,6 +38,7 @@ struct View {
     /// What a pixel covers where the camera looks (true metres): the scale
     /// bar's, and the width of the lines laid on the surface.
     double metresPerPixel = 0;
+    std::optional<MapFrameTicks> frameTicks;  ///< [overlay] frame, whose room the camera left
 };
 
 /// The view of `spec` over `surface`; nullopt after an error (a camera point

@@ -26,7 +26,7 @@ using nlohmann::ordered_json;
 
 namespace {
 
-constexpr int kPlanFormat = 8;  // 8: the overlay facts say whether map furniture is true on the still
+constexpr int kPlanFormat = 9;  // 9: the overlay spec and facts hold a map frame
 constexpr std::uintmax_t kMaxPlanBytes = 64'000'000;
 // A template folder holds a template and its #include files: a few kB.
 constexpr size_t kMaxTemplateFiles = 64;
@@ -94,6 +94,24 @@ std::vector<annotate::LegendEntry> legendOf(const ordered_json& a) {
     return out;
 }
 
+ordered_json mapFrameJson(const annotate::MapFrame& m) {
+    ordered_json ticks = ordered_json::array();
+    for (const auto& t : m.ticks) ticks.push_back({{"side", static_cast<int>(t.side)}, {"px", t.px}, {"label", t.label}});
+    return {{"map", {m.map.x0, m.map.y0, m.map.x1, m.map.y1}}, {"ticks", ticks}};
+}
+annotate::MapFrame mapFrameOf(const ordered_json& j) {
+    annotate::MapFrame m;
+    const auto box = j.at("map").get<std::array<double, 4>>();
+    m.map = {box[0], box[1], box[2], box[3]};
+    for (const auto& t : j.at("ticks")) {
+        const int side = t.at("side").get<int>();
+        if (side < 0 || side > 3) throw nlohmann::json::other_error::create(501, "a map frame tick's side", nullptr);
+        m.ticks.push_back({static_cast<annotate::MapFrame::Side>(side), t.at("px").get<double>(),
+                           t.at("label").get<std::string>()});
+    }
+    return m;
+}
+
 ordered_json overlayJson(const RenderPlan& p) {
     const scene::OverlaySpec& s = p.overlaySpec;
     const annotate::OverlayFacts& f = p.overlayFacts;
@@ -108,6 +126,8 @@ ordered_json overlayJson(const RenderPlan& p) {
     if (s.scaleBarUnit)
         spec["scale_bar_length"] = {{"length", s.scaleBarLength}, {"unit", s.scaleBarUnit->name},
                                     {"metres", s.scaleBarUnit->metres}};
+    spec["frame"] = s.frame;
+    spec["frame_metres"] = s.frameMetres;
     ordered_json facts = {
         {"credits", f.credits},
         {"map_furniture", f.mapFurniture},
@@ -123,6 +143,7 @@ ordered_json overlayJson(const RenderPlan& p) {
         {"terrain", {{"band_px", f.terrain.bandPx}, {"top", f.terrain.top}, {"bottom", f.terrain.bottom}}},
         {"labels", labelsJson(f.labels)},
         {"layer_legend", legendJson(f.layerLegend)}};
+    if (f.mapFrame) facts["map_frame"] = mapFrameJson(*f.mapFrame);
     return {{"drawn", p.overlays}, {"spec", spec}, {"facts", facts}};
 }
 
@@ -150,6 +171,8 @@ void readOverlay(const ordered_json& j, RenderPlan& p) {
     p.overlaySpec.legendTitle = s.at("legend_title").get<std::string>();
     p.overlaySpec.legendFeet = s.at("legend_feet").get<bool>();
     p.overlaySpec.scaleBarImperial = s.at("scale_bar_imperial").get<bool>();
+    p.overlaySpec.frame = s.at("frame").get<bool>();
+    p.overlaySpec.frameMetres = s.at("frame_metres").get<bool>();
     if (s.contains("scale_bar_length")) {
         const auto& b = s.at("scale_bar_length");
         p.overlaySpec.scaleBarUnit = scene::LengthUnit{b.at("unit").get<std::string>(), b.at("metres").get<double>()};
@@ -176,6 +199,7 @@ void readOverlay(const ordered_json& j, RenderPlan& p) {
     o.terrain.bottom = f.at("terrain").at("bottom").get<std::vector<double>>();
     o.labels = labelsOf(f.at("labels"));
     o.layerLegend = legendOf(f.at("layer_legend"));
+    if (f.contains("map_frame")) o.mapFrame = mapFrameOf(f.at("map_frame"));
 }
 
 ordered_json fileJson(const PlanFile& f) {

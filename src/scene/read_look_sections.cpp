@@ -337,6 +337,28 @@ void readScaleBarLength(Section& s, OverlaySpec& overlay) {
     overlay.scaleBarImperial = u->name == "ft" || u->name == "mi";
 }
 
+// overlay.frame: a map's frame, around the view a map is made from (straight
+// down, orthographic). The camera keys the scene leaves out are set so; one it
+// gives otherwise is an error naming it.
+void readMapFrame(Section& s, SceneSpec& scene) {
+    OverlaySpec& overlay = scene.overlay;
+    if (auto v = s.boolean("frame")) overlay.frame = *v;
+    if (auto v = s.choice("frame_units", {"degrees", "metres"})) overlay.frameMetres = *v == "metres";
+    if (!overlay.frame) return;
+    CameraSpec& camera = scene.look.camera;
+    const KeyLocations& given = camera.locs;
+    constexpr const char* kWhy = "overlay.frame draws a map's frame around a view from straight above";
+    if (camera.position)
+        s.error("frame", fmt::format("{}: camera.position puts the eye at a place; remove it (or the frame)", kWhy));
+    else if (given.has("camera.elevation_deg") && camera.elevationDeg != 90)
+        s.error("frame", fmt::format("{}: camera.elevation_deg = {}; set it to 90, or leave it out",
+                                     kWhy, formatShortest(camera.elevationDeg)));
+    else if (given.has("camera.projection") && camera.projection != Projection::Orthographic)
+        s.error("frame", fmt::format("{}: camera.projection is not \"orthographic\"; set it so, or leave it out", kWhy));
+    camera.elevationDeg = 90;
+    camera.projection = Projection::Orthographic;
+}
+
 }  // namespace
 
 void readOverlay(Section& s, const SceneFile&, SceneSpec& scene) {
@@ -354,6 +376,7 @@ void readOverlay(Section& s, const SceneFile&, SceneSpec& scene) {
     if (auto v = s.choice("legend_units", {"m", "ft"})) overlay.legendFeet = *v == "ft";
     if (auto v = s.choice("scale_bar_units", {"metric", "imperial"})) overlay.scaleBarImperial = *v == "imperial";
     readScaleBarLength(s, overlay);
+    readMapFrame(s, scene);
     s.markKnown("graticule");
     if (const toml::node* n = s.find("graticule")) {
         if (auto graticule = graticuleOf(*n)) overlay.graticule = graticule;

@@ -382,6 +382,10 @@ struct OverlaySpec {
     double scaleBarLength = 0;               ///< in scaleBarUnit; 0: chosen (about a fifth of the still)
     std::optional<ContourSpec> contours;  ///< unset: none
     std::optional<GraticuleSpec> graticule;  ///< unset: none
+    /// A map's frame around a still from straight above (orthographic): a
+    /// neat line, ticks and annotations outside the map on its four sides.
+    bool frame = false;
+    bool frameMetres = false;  ///< the frame's annotations in the frame's metres, not longitude and latitude
     KeyLocations locs;
 };
 
