@@ -114,11 +114,10 @@ double furnitureUnitPx(const scene::OverlaySpec& spec, int widthPx, int heightPx
 std::array<double, 4> mapFrameInset(const scene::OverlaySpec& spec, int widthPx, int heightPx,
                                     size_t widestLabelChars) {
     const double u = furnitureUnitPx(spec, widthPx, heightPx);
-    // The annotations' band: a tick, a gap, the text (kFrameTextSize, DejaVu Sans's digits 0.64 of
-    // it wide, its lines 1.25 high) and a gap; the still's edge a unit beyond.
-    const double tick = kFrameTickUnits * u, gap = 0.5 * u, text = kFrameTextSize * u;
-    const double across = 1 * u + tick + gap + 1.25 * text + gap;
-    const double beside = 1 * u + tick + gap + 0.64 * text * double(widestLabelChars) + gap;
+    // The annotations' band: a tick, a gap, the text and a gap; the still's edge a unit beyond.
+    const double tick = kFrameTickUnits * u, gap = 0.5 * u, text = frameTextPx(u);
+    const double across = 1 * u + tick + gap + kLineHeightEm * text + gap;
+    const double beside = 1 * u + tick + gap + kDigitWidthEm * text * double(widestLabelChars) + gap;
     const bool title = !spec.title.empty(), subtitle = !spec.subtitle.empty();
     // The furniture's own room, from the sizes paint.cpp draws it at.
     const double top = (title || subtitle) ? 2.2 * u + (title ? 4.6 * u : 0) + (subtitle ? 3.1 * u : 0) : 0;

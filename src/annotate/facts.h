@@ -4,6 +4,7 @@
 // labels and the layers' legend), made from the scene, its placement and its
 // camera when the scene is compiled, and stored in a render plan (plan/) so
 // that any process can finish the still. Nothing here draws.
+#include <algorithm>
 #include <array>
 #include <optional>
 #include <string>
@@ -57,6 +58,11 @@ struct LegendEntry {
 /// interval, on all four sides.
 struct MapFrame {
     enum class Side { Bottom, Right, Top, Left };
+    static bool alongX(Side side) { return side == Side::Bottom || side == Side::Top; }
+    static const char* nameOf(Side side) {
+        static const char* const kNames[] = {"bottom", "right", "top", "left"};
+        return kNames[static_cast<int>(side)];
+    }
     struct Tick {
         Side side = Side::Bottom;
         double px = 0;      ///< along its side: x for bottom and top, y for left and right
@@ -68,6 +74,12 @@ struct MapFrame {
 
 /// A map frame's annotations' size and its ticks' length, in furniture units.
 inline constexpr double kFrameTextSize = 1.5, kFrameTickUnits = 0.9;
+/// No text is drawn smaller than this, pixels, whatever the still's size.
+inline constexpr double kMinTextPx = 10;
+/// DejaVu Sans's digits are this wide and its lines this high, in its size.
+inline constexpr double kDigitWidthEm = 0.64, kLineHeightEm = 1.25;
+/// A map frame's annotations' size on a still of furniture unit `unitPx`, pixels.
+inline double frameTextPx(double unitPx) { return std::max(kFrameTextSize * unitPx, kMinTextPx); }
 
 /// The pixels the furniture's sizes and margins scale with on a still W x H.
 double furnitureUnitPx(const scene::OverlaySpec& spec, int widthPx, int heightPx);

@@ -61,7 +61,7 @@ private:
         Owned<PangoLayout> layout(pango_cairo_create_layout(cr_));
         Owned<PangoFontDescription> font(pango_font_description_from_string(bold ? "DejaVu Sans Bold" : "DejaVu Sans"));
         // Never below 10 px: a label a reader cannot read is no label.
-        pango_font_description_set_absolute_size(font.get(), std::max(sizeUnits * unit_, 10.0) * PANGO_SCALE);
+        pango_font_description_set_absolute_size(font.get(), std::max(sizeUnits * unit_, kMinTextPx) * PANGO_SCALE);
         pango_layout_set_font_description(layout.get(), font.get());
         if (maxWidth > 0) {
             pango_layout_set_width(layout.get(), static_cast<int>(maxWidth * PANGO_SCALE));
@@ -99,7 +99,7 @@ private:
         }
         double px = left, py = top;  // the box in the still's pixels, wherever the drawing was moved
         cairo_user_to_device(cr_, &px, &py);
-        drawn_.push_back({s, px / devicePerPixel_, py / devicePerPixel_, w, h, std::max(sizeUnits * unit_, 10.0), bold});
+        drawn_.push_back({s, px / devicePerPixel_, py / devicePerPixel_, w, h, std::max(sizeUnits * unit_, kMinTextPx), bold});
         return {w, h};
     }
 

@@ -22,21 +22,25 @@ struct DataOptions {
     bool json = false, force = false, quiet = false;
 };
 
-// The scene and its surface as planned: `estimated` (relief info) reads no net too large to read in a second.
-std::optional<std::pair<relief::LoadedScene, relief::Surface>> planned(const DataOptions& o, bool estimated,
+// How a command plans: relief info estimates (no net too large to read in a second is read),
+// relief init reads the net it writes the scene for.
+enum class Planning { Estimated, NetRead };
+
+std::optional<std::pair<relief::LoadedScene, relief::Surface>> planned(const DataOptions& o, Planning planning,
                                                                        relief::Diagnostics& diags) {
     scene::SceneOverrides overrides;
     if (!parseOverrides(o.sets, overrides)) return std::nullopt;
     auto loaded = relief::loadScene(o.input, diags, overrides);
     if (!loaded) return std::nullopt;
-    auto surface = estimated ? relief::estimateSurface(*loaded, diags) : relief::planSurface(*loaded, diags);
+    auto surface = planning == Planning::Estimated ? relief::estimateSurface(*loaded, diags)
+                                                   : relief::planSurface(*loaded, diags);
     if (!surface) return std::nullopt;
     return std::pair{std::move(*loaded), std::move(*surface)};
 }
 
 int runInfo(const DataOptions& o) {
     relief::Diagnostics diags;
-    const auto plan = planned(o, true, diags);
+    const auto plan = planned(o, Planning::Estimated, diags);
     const auto info = plan ? relief::sceneInfo(plan->first, plan->second, diags) : nlohmann::ordered_json();
     printDiagnostics(diags, plan.has_value());
     if (!plan) return code(Exit::BadInput);
@@ -61,7 +65,7 @@ int runInit(const DataOptions& o) {
         printDiagnostics(diags, false);
         return code(Exit::BadInput);
     }
-    const auto plan = planned(o, false, diags);
+    const auto plan = planned(o, Planning::NetRead, diags);
     if (plan && plan->first.scene.madeForData.empty())
         diags.error({o.input, 0, 0},
                     "relief init makes a scene for elevation data (a raster or a CSV of samples); "

@@ -23,6 +23,7 @@ void Diagnostics::warningOnce(std::string_view topic, SourceLoc loc, std::string
 }
 
 void Diagnostics::append(const Diagnostics& other) {
+    if (&other == this) return;
     items_.insert(items_.end(), other.items_.begin(), other.items_.end());
     errors_ += other.errors_;
     warnings_ += other.warnings_;

@@ -420,6 +420,7 @@ std::optional<ControlNet> gridSamples(const scene::NetSpec& spec, const std::str
     }
     if (!layoutNet(spec, FrameBox{xmin, ymin, xmax, ymax}, 0, net, diags, budget)) return std::nullopt;
     net.spacingReason = spec.spacingM > 0 ? "net.spacing_m" : "net.rows and net.cols (64 x 64 when not given)";
+    if (budget.beforeReading && !budget.beforeReading(net)) return std::nullopt;
     const int rows = net.grid.rows, cols = net.grid.cols;
 
     std::vector<double> xs, ys, zs;

@@ -105,9 +105,13 @@ struct NetBudget {
     std::function<double(double extentM)> nearestPixelM;
     /// Whether the work on the net laid out (its frame, origin, spacing, rows
     /// and cols; no heights) fits: the refinement and the geometry [limits]
-    /// allow, asked before any height is read or gridded. False after an
-    /// error, or with none to stop there (relief info's estimate). Empty: it fits.
+    /// allow, asked before any height is read or gridded; false after an
+    /// error. Empty: it fits.
     std::function<bool(const GeoGrid& laidOut, Diagnostics& diags)> fits;
+    /// Told the net once it is laid out and described (its size, spacing and
+    /// why; no heights), before a height is read: false stops there, with no
+    /// error (relief info's estimate of a net too large to read). Empty: read on.
+    std::function<bool(const ControlNet& laidOut)> beforeReading;
 };
 
 /// Why a net has the spacing it has, for the header, `relief info` and

@@ -308,7 +308,7 @@ std::optional<PlacedNet> placedNet(const Dataset& src, const RasterPlace& place,
     auto extent = netExtent(place, box, frameSpec, netSpec, ownCrsByDefault, fileLoc, diags);
     if (!extent) return std::nullopt;
     auto net = laidOutNet(src.get(), place, *extent, samples, netSpec, diags, budget);
-    if (!net) return std::nullopt;
+    if (!net || (budget.beforeReading && !budget.beforeReading(*net))) return std::nullopt;
     return PlacedNet{*extent, std::move(*net), std::nullopt};
 }
 

@@ -193,7 +193,7 @@ int depthForStill(const LoadedScene& loaded, const geo::ControlNet& net, const N
     const auto points = emit::cameraPointsInFrame(spec.look.camera, net.frame, quiet);
     const emit::ScenePlacement where = emit::placeTerrain(net, spec.look);
     const emit::CameraView camera = emit::placeCamera(where, spec.look.camera, points.value_or(emit::CameraPoints{}),
-                                                      spec.render, mapFrameInset(spec, mapFrameTicks(spec, net, quiet)));
+                                                      spec.render, frameInsetOf(spec, mapFrameTicks(spec, net, quiet)));
     pixelM = emit::finestMetresPerPixel(camera, where, spec.render.width);
     // An eye among the terrain's heights is inside its bounding box, whose nearest point is then
     // the eye itself: the footprint of a pixel at its height above the ground under it instead.

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <functional>
 
+#include <fmt/format.h>
+
 #include "core/number_format.h"
 #include "emit/graticule.h"
 #include "geo/normalize.h"
@@ -15,12 +17,18 @@ namespace {
 
 using Side = annotate::MapFrame::Side;
 
-// A frame tick's share of an annotation interval: fifths of 1, 5 and 10 units
-// (degrees, minutes, seconds or metres: 5° by 1°), quarters of 1 and 2 (1° by
-// 15′, 2 km by 500 m), thirds of 15, 30 and 45 (30′ by 10′).
-int frameTicksPerAnnotation(double stepDeg, bool degrees) {
-    double v = stepDeg;
-    if (degrees) v = stepDeg >= 1 - 1e-9 ? stepDeg : stepDeg >= 1.0 / 60 - 1e-9 ? stepDeg * 60 : stepDeg * 3600;
+// A label's length in characters (code points: UTF-8's continuation bytes are none).
+size_t charactersOf(const std::string& label) {
+    return std::count_if(label.begin(), label.end(), [](char c) { return (c & 0xC0) != 0x80; });
+}
+
+// A frame tick's share of an annotation interval `step` (degrees, or metres):
+// in its unit (degrees, minutes or seconds; metres) quarters of 1 and 2 (1° by
+// 15′, 2 km by 500 m; 1 × 10^k m by fifths), fifths of 5 and 10 (5′ by 1′),
+// thirds of 15 and 30 (30′ by 10′).
+int frameTicksPerAnnotation(double step, bool degrees) {
+    double v = step;
+    if (degrees) v = step >= 1 - 1e-9 ? step : step >= 1.0 / 60 - 1e-9 ? step * 60 : step * 3600;
     const double rounded = std::round(v);
     if (std::abs(v - rounded) < 1e-6 && rounded >= 15 && std::fmod(rounded, 15) == 0) return 3;
     const double mantissa = v / std::pow(10.0, std::floor(std::log10(v) + 1e-9));
@@ -43,7 +51,10 @@ double metresStep(double spanM, int most) {
 void edgeTicks(Side side, double from, double to, const std::function<double(double)>& valueAt, double step,
                int perAnnotation, const std::function<std::string(double)>& label, MapFrameTicks& out) {
     const double lo = valueAt ? valueAt(from) : from, hi = valueAt ? valueAt(to) : to, minor = step / perAnnotation;
-    if (!std::isfinite(lo) || !std::isfinite(hi) || !(hi > lo)) return;
+    // An edge of a few dozen ticks at most; a span or an origin no double can count in steps of these has none.
+    if (!std::isfinite(lo) || !std::isfinite(hi) || !(hi > lo) || !(minor > 0) || (hi - lo) / minor > 1000 ||
+        std::max(std::abs(lo), std::abs(hi)) / minor > 0x1p52)
+        return;
     for (long long k = std::llround(std::ceil(lo / minor - 1e-9)); k * minor <= hi + 1e-9 * minor; ++k) {
         const double value = k * minor;
         double a = valueAt ? from : value, b = valueAt ? to : value;
@@ -60,11 +71,7 @@ void edgeTicks(Side side, double from, double to, const std::function<double(dou
 
 size_t MapFrameTicks::widestLabelChars() const {
     size_t widest = 0;
-    for (const Tick& t : ticks) {
-        // Code points: UTF-8's continuation bytes are not characters.
-        const size_t n = std::count_if(t.label.begin(), t.label.end(), [](char c) { return (c & 0xC0) != 0x80; });
-        widest = std::max(widest, n);
-    }
+    for (const Tick& t : ticks) widest = std::max(widest, charactersOf(t.label));
     return widest;
 }
 
@@ -94,12 +101,27 @@ std::optional<MapFrameTicks> ticksWithin(const scene::SceneSpec& spec, const geo
                             "set overlay.frame_units = \"metres\"");
                 return std::nullopt;
             }
-    const auto lonAt = [&](double y) { return [&, y](double x) { return lonLat(x, y)->lonDeg; }; };
-    const auto latAt = [&](double x) { return [&, x](double y) { return lonLat(x, y)->latDeg; }; };
-    const LonLatBox box = emit::terrainLonLatBox(net);
-    const double lonStep = emit::graticuleStepDeg((box.east - box.west) * 5 / mostX);
-    const double latStep = emit::graticuleStepDeg((box.north - box.south) * 5 / mostY);
-    const auto lonLabel = [lonStep](double v) { return emit::graticuleLabel(v, true, lonStep); };
+    // Longitudes east of the west edge's, across the antimeridian too (179°E to 181°, not -179°);
+    // NaN where a point has none (the bisection and edgeTicks pass it by).
+    const double westLon = lonLat(f.x0, f.y0)->lonDeg;
+    const auto unwrapped = [westLon](double lon) { return lon < westLon - 180 ? lon + 360 : lon; };
+    const auto lonAt = [&](double y) {
+        return [&, y](double x) {
+            const auto g = lonLat(x, y);
+            return g ? unwrapped(g->lonDeg) : std::nan("");
+        };
+    };
+    const auto latAt = [&](double x) {
+        return [&, x](double y) {
+            const auto g = lonLat(x, y);
+            return g ? g->latDeg : std::nan("");
+        };
+    };
+    const double lonSpan = std::max(lonAt(f.y0)(f.x1), lonAt(f.y1)(f.x1)) - std::min(westLon, lonAt(f.y1)(f.x0));
+    const double latSpan = std::max(latAt(f.x0)(f.y1), latAt(f.x1)(f.y1)) - std::min(latAt(f.x0)(f.y0), latAt(f.x1)(f.y0));
+    const double lonStep = emit::graticuleStepDeg(lonSpan * 5 / mostX);
+    const double latStep = emit::graticuleStepDeg(latSpan * 5 / mostY);
+    const auto lonLabel = [lonStep](double v) { return emit::graticuleLabel(v > 180 ? v - 360 : v, true, lonStep); };
     const auto latLabel = [latStep](double v) { return emit::graticuleLabel(v, false, latStep); };
     const int lonTicks = frameTicksPerAnnotation(lonStep, true), latTicks = frameTicksPerAnnotation(latStep, true);
     edgeTicks(Side::Bottom, f.x0, f.x1, lonAt(f.y0), lonStep, lonTicks, lonLabel, f);
@@ -111,31 +133,45 @@ std::optional<MapFrameTicks> ticksWithin(const scene::SceneSpec& spec, const geo
 
 // The widest annotation of the bottom and top edges, in characters.
 size_t widestAcross(const MapFrameTicks& f) {
-    MapFrameTicks across = f;
-    std::erase_if(across.ticks, [](const auto& t) { return t.side == Side::Left || t.side == Side::Right; });
-    return across.widestLabelChars();
+    size_t widest = 0;
+    for (const auto& t : f.ticks)
+        if (annotate::MapFrame::alongX(t.side)) widest = std::max(widest, charactersOf(t.label));
+    return widest;
 }
 
 }  // namespace
 
 std::optional<MapFrameTicks> mapFrameTicks(const scene::SceneSpec& spec, const geo::GeoGrid& net, Diagnostics& diags) {
-    if (!spec.overlay.frame) return std::nullopt;
+    const int W = spec.render.width, H = spec.render.height;
+    if (!spec.overlay.frame || !annotate::overlaysWanted(spec.overlay, W)) return std::nullopt;
     // At most five annotations an edge, fewer where they would not fit: the map's size on the still
     // is known before the camera (the room the first ticks leave, filled), and an annotation takes
     // its width and a half along the bottom and top, two and a half lines of text up the sides.
     const auto first = ticksWithin(spec, net, 5, 5, diags);
     if (!first) return std::nullopt;
-    const int W = spec.render.width, H = spec.render.height;
-    const auto [left, top, right, bottom] = mapFrameInset(spec, first);
+    const auto [left, top, right, bottom] =
+        annotate::mapFrameInset(spec.overlay, W, H, first->widestLabelChars());
+    if (W - left - right < 0.2 * W || H - top - bottom < 0.2 * H) {
+        diags.error(spec.overlay.locs.at("overlay.frame"),
+                    fmt::format("overlay.frame: the annotations and the furniture leave the map {:.0f} x {:.0f} px of "
+                                "the {} x {} still, less than a fifth of it: lower overlay.text_scale, turn the "
+                                "legend off, or make the still larger",
+                                std::max(0.0, W - left - right), std::max(0.0, H - top - bottom), W, H));
+        return std::nullopt;
+    }
     const double spanX = first->x1 - first->x0, spanY = first->y1 - first->y0;
     const double pxPerM = std::min((W - left - right) / spanX, (H - top - bottom) / spanY);
-    const double textPx = annotate::kFrameTextSize * annotate::furnitureUnitPx(spec.overlay, W, H);
-    const double acrossPx = 1.5 * 0.64 * textPx * double(widestAcross(*first)), upPx = 2.5 * 1.25 * textPx;
-    const auto most = [](double px, double each) { return std::clamp(int(std::floor(px / each)), 1, 5); };
+    const double textPx = annotate::frameTextPx(annotate::furnitureUnitPx(spec.overlay, W, H));
+    const double acrossPx = 1.5 * annotate::kDigitWidthEm * textPx * double(std::max<size_t>(widestAcross(*first), 1));
+    const double upPx = 2.5 * annotate::kLineHeightEm * textPx;
+    const auto most = [](double px, double each) {
+        const double n = px / each;
+        return std::isfinite(n) ? std::clamp(int(std::floor(n)), 1, 5) : 5;
+    };
     return ticksWithin(spec, net, most(pxPerM * spanX, acrossPx), most(pxPerM * spanY, upPx), diags);
 }
 
-emit::FrameInsetPx mapFrameInset(const scene::SceneSpec& spec, const std::optional<MapFrameTicks>& ticks) {
+emit::FrameInsetPx frameInsetOf(const scene::SceneSpec& spec, const std::optional<MapFrameTicks>& ticks) {
     if (!ticks) return {};
     return annotate::mapFrameInset(spec.overlay, spec.render.width, spec.render.height, ticks->widestLabelChars());
 }
@@ -150,7 +186,7 @@ annotate::MapFrame mapFrameOnImage(const MapFrameTicks& ticks, const emit::Scene
     annotate::MapFrame frame;
     frame.map = {topLeft[0], topLeft[1], bottomRight[0], bottomRight[1]};
     for (const MapFrameTicks::Tick& t : ticks.ticks) {
-        const bool alongX = t.side == Side::Bottom || t.side == Side::Top;
+        const bool alongX = annotate::MapFrame::alongX(t.side);
         const auto p = alongX ? onImage(t.atM, t.side == Side::Bottom ? ticks.y0 : ticks.y1)
                               : onImage(t.side == Side::Left ? ticks.x0 : ticks.x1, t.atM);
         frame.ticks.push_back({t.side, alongX ? p[0] : p[1], t.label});

@@ -17,11 +17,12 @@ namespace relief {
 
 /// The ticks where the meridians and parallels (or the frame's round metres)
 /// cross the terrain's four edges: an annotation every annotation interval
-/// (the graticule's automatic step: at most five along an edge), a frame tick
-/// every fifth, fourth or third of it (1° by 15′, 5′ by 1′, 30′ by 10′).
+/// (the graticule's automatic step: at most five intervals along an edge,
+/// fewer where the map's width on the still would crowd them), a frame tick
+/// every fourth, fifth or third of it (1° by 15′, 5′ by 1′, 30′ by 10′).
 struct MapFrameTicks {
     struct Tick {
-        annotate::MapFrame::Side side;
+        annotate::MapFrame::Side side = annotate::MapFrame::Side::Bottom;
         double atM = 0;     ///< along its edge: x for bottom and top, y for left and right
         double value = 0;   ///< what it marks: a longitude or latitude (degrees), or atM
         std::string label;  ///< empty: a frame tick
@@ -32,13 +33,14 @@ struct MapFrameTicks {
 };
 
 /// The frame's ticks over `net`'s extent; nullopt when the scene asks for
-/// none. Longitude and latitude need a frame that has them (not a raster's
-/// CRS PROJ cannot invert): then an error at overlay.frame_units.
+/// none or draws no overlays. Errors at overlay.frame: longitude and
+/// latitude where the frame has none (a raster's CRS PROJ cannot invert),
+/// annotations and furniture leaving the map less than a fifth of the still.
 std::optional<MapFrameTicks> mapFrameTicks(const scene::SceneSpec& spec, const geo::GeoGrid& net, Diagnostics& diags);
 
 /// The room the camera leaves around the map for the ticks' annotations and
 /// the furniture (emit::placeCamera's inset); none without a frame.
-emit::FrameInsetPx mapFrameInset(const scene::SceneSpec& spec, const std::optional<MapFrameTicks>& ticks);
+emit::FrameInsetPx frameInsetOf(const scene::SceneSpec& spec, const std::optional<MapFrameTicks>& ticks);
 
 /// The frame on the still the camera makes.
 annotate::MapFrame mapFrameOnImage(const MapFrameTicks& ticks, const emit::ScenePlacement& where,

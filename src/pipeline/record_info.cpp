@@ -1,4 +1,4 @@
-// `relief info`: the plan of a scene (planSurface) as facts, JSON or text.
+// `relief info`: the plan of a scene (estimateSurface) as facts, JSON or text.
 #include "pipeline/record.h"
 
 #include <algorithm>

@@ -236,13 +236,12 @@ void addRenderFacts(ordered_json& j, const RenderFacts& r) {
         texts.push_back({{"text", t.text}, {"box_px", tenthsOf({t.x, t.y, t.x + t.w, t.y + t.h})}});
     j["overlay"]["texts"] = texts;
     if (o.frame) {
-        constexpr const char* kSides[] = {"bottom", "right", "top", "left"};
         ordered_json ticks = ordered_json::array(), annotations = ordered_json::array();
         for (const auto& t : o.frame->ticks)
-            ticks.push_back({{"side", kSides[static_cast<int>(t.side)]}, {"px", tenth(t.px)}, {"label", t.label}});
+            ticks.push_back({{"side", annotate::MapFrame::nameOf(t.side)}, {"px", tenth(t.px)}, {"label", t.label}});
         for (const auto& a : o.frameAnnotations)
             annotations.push_back({{"text", a.text},
-                                   {"side", kSides[static_cast<int>(a.side)]},
+                                   {"side", annotate::MapFrame::nameOf(a.side)},
                                    {"tick_px", tenth(a.tickPx)},
                                    {"box_px", tenthsOf(a.box)}});
         j["overlay"]["frame"] = {{"map_px", tenthsOf(o.frame->map)}, {"ticks", ticks}, {"annotations", annotations}};

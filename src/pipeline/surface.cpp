@@ -149,20 +149,25 @@ scene::NetSpec netSpecOf(const scene::SceneSpec& spec) {
 }
 
 // The depth, the fit and the cost of a surface on `net`'s heights at `size`,
-// checked against [limits]. `fit`: fit the scheme where the scene asks
-// (false for a stand-in net, whose fit would not be the net's).
-std::optional<Surface> planOnNet(const LoadedScene& loaded, geo::ControlNet net, const NetSize& size, bool fit,
-                                 Diagnostics& diags, int threads, const ProgressFn& progress) {
+// checked against [limits]. `standInAtM`: 0, or the spacing of the coarser
+// net `net` is (relief info's estimate), which is not fitted (its fit would
+// not be the net's) and whose automatic depth is measured on it, and said so.
+std::optional<Surface> planOnNet(const LoadedScene& loaded, geo::ControlNet net, const NetSize& size,
+                                 double standInAtM, Diagnostics& diags, int threads, const ProgressFn& progress) {
     const auto t0 = Clock::now();
     Surface s;
     s.size = size;
+    s.heightsReadAtM = standInAtM;
     auto depth = chooseSurfaceDepth(loaded, net, size, threads, diags);
     if (!depth) return std::nullopt;
     s.depth = depth->depth;
     s.depthReason = std::move(depth->reason);
     s.autoDepth = std::move(depth->autoDepth);
+    if (s.autoDepth && standInAtM > 0)
+        s.depthReason += fmt::format(" (measured on the net's heights read at {:.3g} m: relief info's estimate)",
+                                     standInAtM);
     s.dataPeak = net.highestSample.value_or(measure::highestNode(net));
-    if (fit && !fitToScheme(loaded, s.depth, net, s, diags, progress)) return std::nullopt;
+    if (standInAtM == 0 && !fitToScheme(loaded, s.depth, net, s, diags, progress)) return std::nullopt;
     auto cost = costAt(loaded, net, size, s.depth, diags);
     if (!cost) return std::nullopt;
     s.geometry = cost->geometry;
@@ -189,7 +194,7 @@ std::optional<Surface> planSurface(const LoadedScene& loaded, Diagnostics& diags
     if (!net) return std::nullopt;
     const double normalizeSeconds = secondsSince(t0);
     const NetSize size = NetSize::of(*net);
-    auto s = planOnNet(loaded, std::move(*net), size, true, diags, threads, progress);
+    auto s = planOnNet(loaded, std::move(*net), size, 0, diags, threads, progress);
     if (s) s->normalizeSeconds = normalizeSeconds;
     return s;
 }
@@ -197,35 +202,39 @@ std::optional<Surface> planSurface(const LoadedScene& loaded, Diagnostics& diags
 std::optional<Surface> estimateSurface(const LoadedScene& loaded, Diagnostics& diags) {
     const scene::SceneSpec& spec = loaded.scene;
     geo::NetLimits limits = netLimitsOf(loaded);
-    std::optional<NetSize> tooLarge;
-    limits.nodes.fits = [&tooLarge, fits = limits.nodes.fits](const geo::GeoGrid& laidOut, Diagnostics& d) {
-        if (!fits(laidOut, d)) return false;
+    std::optional<geo::ControlNet> tooLarge;  // laid out and described, not read
+    limits.nodes.beforeReading = [&tooLarge](const geo::ControlNet& laidOut) {
         if (double(laidOut.rows()) * laidOut.cols() <= kEstimateReadNodes) return true;
-        tooLarge = NetSize::of(laidOut);
-        return false;  // laid out, not read
+        tooLarge = laidOut;
+        return false;
     };
-    Diagnostics laying;
-    auto net = geo::controlNet(spec.samples, spec.frame, netSpecOf(spec), limits, laying);
-    if (!tooLarge || laying.hasErrors()) {
-        diags.append(laying);
+    auto net = geo::controlNet(spec.samples, spec.frame, netSpecOf(spec), limits, diags);
+    if (!tooLarge) {
         if (!net) return std::nullopt;
         const NetSize size = NetSize::of(*net);
-        return planOnNet(loaded, std::move(*net), size, true, diags, 0, {});
+        return planOnNet(loaded, std::move(*net), size, 0, diags, 0, {});
     }
-    // The stand-in: the net a still kEstimateReadWidthPx wide would have, over the same extent.
+    // The stand-in: a net about kEstimateReadWidthPx nodes across over the same extent, laid as a
+    // still's default net is (a raster's block means), or, for samples (which have no spacing of
+    // their own), as rows and columns in the net's proportions. Its warnings are the net's, said.
     scene::NetSpec coarse = netSpecOf(spec);
     coarse.spacingM = 0;
     for (const char* key : {"net.spacing_m", "net.rows", "net.cols"}) coarse.locs.keys.erase(key);
+    coarse.cols = std::min(tooLarge->cols(), kEstimateReadWidthPx);
+    coarse.rows = std::max(4, int(std::lround(double(tooLarge->rows()) * coarse.cols / tooLarge->cols())));
     geo::NetLimits read = netLimitsOf(loaded);
     read.nodes.stillWidthPx = kEstimateReadWidthPx;
     read.nodes.nearestPixelM = nullptr;
-    auto standIn = geo::controlNet(spec.samples, spec.frame, coarse, read, diags);
+    Diagnostics again;
+    auto standIn = geo::controlNet(spec.samples, spec.frame, coarse, read, again);
+    for (const Diagnostic& d : again.all())
+        if (d.severity == Severity::Error) diags.error(d.loc, d.message);
     if (!standIn) return std::nullopt;
     const double readAtM = std::max(standIn->dx, standIn->dy);
-    standIn->spacingReason = geo::netSpacingReason(spec.net, *standIn, 0, limits.nodes);
-    auto s = planOnNet(loaded, std::move(*standIn), *tooLarge, false, diags, 0, {});
-    if (s) s->heightsReadAtM = readAtM;
-    return s;
+    // What the net is and why, as laid out; its heights the stand-in's.
+    standIn->spacingReason = tooLarge->spacingReason;
+    standIn->raster = tooLarge->raster;
+    return planOnNet(loaded, std::move(*standIn), NetSize::of(*tooLarge), readAtM, diags, 0, {});
 }
 
 std::optional<Surface> buildSurface(const LoadedScene& loaded, Diagnostics& diags, int threads,

@@ -52,13 +52,16 @@ struct Surface {
 /// the terrain is nearest the camera, lowered until [limits] allow it.
 std::optional<Surface> planSurface(const LoadedScene& loaded, Diagnostics& diags, int threads = 0,
                                    const ProgressFn& progress = {});
-/// planSurface for `relief info`, answered in under a second on any data:
-/// a net of more than kEstimateReadNodes is laid out and not read. Its
-/// heights (the elevation range, the camera's framing, the footprint that
-/// chooses the depth) are read on a coarser net over the same extent, as a
-/// still's default net is (block means); its size, depth and cost are the
-/// net's own. net.gridding = "fit" is not fitted then (net is the stand-in).
+/// A net of more nodes than this is not read by estimateSurface.
 inline constexpr double kEstimateReadNodes = 2e6;
+/// planSurface for `relief info`, answered in under a second on any data:
+/// a net of more than kEstimateReadNodes is laid out (its size, spacing and
+/// why, as planSurface's) and not read. Its heights (the elevation range, the
+/// camera's framing, the footprint that chooses the depth) are read on a
+/// coarser net over the same extent, as a still's default net is (block
+/// means); its size, depth and cost are the net's own. Not the net's: an
+/// automatic depth (measured on the stand-in, and said so) and net.gridding
+/// = "fit" (not fitted).
 std::optional<Surface> estimateSurface(const LoadedScene& loaded, Diagnostics& diags);
 /// `progress` (may be empty) hears how far the gridding is.
 std::optional<Surface> buildSurface(const LoadedScene& loaded, Diagnostics& diags, int threads = 0,

@@ -59,10 +59,11 @@ std::optional<View> resolveView(const scene::SceneSpec& spec, const geo::Control
     auto sun = sunOf(spec.look, net, diags);
     if (!sun) return std::nullopt;
     View v;
+    const int errorsBefore = diags.errorCount();
     v.frameTicks = mapFrameTicks(spec, refined, diags);
-    if (spec.overlay.frame && !v.frameTicks) return std::nullopt;
+    if (diags.errorCount() > errorsBefore) return std::nullopt;
     v.where = emit::placeTerrain(refined, spec.look);
-    v.camera = emit::placeCamera(v.where, spec.look.camera, *points, spec.render, mapFrameInset(spec, v.frameTicks));
+    v.camera = emit::placeCamera(v.where, spec.look.camera, *points, spec.render, frameInsetOf(spec, v.frameTicks));
     v.metresPerPixel = annotate::metresPerPixelAtTarget(v.camera, v.where.metresPerUnit, spec.render.width);
     v.sun = sun->first;
     v.sunRecord = sun->second;

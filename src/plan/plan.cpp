@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <mutex>
@@ -101,13 +102,17 @@ ordered_json mapFrameJson(const annotate::MapFrame& m) {
 }
 annotate::MapFrame mapFrameOf(const ordered_json& j) {
     annotate::MapFrame m;
+    const auto bad = [](const char* what) { return nlohmann::json::other_error::create(501, what, nullptr); };
     const auto box = j.at("map").get<std::array<double, 4>>();
+    if (!std::all_of(box.begin(), box.end(), [](double v) { return std::isfinite(v); })) throw bad("a map frame's box");
     m.map = {box[0], box[1], box[2], box[3]};
+    // Each side has a few dozen ticks at most (five annotations, five ticks each): a plan's thousands are forged.
+    if (j.at("ticks").size() > 1000) throw bad("a map frame of more than 1000 ticks");
     for (const auto& t : j.at("ticks")) {
         const int side = t.at("side").get<int>();
-        if (side < 0 || side > 3) throw nlohmann::json::other_error::create(501, "a map frame tick's side", nullptr);
-        m.ticks.push_back({static_cast<annotate::MapFrame::Side>(side), t.at("px").get<double>(),
-                           t.at("label").get<std::string>()});
+        const double px = t.at("px").get<double>();
+        if (side < 0 || side > 3 || !std::isfinite(px)) throw bad("a map frame's tick");
+        m.ticks.push_back({static_cast<annotate::MapFrame::Side>(side), px, t.at("label").get<std::string>()});
     }
     return m;
 }

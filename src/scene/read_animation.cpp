@@ -220,6 +220,9 @@ void readAnimation(Section& s, const SceneFile& f, SceneSpec& scene) {
     a.vary = variedKeysOf(s, scene);
     checkOrbit(s, scene, a);
     readFlyover(s, f, a);
+    if (a.path == CameraPath::Flyover && scene.overlay.frame)
+        s.error("path", "animation.path = \"flyover\" puts the eye among the terrain, and overlay.frame draws a map's "
+                        "frame around a view from straight above: remove one of them");
     if (a.path == CameraPath::Still && !s.find("sun") && !s.find("vary"))
         s.error("path",
                 "[animation] moves nothing: give path = \"orbit\" or \"flyover\", sun = { from, to } or "

@@ -353,6 +353,9 @@ void readMapFrame(Section& s, SceneSpec& scene) {
     else if (given.has("camera.elevation_deg") && camera.elevationDeg != 90)
         s.error("frame", fmt::format("{}: camera.elevation_deg = {}; set it to 90, or leave it out",
                                      kWhy, formatShortest(camera.elevationDeg)));
+    else if (given.has("camera.distance_m"))
+        s.error("frame", fmt::format("{}, the map filling the room its annotations leave: camera.distance_m would "
+                                     "size it instead; leave it out", kWhy));
     else if (given.has("camera.projection") && camera.projection != Projection::Orthographic)
         s.error("frame", fmt::format("{}: camera.projection is not \"orthographic\"; set it so, or leave it out", kWhy));
     camera.elevationDeg = 90;

@@ -75,7 +75,7 @@ TEST(MapFrame, EveryTickMarksItsValueOnEveryEdge) {
                 std::vector<int> annotated;  // the ticks' indices
                 for (size_t i = 0; i < along.size(); ++i) {
                     const auto& t = along[i];
-                    const bool alongX = side == Side::Bottom || side == Side::Top;
+                    const bool alongX = annotate::MapFrame::alongX(side);
                     const double x = alongX ? t.atM : side == Side::Left ? ticks->x0 : ticks->x1;
                     const double y = alongX ? (side == Side::Bottom ? ticks->y0 : ticks->y1) : t.atM;
                     if (spec.overlay.frameMetres) {
@@ -112,7 +112,7 @@ TEST(MapFrame, TheMapFillsTheRoomTheFrameLeaves) {
             const auto view = resolveView(spec, f->surface.net, f->surface.refined, diags);
             ASSERT_TRUE(view && view->frameTicks) << dem;
             const int W = spec.render.width, H = spec.render.height;
-            const auto [left, top, right, bottom] = mapFrameInset(spec, view->frameTicks);
+            const auto [left, top, right, bottom] = frameInsetOf(spec, view->frameTicks);
             const auto frame = mapFrameOnImage(*view->frameTicks, view->where, view->camera, W, H);
             const PixelBox room{left, top, W - right, H - bottom};
             const PixelBox& m = frame.map;
@@ -129,7 +129,7 @@ TEST(MapFrame, TheMapFillsTheRoomTheFrameLeaves) {
             EXPECT_NEAR(m.y0 + m.y1, room.y0 + room.y1, 2 * kPx) << where;
             // Every tick on the neat line's side, within it.
             for (const auto& t : frame.ticks) {
-                const bool alongX = t.side == Side::Bottom || t.side == Side::Top;
+                const bool alongX = annotate::MapFrame::alongX(t.side);
                 EXPECT_GE(t.px, (alongX ? m.x0 : m.y0) - kPx) << where;
                 EXPECT_LE(t.px, (alongX ? m.x1 : m.y1) + kPx) << where;
             }

@@ -14,7 +14,9 @@
 #include <fstream>
 
 #include <GeographicLib/UTMUPS.hpp>
+#include <cpl_conv.h>
 #include <gdal.h>
+#include <ogr_srs_api.h>
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.h"
@@ -419,21 +421,53 @@ TEST(Pipeline, AFineRasterGetsANetForTheStill) {
 // that large (a spacing, rows and columns, a still wide enough for the data's own spacing) and over
 // the cameras that choose the depth; a net small enough to read is read.
 TEST(Pipeline, InfoEstimatesWhatThePlanThatReadsTheNetFinds) {
-    const std::vector<scene::SceneOverrides> sweep = {
-        {{"net.spacing_m", "0.9"}},
-        {{"net.rows", "1500"}, {"net.cols", "1700"}},
-        {{"net.spacing_m", "0.9"}, {"camera.elevation_deg", "5"}},
-        {{"net.spacing_m", "0.9"}, {"camera.position", "[174.7620,-36.8790,120]"},
-         {"camera.look_at", "[174.7640,-36.8765,150]"}},
-        {{"net.spacing_m", "0.9"}, {"subdivision.depth", "1"}},
-        {{"net.spacing_m", "1.2"}, {"render.width", "3000"}, {"render.height", "2000"}},
-        {{"net.spacing_m", "4"}},  // 360 x 360 nodes: read
+    struct Case {
+        const char* data;
+        scene::SceneOverrides sets;
     };
-    for (const auto& sets : sweep) {
-        std::string said;
+    const char* const hires = "scenes/data/rasters/volcano2hires.tif";
+    const char* const samples = "scenes/data/volcano_samples_1000_seed20251124.csv";
+    const std::vector<Case> sweep = {
+        {hires, {{"net.spacing_m", "0.9"}}},
+        {hires, {{"net.rows", "1500"}, {"net.cols", "1700"}}},
+        {hires, {{"net.spacing_m", "0.9"}, {"camera.elevation_deg", "5"}}},
+        {hires, {{"net.spacing_m", "0.9"}, {"camera.position", "[174.7620,-36.8790,120]"},
+                 {"camera.look_at", "[174.7640,-36.8765,150]"}}},
+        {hires, {{"net.spacing_m", "0.9"}, {"subdivision.depth", "1"}}},
+        {hires, {{"net.spacing_m", "1.2"}, {"render.width", "3000"}, {"render.height", "2000"}}},
+        {"", {{"render.width", "1600"}, {"render.height", "1000"}}},  // blocks of 2 x 2 cells: 1600 x 1600
+        {hires, {{"net.spacing_m", "4"}}},  // 360 x 360 nodes: read
+        {samples, {{"net.spacing_m", "8"}}},
+        {samples, {{"net.rows", "1600"}, {"net.cols", "1500"}}},
+    };
+    // A still's own net over a raster of 3200 x 3200 cells (NZTM, 1 m): the means of blocks of 2 x 2.
+    const fs::path big = relief::testing::freshTestDir("info-estimates") / "big.tif";
+    {
+        geo::setUpGdal();
+        GDALDatasetH ds = GDALCreate(GDALGetDriverByName("GTiff"), big.c_str(), 3200, 3200, 1, GDT_Float32, nullptr);
+        const double transform[6] = {1750000, 1, 0, 5920000, 0, -1};
+        GDALSetGeoTransform(ds, const_cast<double*>(transform));
+        OGRSpatialReferenceH nztm = OSRNewSpatialReference(nullptr);
+        OSRImportFromEPSG(nztm, 2193);
+        char* wkt = nullptr;
+        OSRExportToWkt(nztm, &wkt);
+        GDALSetProjection(ds, wkt);
+        CPLFree(wkt);
+        OSRDestroySpatialReference(nztm);
+        std::vector<float> row(3200);
+        GDALRasterBandH band = GDALGetRasterBand(ds, 1);
+        for (int r = 0; r < 3200; ++r) {
+            for (int c = 0; c < 3200; ++c) row[c] = float(100 + 50 * std::sin(c / 300.0) * std::cos(r / 400.0));
+            ASSERT_EQ(GDALRasterIO(band, GF_Write, 0, r, 3200, 1, row.data(), 3200, 1, GDT_Float32, 0, 0), CE_None);
+        }
+        GDALSetRasterUnitType(band, "m");
+        GDALClose(ds);
+    }
+    for (const auto& [data, sets] : sweep) {
+        std::string said = std::string(*data ? data : "big.tif") + " ";
         for (const auto& [k, v] : sets) said += k + "=" + v + " ";
         Diagnostics diags;
-        const auto loaded = loadScene(kSource / "scenes/data/rasters/volcano2hires.tif", diags, sets);
+        const auto loaded = loadScene(*data ? kSource / data : big, diags, sets);
         ASSERT_TRUE(loaded) << said << firstWarning(diags);
         const auto read = planSurface(*loaded, diags, 1);
         const auto estimated = estimateSurface(*loaded, diags);
@@ -450,6 +484,8 @@ TEST(Pipeline, InfoEstimatesWhatThePlanThatReadsTheNetFinds) {
         EXPECT_EQ(estimated->estimate.triangles, read->estimate.triangles) << said;
         EXPECT_EQ(estimated->estimate.memoryBytes, read->estimate.memoryBytes) << said;
         EXPECT_EQ(estimated->net.spacingReason, read->net.spacingReason) << said;
+        // What is read, as laid out (how it is resampled is known once it is: not the estimate's to say).
+        EXPECT_TRUE(read->net.raster.starts_with(estimated->net.raster)) << said << estimated->net.raster;
         // The stand-in's heights: block means, a little inside the net's own extremes.
         const auto [zmin, zmax] = read->net.grid.zRange();
         const auto [emin, emax] = estimated->net.grid.zRange();
