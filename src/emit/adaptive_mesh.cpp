@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <vector>
 
 namespace relief::emit {
@@ -25,8 +26,12 @@ public:
     // the interpolation misses by more than kColourTolerance forces a split as a
     // node without data does.
     // Heights are the drawn ones (ScenePlacement::drawnHeight), colours by elevation.
-    Rtin(const geo::GeoGrid& grid, const ScenePlacement& where, std::function<LinearRgb(double)> colour)
-        : grid_(grid), where_(where), cols_(grid.cols()), rows_(grid.rows()), colour_(std::move(colour)) {
+    // `toleranceAt(m)`, if given: each midpoint's error is in units of the tolerance there (split
+    // above 1), which keeps the hierarchy nested (a parent's is the largest of its children's).
+    Rtin(const geo::GeoGrid& grid, const ScenePlacement& where, std::function<LinearRgb(double)> colour,
+         std::function<double(const Vec3&)> toleranceAt = {})
+        : grid_(grid), where_(where), cols_(grid.cols()), rows_(grid.rows()), colour_(std::move(colour)),
+          toleranceAt_(std::move(toleranceAt)) {
         size_ = 1;
         while (size_ < std::max(cols_ - 1, rows_ - 1)) size_ *= 2;
         error_.assign(static_cast<size_t>(size_ + 1) * (size_ + 1), 0.0f);
@@ -42,6 +47,7 @@ public:
 private:
     size_t index(Node n) const { return static_cast<size_t>(n.y) * (size_ + 1) + n.x; }
     double z(Node n) const { return where_.drawnHeight(grid_.grid.at(n.y, n.x)); }
+    double toleranceAt(Node n) const { return toleranceAt_(grid_.grid.at(n.y, n.x)); }
     LinearRgb colourOf(Node n) const { return colour_(where_.elevation(grid_.grid.at(n.y, n.x))); }
 
     // The vertical error at midpoint m of hypotenuse (a, b); infinite when the
@@ -57,7 +63,13 @@ private:
         const double miss = std::max({std::fabs(cm.r - 0.5 * (ca.r + cb.r)), std::fabs(cm.g - 0.5 * (ca.g + cb.g)),
                                       std::fabs(cm.b - 0.5 * (ca.b + cb.b))});
         if (miss > kColourTolerance) return kInf;
-        return static_cast<float>(std::fabs(z(m) - 0.5 * (z(a) + z(b))));
+        const double error = std::fabs(z(m) - 0.5 * (z(a) + z(b)));
+        if (!toleranceAt_) return static_cast<float>(error);
+        // The least tolerance over the triangle pair's corners: a node inside keeps to its own.
+        double least = std::min({toleranceAt(a), toleranceAt(b), toleranceAt(m)});
+        if (in1 && c1.x < cols_ && c1.y < rows_) least = std::min(least, toleranceAt(c1));
+        if (in2 && c2.x < cols_ && c2.y < rows_) least = std::min(least, toleranceAt(c2));
+        return static_cast<float>(error / least);
     }
     static constexpr double kColourTolerance = 0.01;  // linear RGB, 0..1
 
@@ -121,13 +133,57 @@ private:
     const ScenePlacement& where_;
     int cols_, rows_;
     std::function<LinearRgb(double)> colour_;
+    std::function<double(const Vec3&)> toleranceAt_;
     int size_ = 1;
     std::vector<float> error_;
 };
 
 }  // namespace
 
-Mesh buildAdaptiveMesh(const geo::GeoGrid& refined, const ScenePlacement& where, double toleranceM) {
+namespace {
+
+bool followsPixels(const PixelTolerance* perPixel) {
+    return perPixel && perPixel->camera && perPixel->camera->perspective && !perPixel->camera->wide;
+}
+
+// The tolerance at each point of a perspective view (PixelTolerance), with
+// what every point shares worked out once.
+class ToleranceField {
+public:
+    ToleranceField(const ScenePlacement& where, double toleranceM, const PixelTolerance& perPixel)
+        : where_(where), view_(*perPixel.camera), toleranceM_(toleranceM), W_(perPixel.widthPx), H_(perPixel.heightPx) {
+        forward_ = (1.0 / length(view_.target - view_.eye)) * (view_.target - view_.eye);
+        // The depth before the eye at which a pixel's footprint is the finest's.
+        nearestDepth_ = finestMetresPerPixel(view_, where, W_) * W_ / (2 * view_.tanHalfFov * where.metresPerUnit);
+    }
+    double at(const Vec3& p) const {
+        const SceneVec3 q = where_.scenePoint(p);
+        const double depth = dot(q - view_.eye, forward_);
+        const auto onImage = projectToImage(view_, q, W_, H_);
+        const bool seen = depth > 0 && onImage[0] >= -0.1 * W_ && onImage[0] <= 1.1 * W_ && onImage[1] >= -0.1 * H_ &&
+                          onImage[1] <= 1.1 * H_;
+        const double wider = std::max(1.0, (depth > 0 ? depth : length(q - view_.eye)) / nearestDepth_);
+        return toleranceM_ * wider * (seen ? 1 : 16);
+    }
+
+private:
+    const ScenePlacement& where_;
+    const CameraView& view_;
+    double toleranceM_;
+    double W_, H_;
+    SceneVec3 forward_;
+    double nearestDepth_ = 1;
+};
+
+}  // namespace
+
+double adaptiveToleranceAt(const Vec3& p, const ScenePlacement& where, double toleranceM,
+                           const PixelTolerance* perPixel) {
+    return followsPixels(perPixel) ? ToleranceField(where, toleranceM, *perPixel).at(p) : toleranceM;
+}
+
+Mesh buildAdaptiveMesh(const geo::GeoGrid& refined, const ScenePlacement& where, double toleranceM,
+                       const PixelTolerance* perPixel) {
     const Grid& g = refined.grid;
     Mesh mesh;
     static_cast<ScenePlacement&>(mesh) = where;
@@ -135,7 +191,14 @@ Mesh buildAdaptiveMesh(const geo::GeoGrid& refined, const ScenePlacement& where,
     mesh.rows = g.rows;
     mesh.cols = g.cols;
     // The colour each vertex gets (its palette entry), as a function of height.
-    const Rtin rtin(refined, mesh, [&](double z) { return mesh.paletteColors[paletteIndex(mesh, z)]; });
+    const bool perPoint = followsPixels(perPixel);
+    std::optional<ToleranceField> field;
+    std::function<double(const Vec3&)> toleranceAt;
+    if (perPoint) {
+        field.emplace(where, toleranceM, *perPixel);
+        toleranceAt = [&field](const Vec3& p) { return field->at(p); };
+    }
+    const Rtin rtin(refined, mesh, [&](double z) { return mesh.paletteColors[paletteIndex(mesh, z)]; }, toleranceAt);
     const int S = rtin.size();
 
     // Top down: split while the midpoint's error exceeds the tolerance.
@@ -152,7 +215,7 @@ Mesh buildAdaptiveMesh(const geo::GeoGrid& refined, const ScenePlacement& where,
         const Node m{(t.a.x + t.b.x) / 2, (t.a.y + t.b.y) / 2};
         // Wholly beyond the lattice (the rest of the 2^k square): nothing to keep.
         if (std::min({t.a.x, t.b.x, t.c.x}) >= mesh.cols || std::min({t.a.y, t.b.y, t.c.y}) >= mesh.rows) continue;
-        if (splittable && !(rtin.error(m) <= toleranceM)) {
+        if (splittable && !(rtin.error(m) <= (perPoint ? 1 : toleranceM))) {
             stack.push_back({t.c, t.a, m});
             stack.push_back({t.b, t.c, m});
         } else if (rtin.hasData(t.a) && rtin.hasData(t.b) && rtin.hasData(t.c)) {

@@ -53,14 +53,16 @@ bool buildMeshes(const LoadedScene& loaded, const Surface& surface, const View& 
     if (surface.geometry.kind != scene::GeometryKind::Adaptive) {
         t.mesh = emit::buildMesh(refined, view.where);
     } else {
-        // The tolerance in metres: given, or half a pixel (by default) where the terrain is
-        // nearest the camera, in true (not exaggerated) metres.
+        // The tolerance in metres: given, or a tenth of a pixel (by default) in true (not exaggerated)
+        // metres, where the terrain is nearest the camera and, in a perspective view, as many
+        // times more as a pixel's footprint is wider elsewhere (emit::PixelTolerance).
         const scene::GeometrySpec& g = spec.geometry;
         const double pixelM = emit::finestMetresPerPixel(view.camera, view.where, spec.render.width);
         const double exaggeration = spec.look.vertical.exaggeration;
         t.adaptiveToleranceM = g.toleranceM > 0 ? g.toleranceM : g.tolerancePx * pixelM / exaggeration;
         t.adaptiveTolerancePx = t.adaptiveToleranceM * exaggeration / pixelM;
-        t.mesh = emit::buildAdaptiveMesh(refined, view.where, t.adaptiveToleranceM);
+        const emit::PixelTolerance perPixel{&view.camera, spec.render.width, spec.render.height};
+        t.mesh = emit::buildAdaptiveMesh(refined, view.where, t.adaptiveToleranceM, g.toleranceM > 0 ? nullptr : &perPixel);
         if (!subdiv::checkBudget(
                 subdiv::withBuiltMesh(surface.estimate, double(t.mesh->vertices), double(t.mesh->triangles)),
                 loaded.budget, budgetKey(spec), surface.depth, diags, true))

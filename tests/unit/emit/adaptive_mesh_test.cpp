@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <map>
 #include <numeric>
 #include <set>
@@ -26,13 +27,14 @@ geo::GeoGrid lattice(int rows, int cols, F f) {
 struct Checked {
     double area = 0;          // in cells
     double worstError = 0;    // largest vertical distance of a node from its triangle, metres
+    double worstRatio = 0;    // largest of a node's distance over its tolerance (check's `tolerance`)
     int nodesCovered = 0;
     bool manifold = true;     // every edge in one or two triangles, interior edges in two
     bool tJunction = false;   // a vertex inside another triangle's edge
 };
 
 // Walks every triangle: its area, the nodes it covers and their distance from its plane, its edges.
-Checked check(const Mesh& m, const geo::GeoGrid& g) {
+Checked check(const Mesh& m, const geo::GeoGrid& g, const std::function<double(const Vec3&)>& tolerance = {}) {
     Checked out;
     // Faces are grid nodes: node n is column n % cols, row n / cols.
     const auto nodeOf = [&](std::uint32_t n) { return std::pair<int, int>{int(n % g.cols()), int(n / g.cols())}; };
@@ -68,7 +70,9 @@ Checked check(const Mesh& m, const geo::GeoGrid& g) {
                 const double w0 = 1 - w1 - w2;
                 if (w0 < -1e-12 || w1 < -1e-12 || w2 < -1e-12) continue;
                 ++out.nodesCovered;
-                out.worstError = std::max(out.worstError, std::fabs(g.grid.at(y, x).z - (w0 * z0 + w1 * z1 + w2 * z2)));
+                const double error = std::fabs(g.grid.at(y, x).z - (w0 * z0 + w1 * z1 + w2 * z2));
+                out.worstError = std::max(out.worstError, error);
+                if (tolerance) out.worstRatio = std::max(out.worstRatio, error / tolerance(g.grid.at(y, x)));
             }
     }
     for (const auto& [edge, count] : edges)
@@ -108,6 +112,51 @@ TEST(AdaptiveMesh, CoversTheLatticeWithinTheTolerance) {
         EXPECT_EQ(m.triangles, static_cast<long long>(m.faces.size()));
     }
     EXPECT_LT(buildAdaptiveMesh(g, grey(), 5.0).faces.size(), buildAdaptiveMesh(g, grey(), 0.05).faces.size() / 4);
+}
+
+// A perspective view's tolerance follows its pixels (PixelTolerance), swept over the camera's
+// elevation and azimuth: every node within the tolerance at its own place (the nearest terrain's
+// there, wider with a pixel's footprint beyond), no cracks, and far fewer triangles than the
+// nearest terrain's tolerance everywhere would keep.
+TEST(AdaptiveMesh, APerspectiveViewsToleranceFollowsItsPixels) {
+    const auto g = lattice(129, 129, [](double x, double y) { return 80 * std::sin(x / 90) * std::cos(y / 70); });
+    const scene::LookSpec look = grey();
+    const ScenePlacement where = placeTerrain(g, look);
+    scene::RenderSpec render;
+    render.width = 400;
+    render.height = 300;
+    for (const double elevation : {5.0, 20.0, 45.0})
+        for (const double azimuth : {0.0, 135.0, 270.0}) {
+            scene::CameraSpec camera;
+            camera.elevationDeg = elevation;
+            camera.azimuthDeg = azimuth;
+            const CameraView view = placeCamera(where, camera, {}, render);
+            const PixelTolerance perPixel{&view, render.width, render.height};
+            constexpr double kNearestM = 0.05;
+            const Mesh m = buildAdaptiveMesh(g, where, kNearestM, &perPixel);
+            const auto tolerance = [&](const Vec3& p) { return adaptiveToleranceAt(p, where, kNearestM, &perPixel); };
+            const Checked c = check(m, g, tolerance);
+            const std::string at = "elevation " + std::to_string(elevation) + ", azimuth " + std::to_string(azimuth);
+            EXPECT_DOUBLE_EQ(c.area, 128.0 * 128.0) << at;
+            EXPECT_TRUE(c.manifold) << at;
+            EXPECT_FALSE(c.tJunction) << at;
+            EXPECT_LE(c.worstRatio, 1 + 1e-6) << at;
+            EXPECT_LT(m.faces.size(), buildAdaptiveMesh(g, where, kNearestM).faces.size()) << at;
+            // Nowhere looser than the nearest's times the widest footprint over it, nor tighter than it.
+            for (const auto& p : g.grid.points) EXPECT_GE(tolerance(p), kNearestM) << at;
+        }
+    // An orbit's eye is far off, the footprint a few times wider across the terrain at most; an eye at
+    // a place, low over one corner and looking across, sees the far ground many footprints wider:
+    // far fewer triangles, each node still within the tolerance at its place.
+    CameraPoints atCorner;
+    atCorner.eyeM = Vec3{30, 30, 100};
+    atCorner.targetM = Vec3{900, 900, 0};
+    const CameraView view = placeCamera(where, scene::CameraSpec{}, atCorner, render);
+    const PixelTolerance perPixel{&view, render.width, render.height};
+    const Mesh near = buildAdaptiveMesh(g, where, 0.05, &perPixel);
+    EXPECT_LT(near.faces.size(), buildAdaptiveMesh(g, where, 0.05).faces.size() / 3);
+    EXPECT_LE(check(near, g, [&](const Vec3& p) { return adaptiveToleranceAt(p, where, 0.05, &perPixel); }).worstRatio,
+              1 + 1e-6);
 }
 
 // Masked nodes leave holes: no triangle touches one, and every cell with data at its corners and
