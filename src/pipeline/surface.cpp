@@ -3,6 +3,7 @@
 #include "pipeline/surface.h"
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include <fmt/format.h>
@@ -53,6 +54,38 @@ SourceLoc budgetKey(const scene::SceneSpec& spec) {
 
 namespace {
 
+// A flyover through waypoints with heights above the sea: the eye's least
+// height above the ground along its path (straight between the waypoints, 64
+// points a leg, 1.7 m at least), the ground read on a net 400 nodes across as
+// a still's is (block means: a fraction of a second); none where the ground
+// cannot be read there.
+std::optional<double> lowestEyeAboveGround(const LoadedScene& loaded) {
+    const scene::SceneSpec& spec = loaded.scene;
+    const auto& fly = spec.animation.flyover;
+    if (!fly.waypointHeights || fly.waypoints.size() < 2) return std::nullopt;
+    constexpr int kAcross = 400;
+    scene::NetSpec coarse = spec.net;
+    coarse.spacingM = 0;
+    for (const char* key : {"net.spacing_m", "net.rows", "net.cols"}) coarse.locs.keys.erase(key);
+    coarse.rows = coarse.cols = kAcross;  // samples, which have no spacing of their own
+    geo::NetLimits read{netBudgetOf(loaded), loaded.budget.maxMemoryMB, std::nullopt};
+    read.nodes.stillWidthPx = kAcross;
+    Diagnostics quiet;  // the net itself says what is wrong with the data
+    const auto ground = geo::controlNet(spec.samples, spec.frame, coarse, read, quiet);
+    if (!ground) return std::nullopt;
+    double lowest = std::numeric_limits<double>::infinity();
+    for (size_t i = 0; i + 1 < fly.waypoints.size(); ++i) {
+        const auto a = geo::forward(ground->frame, fly.waypoints[i]), b = geo::forward(ground->frame, fly.waypoints[i + 1]);
+        if (!a || !b) continue;
+        for (int k = 0; k <= 64; ++k) {
+            const Vec3 p = *a + (k / 64.0) * (*b - *a);
+            if (const auto z = ground->sample(p.x, p.y)) lowest = std::min(lowest, p.z - *z);
+        }
+    }
+    if (!std::isfinite(lowest)) return std::nullopt;
+    return std::max(lowest, 1.7);
+}
+
 // What [limits] and the still allow the control net, for geo: its nodes, a
 // default net no finer than the still, and a net whose refinement (at the
 // scene's depth, else at depth 0 in the cheapest geometry) is over [limits]
@@ -62,11 +95,15 @@ geo::NetLimits netLimitsOf(const LoadedScene& loaded) {
     geo::NetLimits l{netBudgetOf(loaded), loaded.budget.maxMemoryMB, std::nullopt};
     if (spec.limits.locs.has("limits.max_memory_mb")) l.memoryKey = spec.limits.locs.at("limits.max_memory_mb");
     l.nodes.stillWidthPx = spec.render.width;
-    // A flyover's eye comes down to its height above the ground (a twentieth of the terrain's
-    // diagonal unless the scene says): the net from a pixel's footprint there, not from the
-    // whole terrain across the still, which would average away what it flies over.
+    // A flyover's eye comes down to its height above the ground (the scene's, its waypoints'
+    // least over the ground, else a twentieth of the terrain's diagonal): the net from a pixel's
+    // footprint there, not from the whole terrain across the still, which would average away
+    // what it flies over.
     if (spec.animation.path == scene::CameraPath::Flyover) {
-        const auto heightM = spec.animation.flyover.heightAboveTerrainM;
+        // The height the scene gives above the ground, else its waypoints' least over it.
+        const auto heightM = spec.animation.flyover.heightAboveTerrainM
+                                 ? spec.animation.flyover.heightAboveTerrainM
+                                 : lowestEyeAboveGround(loaded);
         // The angle a pixel spans at the middle of the still: a pinhole's, a panorama's, a sphere's.
         using scene::Projection;
         const scene::CameraSpec& camera = spec.look.camera;

@@ -46,12 +46,20 @@ done
 cp "$src/scenes/data/rasters/volcano2hires.tif" lidar.tif
 printf '[samples]\npath = "lidar.tif"\nvertical_unit = "m"\n[render]\nwidth = 160\nheight = 100\n' > still.toml
 { cat still.toml; printf '[animation]\nframes = 4\npath = "flyover"\nwaypoints = [[174.7615, -36.8800], [174.7650, -36.8760]]\n'; } > fly.toml
-for scene in still fly; do "$relief" info --json "$scene.toml" > "$scene.json" 2> "$scene.txt" || { fail "relief info $scene"; cat "$scene.txt"; }; done
+# Waypoints with heights above the sea: the eye's least height over the ground along the path (here
+# 2,000 m up: a pixel 20 m, the net coarser than the data; 150 m, about 40 m over the crater's rim:
+# the data's own).
+{ cat still.toml; printf '[animation]\nframes = 4\npath = "flyover"\nwaypoints = [[174.7615, -36.8800, 2000], [174.7650, -36.8760, 2000]]\n'; } > high.toml
+{ cat still.toml; printf '[animation]\nframes = 4\npath = "flyover"\nwaypoints = [[174.7615, -36.8800, 250], [174.7650, -36.8760, 250]]\n'; } > low.toml
+for scene in still fly high low; do "$relief" info --json "$scene.toml" > "$scene.json" 2> "$scene.txt" || { fail "relief info $scene"; cat "$scene.txt"; }; done
 python3 - <<'PY' || fail "the flyover's net"
 import json
-still, fly = (json.load(open(f'{n}.json'))['net'] for n in ('still', 'fly'))
+still, fly, high, low = (json.load(open(f'{n}.json'))['net'] for n in ('still', 'fly', 'high', 'low'))
 assert still['spacing_m'] > 3 * fly['spacing_m'], (still['spacing_m'], fly['spacing_m'])
 assert fly['spacing_reason'] == "the data's own spacing", fly['spacing_reason']
-print(f"the still's net {still['spacing_m']:.3g} m, the flyover's {fly['spacing_m']:.3g} m (the data's)")
+assert high['spacing_m'] > 2 * low['spacing_m'], (high['spacing_m'], low['spacing_m'])
+assert low['spacing_reason'] == "the data's own spacing", low['spacing_reason']
+print(f"the still's net {still['spacing_m']:.3g} m, the flyover's {fly['spacing_m']:.3g} m (the data's); "
+      f"waypoints 2000 m up {high['spacing_m']:.3g} m, 250 m up {low['spacing_m']:.3g} m")
 PY
 exit $status
