@@ -54,24 +54,32 @@ SourceLoc budgetKey(const scene::SceneSpec& spec) {
 
 namespace {
 
+// The data on a coarse net over `net`'s extent, for what its heights tell (the
+// ground under a path, relief info's stand-in), not for a surface: about
+// `across` nodes across, laid as a still's default net is (a raster's block
+// means: a fraction of a second), or, for samples (which have no spacing of
+// their own), `across` columns and `rows` rows.
+std::optional<geo::ControlNet> coarseNet(const LoadedScene& loaded, scene::NetSpec net, int across, int rows,
+                                         Diagnostics& diags) {
+    net.spacingM = 0;
+    for (const char* key : {"net.spacing_m", "net.rows", "net.cols"}) net.locs.keys.erase(key);
+    net.cols = across;
+    net.rows = rows;
+    geo::NetLimits read{netBudgetOf(loaded), loaded.budget.maxMemoryMB, std::nullopt};
+    read.nodes.stillWidthPx = across;
+    return geo::controlNet(loaded.scene.samples, loaded.scene.frame, net, read, diags);
+}
+
 // A flyover through waypoints with heights above the sea: the eye's least
 // height above the ground along its path (straight between the waypoints, 64
-// points a leg, 1.7 m at least), the ground read on a net 400 nodes across as
-// a still's is (block means: a fraction of a second); none where the ground
-// cannot be read there.
+// points a leg, 1.7 m at least), the ground read on a coarse net 400 nodes
+// across; none where the ground cannot be read there.
 std::optional<double> lowestEyeAboveGround(const LoadedScene& loaded) {
     const scene::SceneSpec& spec = loaded.scene;
     const auto& fly = spec.animation.flyover;
     if (!fly.waypointHeights || fly.waypoints.size() < 2) return std::nullopt;
-    constexpr int kAcross = 400;
-    scene::NetSpec coarse = spec.net;
-    coarse.spacingM = 0;
-    for (const char* key : {"net.spacing_m", "net.rows", "net.cols"}) coarse.locs.keys.erase(key);
-    coarse.rows = coarse.cols = kAcross;  // samples, which have no spacing of their own
-    geo::NetLimits read{netBudgetOf(loaded), loaded.budget.maxMemoryMB, std::nullopt};
-    read.nodes.stillWidthPx = kAcross;
     Diagnostics quiet;  // the net itself says what is wrong with the data
-    const auto ground = geo::controlNet(spec.samples, spec.frame, coarse, read, quiet);
+    const auto ground = coarseNet(loaded, spec.net, 400, 400, quiet);
     if (!ground) return std::nullopt;
     double lowest = std::numeric_limits<double>::infinity();
     for (size_t i = 0; i + 1 < fly.waypoints.size(); ++i) {
@@ -254,16 +262,10 @@ std::optional<Surface> estimateSurface(const LoadedScene& loaded, Diagnostics& d
     // The stand-in: a net about kEstimateReadWidthPx nodes across over the same extent, laid as a
     // still's default net is (a raster's block means), or, for samples (which have no spacing of
     // their own), as rows and columns in the net's proportions. Its warnings are the net's, said.
-    scene::NetSpec coarse = netSpecOf(spec);
-    coarse.spacingM = 0;
-    for (const char* key : {"net.spacing_m", "net.rows", "net.cols"}) coarse.locs.keys.erase(key);
-    coarse.cols = std::min(tooLarge->cols(), kEstimateReadWidthPx);
-    coarse.rows = std::max(4, int(std::lround(double(tooLarge->rows()) * coarse.cols / tooLarge->cols())));
-    geo::NetLimits read = netLimitsOf(loaded);
-    read.nodes.stillWidthPx = kEstimateReadWidthPx;
-    read.nodes.nearestPixelM = nullptr;
+    const int across = std::min(tooLarge->cols(), kEstimateReadWidthPx);
+    const int rows = std::max(4, int(std::lround(double(tooLarge->rows()) * across / tooLarge->cols())));
     Diagnostics again;
-    auto standIn = geo::controlNet(spec.samples, spec.frame, coarse, read, again);
+    auto standIn = coarseNet(loaded, netSpecOf(spec), across, rows, again);
     for (const Diagnostic& d : again.all())
         if (d.severity == Severity::Error) diags.error(d.loc, d.message);
     if (!standIn) return std::nullopt;

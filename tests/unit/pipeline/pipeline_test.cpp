@@ -14,9 +14,7 @@
 #include <fstream>
 
 #include <GeographicLib/UTMUPS.hpp>
-#include <cpl_conv.h>
 #include <gdal.h>
-#include <ogr_srs_api.h>
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.h"
@@ -440,20 +438,18 @@ TEST(Pipeline, InfoEstimatesWhatThePlanThatReadsTheNetFinds) {
         {samples, {{"net.spacing_m", "8"}}},
         {samples, {{"net.rows", "1600"}, {"net.cols", "1500"}}},
     };
-    // A still's own net over a raster of 3200 x 3200 cells (NZTM, 1 m): the means of blocks of 2 x 2.
+    // A still's own net over a raster of 3200 x 3200 cells (NZTM, as the test DEM's, 1 m): the means
+    // of blocks of 2 x 2.
     const fs::path big = relief::testing::freshTestDir("info-estimates") / "big.tif";
     {
         geo::setUpGdal();
         GDALDatasetH ds = GDALCreate(GDALGetDriverByName("GTiff"), big.c_str(), 3200, 3200, 1, GDT_Float32, nullptr);
         const double transform[6] = {1750000, 1, 0, 5920000, 0, -1};
         GDALSetGeoTransform(ds, const_cast<double*>(transform));
-        OGRSpatialReferenceH nztm = OSRNewSpatialReference(nullptr);
-        OSRImportFromEPSG(nztm, 2193);
-        char* wkt = nullptr;
-        OSRExportToWkt(nztm, &wkt);
-        GDALSetProjection(ds, wkt);
-        CPLFree(wkt);
-        OSRDestroySpatialReference(nztm);
+        GDALDatasetH nztm = GDALOpen((kSource / "tests/data/rasters/maungawhau-20m.tif").c_str(), GA_ReadOnly);
+        ASSERT_NE(nztm, nullptr);
+        GDALSetProjection(ds, GDALGetProjectionRef(nztm));
+        GDALClose(nztm);
         std::vector<float> row(3200);
         GDALRasterBandH band = GDALGetRasterBand(ds, 1);
         for (int r = 0; r < 3200; ++r) {
