@@ -157,25 +157,24 @@ def kriging(xy, z, spacing, q, nu):
     return gp.predict(q / spacing)
 
 
-def relief_fit(work, kind, scheme, lonlat, z, box, epsg, q):
+def relief_fit(work, lonlat, z, box, epsg, q, subdivision='depth = 2'):
+    """relief's net.gridding = "fit" over `box` (its [subdivision] keys as given), read at q; and the
+    sidecar's net.fit."""
     csv = os.path.join(work, 's.csv')
     with open(csv, 'w') as f:
         f.write('lon,lat,elev\n')
         for (lon, lat), v in zip(lonlat, z): f.write(f'{lon:.8f},{lat:.8f},{v}\n')
-    zone = epsg % 100
-    key = 'preset' if kind == 'preset' else 'scheme'
     open(os.path.join(work, 's.toml'), 'w').write(f'''[samples]
 path = "s.csv"
 [frame]
 kind = "utm"
-zone = "{zone}{'N' if epsg < 32700 else 'S'}"
+zone = "{epsg % 100}{'N' if epsg < 32700 else 'S'}"
 [net]
 extent_m = [{box.x0}, {box.y0}, {box.x1}, {box.y1}]
 spacing_m = {box.spacing}
 gridding = "fit"
 [subdivision]
-{key} = "{scheme}"
-depth = 2
+{subdivision}
 ''')
     surface = os.path.join(work, 'surface.csv')
     subprocess.run([relief, 'compile', '-q', os.path.join(work, 's.toml'), '-o', os.path.join(work, 's.pov'),
@@ -183,7 +182,8 @@ depth = 2
     pts = np.loadtxt(surface, delimiter=',', skiprows=1)
     xs, ys = np.unique(pts[:, 0]), np.unique(pts[:, 1])
     grid = pts[:, 2].reshape(len(ys), len(xs))
-    return bilinear(grid, xs[0], ys[0], xs[1] - xs[0], ys[1] - ys[0], q)
+    fit = json.load(open(os.path.join(work, 's.json')))['net']['fit']
+    return bilinear(grid, xs[0], ys[0], xs[1] - xs[0], ys[1] - ys[0], q), fit
 
 
 def main():
@@ -208,7 +208,8 @@ def main():
                     'kriging, exponential (ML)': lambda: kriging(xy[picked], z[picked], spacing, q, 0.5),
                 }
                 for label, (k, scheme) in SCHEMES.items():
-                    methods[label] = (lambda k=k, scheme=scheme: relief_fit(work, k, scheme, lonlat[picked], z[picked], box, epsg, q))
+                    methods[label] = (lambda k=k, scheme=scheme: relief_fit(work, lonlat[picked], z[picked], box, epsg, q,
+                                                                            f'{k} = "{scheme}"\ndepth = 2')[0])
                 for label, run in methods.items():
                     if only and not any(o in label for o in only): continue
                     try:

@@ -9,11 +9,18 @@
 // d / t the surface is pulled flat rather than carried on by its slope;
 // lambda from `smoothing` (dimensionless: lambda = smoothing tr(A'A) / tr(P)).
 // The smoothing given (the tension then 0 unless given too) or chosen by
-// generalized cross-validation, with the tension (given, or chosen among 0 and
-// the powers of two from 1/4 to 8). The normal equations are
+// cross-validation, with the tension (given, or chosen among 0 and the powers
+// of two from 1/4 to 8): generalized cross-validation for samples spread
+// evenly, cross-validation over folds of blocks for samples in lines,
+// clusters or around holes (the nodes' mean distance from their nearest
+// sample over twice what evenly spread samples leave); a surface that strays
+// from its nearest samples more steeply than any two samples do is not
+// chosen (GCV passes it by; a choice by blocks is pulled in: tension, then
+// smoothing). The normal equations are
 // solved by CHOLMOD's supernodal Cholesky in nested-dissection order, on
 // relief's own dense kernels (dense_kernels.h: the same bits on every machine
 // with the same SuiteSparse, METIS and Eigen, whatever its BLAS).
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -30,6 +37,7 @@ namespace relief::fit {
 /// the influence matrix (the fit's degrees of freedom).
 struct GcvTrial {
     double smoothing = 0, tension = 0, score = 0, traceH = 0;
+    bool strays = false;  ///< its surface strays from the data (above kStrayLimit): not chosen
 };
 
 struct FitReport {
@@ -39,13 +47,22 @@ struct FitReport {
     size_t nodes = 0;
     size_t nodesConstrained = 0;       ///< nodes some sample's surface weighs on; the rest are the penalty's
     double smoothing = 0, tension = 0;
-    std::string chosenBy;              ///< "generalized cross-validation" or "net.smoothing"
+    std::string chosenBy;              ///< "generalized cross-validation", "cross-validation by blocks ...", or "net.smoothing"
     std::string tensionChosenBy;       ///< that, "net.tension", or "none: net.smoothing given"
     std::vector<GcvTrial> gcv;         ///< in the order tried
     std::string traceMethod;           ///< "exact", or Hutchinson's estimate with its probes
     double rmseM = 0, maxResidualM = 0;
     Vec3 worstSample;                  ///< where the largest residual is
     double dataReachM = 0;             ///< the farthest a node is from its nearest sample
+    double meanReachM = 0;             ///< the nodes' mean distance from their nearest sample
+    double unsupportedShare = 0;       ///< of the nodes, farther than unsupportedBeyondM from every sample
+    double unsupportedBeyondM = 0;     ///< kUnsupportedSpacings times the samples' mean spacing
+    std::vector<std::uint8_t> unsupportedNodes;  ///< 1 for each node (row-major) farther than that
+    bool unsupportedMasked = false;    ///< left out of the surface (net.unsupported = "mask", the pipeline's)
+    /// Over the nodes farther than half a net spacing from their nearest sample, the
+    /// largest |node - sample| / (the samples' steepest slope x distance):
+    /// above kStrayLimit the surface strays from its data (not chosen).
+    double strayFromData = 0;
     int refinementSteps = 0;           ///< of the solution, after the Cholesky solve
     double relativeResidual = 0;       ///< of the normal equations, at the end
     double seconds = 0;
@@ -60,7 +77,29 @@ struct FitReport {
 /// supernodal factorization takes 2 % more than the simplicial one did: with
 /// 770,000 samples (their own memory included), the whole process 14.2 kB a
 /// node (gentle, 257 x 257), against 13.9.
-inline constexpr double kFitBytesPerNode = 16e3;
+/// Cross-validation by blocks adds each fold's A'A beside the whole's (5
+/// stencils of 8 bytes an entry, up to 81 entries a node) and a worker's copy
+/// without a fold: up to 4 kB a node more, so 20 kB a node is reserved.
+inline constexpr double kFitBytesPerNode = 20e3;
+
+/// A node farther than this many of the samples' mean spacings (sqrt(area /
+/// samples)) from every sample is one the data say nothing of: samples spread
+/// evenly at random leave e^(-4 pi), 3.5e-6, of the area that far.
+inline constexpr double kUnsupportedSpacings = 2;
+
+/// How far a fit may stray from its data (FitReport::strayFromData) and be
+/// chosen: fits of samples spread at random reach 1.02 (a node between
+/// samples on a steep slope may rise as steeply as they do); a small
+/// smoothing along a single line of samples 2.4 to 5.2, an interpolation of
+/// 769,650 samples at the net's corners beyond them 29.
+inline constexpr double kStrayLimit = 1.5;
+
+/// The nodes whose straying is measured: those farther than this many net
+/// spacings from their nearest sample (nearer, a node is held by the samples
+/// its basis reaches; at the edge of a cluster it is held by their tails only,
+/// and at a smoothing of 0.005 cyl_elev's clustered samples set such nodes 4.7
+/// km away 2,000 m below them).
+inline constexpr double kStrayFromNetSpacings = 0.5;
 
 /// The largest relative residual of the normal equations a fit accepts.
 inline constexpr double kFitTolerance = 1e-10;

@@ -9,10 +9,10 @@ namespace relief::fit {
 
 namespace {
 
-constexpr double kLowestLog = -6, kHighestLog = 2;  // log10 of the smoothings searched
-constexpr double kStep = 8.0 / 3, kFinest = 1.0 / 3;
+constexpr double kLowestLog = kLeastSmoothingLog, kHighestLog = kLargestSmoothingLog;
+constexpr double kStep = (kHighestLog - kLowestLog) / 3, kFinest = kFinestSmoothingStep;
 // The tensions tried beside none when none is given: powers of two, from 1 and 1/2 outwards.
-constexpr double kFirstTension = 1, kLeastTension = 0.25, kGreatestTension = 8;
+constexpr double kFirstTension = 1, kLeastTension = 0.25;
 constexpr double kTensionGain = 1e-3;  // the least share of the score a first tension must gain to be pursued
 
 // A point of the search: log10 of the smoothing, and the tension.

@@ -11,6 +11,13 @@
 
 namespace relief::fit {
 
+/// log10 of the least and the largest smoothing searched.
+inline constexpr double kLeastSmoothingLog = -6, kLargestSmoothingLog = 2;
+/// The finest step of the search, in log10 of the smoothing.
+inline constexpr double kFinestSmoothingStep = 1.0 / 3;
+/// The greatest tension the search tries.
+inline constexpr double kGreatestTension = 8;
+
 struct Penalty {
     double smoothing = 0, tension = 0;
 };

@@ -32,7 +32,7 @@ void addFitToSidecar(ordered_json& j, const SurfaceSummary& c) {
     if (!c.fit) return;
     const fit::FitReport& f = *c.fit;
     ordered_json gcv = ordered_json::array();
-    for (const auto& t : f.gcv) gcv.push_back({{"smoothing", t.smoothing}, {"tension", t.tension}, {"score", t.score}, {"trace_h", t.traceH}});
+    for (const auto& t : f.gcv) gcv.push_back({{"smoothing", t.smoothing}, {"tension", t.tension}, {"score", t.score}, {"trace_h", t.traceH}, {"strays", t.strays}});
     j["net"]["fit"] = {{"kind", "least squares of the scheme's surface"},
                        {"depth", f.depth},
                        {"samples", f.samples},
@@ -49,6 +49,11 @@ void addFitToSidecar(ordered_json& j, const SurfaceSummary& c) {
                        {"nodes", f.nodes},
                        {"nodes_constrained", f.nodesConstrained},
                        {"data_reach_m", f.dataReachM},
+                       {"mean_data_reach_m", f.meanReachM},
+                       {"unsupported_share", f.unsupportedShare},
+                       {"unsupported_beyond_m", f.unsupportedBeyondM},
+                       {"unsupported", f.unsupportedMasked ? "mask" : "show"},
+                       {"stray_from_data", f.strayFromData},
                        {"refinement_steps", f.refinementSteps},
                        {"relative_residual", f.relativeResidual},
                        {"seconds", f.seconds}};

@@ -135,6 +135,29 @@ geo::NetLimits netLimitsOf(const LoadedScene& loaded) {
     return l;
 }
 
+// The share of a fitted net no sample reaches that is warned of: a tenth (lines, clusters and holes
+// leave 15-80 %; the corners of a raster's footprint turned into UTM, a few per cent).
+constexpr double kUnsupportedWarnShare = 0.1;
+
+// A fit's nodes no sample reaches: left out as nodata is (net.unsupported =
+// "mask"), or shown, with a warning when they are a share of the net a reader
+// would see and the scene has not said to show them.
+void markUnsupported(const scene::NetSpec& spec, fit::FitReport& fit, geo::ControlNet& net, Diagnostics& diags) {
+    if (spec.unsupported == scene::Unsupported::Mask) {
+        fit.unsupportedMasked = true;
+        if (fit.unsupportedShare == 0) return;
+        net.masked.resize(net.grid.points.size(), 0);
+        for (size_t i = 0; i < net.masked.size(); ++i) net.masked[i] |= fit.unsupportedNodes[i];
+        return;
+    }
+    if (fit.unsupportedShare < kUnsupportedWarnShare || spec.locs.has("net.unsupported")) return;
+    diags.warning(spec.locs.at("net.gridding"),
+                  fmt::format("net.gridding = \"fit\": {:.0f} % of the net is farther than {:.3g} m (twice the "
+                              "samples' mean spacing) from any sample: the surface there is the fit's, not the "
+                              "data's; net.unsupported = \"mask\" leaves it out, \"show\" keeps it without this warning",
+                              100 * fit.unsupportedShare, fit.unsupportedBeyondM));
+}
+
 // net.gridding = "fit" and net.fit = true: the net made for the scheme's
 // surface at the depth rendered (chosen on the gridded net before).
 bool fitToScheme(const LoadedScene& loaded, int depth, geo::ControlNet& net, Surface& s, Diagnostics& diags,
@@ -158,12 +181,15 @@ bool fitToScheme(const LoadedScene& loaded, int depth, geo::ControlNet& net, Sur
         };
         s.fit = fit::fitNet(scheme, depth, *net.fitSamples, spec, net, diags, told);
         if (!s.fit) return false;
+        markUnsupported(spec, *s.fit, net, diags);
         if (progress)
             progress({ProgressEvent::Stage::Compiling,
                       fmt::format("fitted {} samples: RMSE {:.3g} m, largest residual {:.3g} m, smoothing {:.3g} ({}), "
-                                  "tension {:.3g}, {:.1f} s",
+                                  "tension {:.3g}, {:.1f} s; {:.1f} % of the net farther than {:.3g} m from any sample{}",
                                   s.fit->samples, s.fit->rmseM, s.fit->maxResidualM, s.fit->smoothing,
-                                  s.fit->chosenBy, s.fit->tension, s.fit->seconds),
+                                  s.fit->chosenBy, s.fit->tension, s.fit->seconds, 100 * s.fit->unsupportedShare,
+                                  s.fit->unsupportedBeyondM,
+                                  s.fit->unsupportedMasked && s.fit->unsupportedShare > 0 ? " (masked)" : ""),
                       -1});
         return true;
     }

@@ -36,6 +36,10 @@ struct EnumNames<Gridding> {
         {Gridding::Fit, "fit"}};
 };
 template <>
+struct EnumNames<Unsupported> {
+    static constexpr NameRow<Unsupported> rows[] = {{Unsupported::Show, "show"}, {Unsupported::Mask, "mask"}};
+};
+template <>
 struct EnumNames<Projection> {
     static constexpr NameRow<Projection> rows[] = {{Projection::Perspective, "perspective"},
                                                    {Projection::Orthographic, "orthographic"},

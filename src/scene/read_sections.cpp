@@ -133,6 +133,10 @@ void readNet(Section& s, const SceneFile& f, SceneSpec& scene) {
         net.tension = *v;
     if (net.tension && net.gridding != Gridding::Fit)
         s.error("tension", "net.tension pulls a fit: it needs net.gridding = \"fit\"");
+    if (auto u = s.named<Unsupported>("unsupported")) net.unsupported = *u;
+    if (s.find("unsupported") && net.gridding != Gridding::Fit)
+        s.error("unsupported", "net.unsupported says what becomes of the nodes a fit's samples do not reach: it "
+                               "needs net.gridding = \"fit\"");
     if (auto v = s.boolean("fit")) net.fit = *v;
     if (net.fit && net.gridding == Gridding::Fit)
         s.error("fit", "net.fit = true prefilters a net so that the surface passes through it; net.gridding = "

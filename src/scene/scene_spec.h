@@ -59,6 +59,11 @@ struct KeyLocations {
 /// centre, or a raster DEM's own projected CRS in metres (no reprojection).
 enum class FrameKind { Utm, Local, Raster };
 enum class Gridding { Linear, InverseDistance, Nearest, Fit };
+/// A fitted net's nodes that no sample reaches (farther than
+/// fit::kUnsupportedSpacings mean spacings from every sample): shown as the
+/// fit makes them (with a warning when they are a tenth of the net or more), or
+/// left out of the surface as nodata is.
+enum class Unsupported { Show, Mask };
 /// A camera's projection. Panoramic: a vertical cylinder about the eye
 /// (POV-Ray's cylinder 1), fov_deg of it across the still, the horizon level
 /// and its pixels square there. Spherical: the whole sphere about the eye as
@@ -140,13 +145,15 @@ struct NetSpec {
     std::optional<LonLatBox> extentLonLat;
     Gridding gridding = Gridding::Linear;
     /// gridding = "fit": the weight of the smoothness penalty against the
-    /// samples (dimensionless); unset: chosen by generalized cross-validation.
+    /// samples (dimensionless); unset: chosen by cross-validation (fit/fit_net.h).
     std::optional<double> smoothing;
     /// gridding = "fit": the membrane's pull against the thin plate, in the
     /// samples' mean spacing (dimensionless, 0: none); unset: chosen by
-    /// generalized cross-validation among 0 and the powers of two from 1/4 to 8
+    /// cross-validation (fit/fit_net.h) among 0 and the powers of two from 1/4 to 8
     /// (0 when smoothing is given).
     std::optional<double> tension;
+    /// gridding = "fit": what becomes of the nodes no sample reaches.
+    Unsupported unsupported = Unsupported::Show;
     /// The net prefiltered so that the scheme's surface passes through the
     /// net's own values at its nodes (an approximating scheme keeps the
     /// data's peaks); gridding = "fit" already fits the surface.

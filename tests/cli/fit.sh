@@ -78,4 +78,26 @@ printf '[samples]\npath = "volcano2.tif"\n[net]\ngridding = "fit"\n[render]\nwid
 "$relief" compile -q raster.toml -o raster.pov 2> raster.txt || { fail "compile raster"; cat raster.txt; }
 grep -qF 'raster.toml:4:12: warning: net.gridding = "fit" is not used: the samples are a raster or a lattice' raster.txt ||
   { fail "no word that a raster is not fitted:"; cat raster.txt; }
+# Samples in two strips across the volcano 670 m apart (two survey lines' worth of the shared
+# set): cross-validation by blocks chooses, most of the net is farther than twice the samples'
+# spacing from any of them, and that is a warning; net.unsupported = "mask" leaves those nodes out
+# (as many as the sidecar's share says) and does not warn; "show" keeps them without the warning.
+{ head -1 s.csv; awk -F, 'NR > 1 && (($2 > -36.8734 && $2 < -36.8726) || ($2 > -36.8794 && $2 < -36.8786))' s.csv; } > strip.csv
+for mode in default mask show; do
+  keys='' && [ $mode != default ] && keys="unsupported = \"$mode\""
+  printf '[samples]\npath = "strip.csv"\n[net]\ngridding = "fit"\nrows = 9\ncols = 9\n%s\n[subdivision]\ndepth = 1\n' "$keys" > strip-$mode.toml
+  "$relief" compile -q strip-$mode.toml -o strip-$mode.pov 2> strip-$mode.txt || { fail "compile strip-$mode"; cat strip-$mode.txt; }
+done
+echo "a strip of $(($(wc -l < strip.csv) - 1)) samples: $(json strip-default.json "j['net']['fit']['smoothing_chosen_by'], j['net']['fit']['unsupported_share']")"
+json strip-default.json "j['net']['fit']['smoothing_chosen_by']" | grep -q '^cross-validation by blocks' ||
+  fail "the strip's penalty: $(json strip-default.json "j['net']['fit']['smoothing_chosen_by']")"
+grep -q 'warning: net.gridding = "fit": [0-9]* % of the net is farther than .* from any sample' strip-default.txt ||
+  { fail "no warning of the nodes no sample reaches:"; cat strip-default.txt; }
+for mode in mask show; do
+  [ ! -s strip-$mode.txt ] || { fail "net.unsupported = $mode warned:"; cat strip-$mode.txt; }
+done
+[ "$(json strip-mask.json "j['net']['masked_nodata'] == round(j['net']['fit']['unsupported_share'] * 81) > 20, j['net']['fit']['unsupported']")" = "True mask" ] ||
+  fail "masked: $(json strip-mask.json "j['net']['masked_nodata'], j['net']['fit']['unsupported_share']")"
+[ "$(json strip-show.json "j['net']['masked_nodata'], j['net']['fit']['unsupported']")" = "0 show" ] ||
+  fail "shown: $(json strip-show.json "j['net']['masked_nodata'], j['net']['fit']['unsupported']")"
 exit $status
