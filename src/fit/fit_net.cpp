@@ -76,6 +76,10 @@ public:
         traceM_ = m_.diagonal().sum(), traceThinPlate_ = thinPlate_.diagonal().sum();
         traceMembrane_ = membrane_.diagonal().sum();
         if (m_.cols() > kExactTraceNodes && eq.probes() > 0) probeSums_ = eq.probeSums();
+        // Each fold's equations without it, once: every penalty tried solves them all.
+        withoutFold_.resize(static_cast<size_t>(eq.folds()));
+        for (int fold = 0; fold < eq.folds(); ++fold)
+            eq.withoutFold(fold, withoutFold_[static_cast<size_t>(fold)].m, withoutFold_[static_cast<size_t>(fold)].rhs);
         analyse();
     }
 
@@ -95,11 +99,9 @@ public:
         Solved scored;
         scored.penalty = penalty;
         double squares = 0;
-        Sparse m;
-        Eigen::VectorXd b;
-        for (int fold = 0; fold < eq_.folds(); ++fold) {
-            eq_.withoutFold(fold, m, b);
-            const Solved s = solveSystem(m, b, penalty, worker);
+        for (int fold = 0; fold < static_cast<int>(withoutFold_.size()); ++fold) {
+            const Equations& kept = withoutFold_[static_cast<size_t>(fold)];
+            const Solved s = solveSystem(kept.m, kept.rhs, penalty, worker);
             if (s.cholmodStatus != 0) scored.cholmodStatus = s.cholmodStatus;
             if (!s.ok) return scored;  // no score: a fold's equations failed at this penalty
             squares += squaredResiduals_(s.z, fold);
@@ -198,6 +200,11 @@ private:
     SquaredResiduals squaredResiduals_;
     double membranePerTension_;
     Sparse m_, thinPlate_, membrane_;
+    struct Equations {
+        Sparse m;  ///< lower triangle, m_'s pattern
+        Eigen::VectorXd rhs;
+    };
+    std::vector<Equations> withoutFold_;  ///< A'A and A's of all the samples but each fold's
     double traceM_ = 0, traceThinPlate_ = 0, traceMembrane_ = 0;
     std::array<SparseCholesky, kWorkers> choleskies_;
     int analysisStatus_ = 0;  ///< CHOLMOD's, when the analysis failed
@@ -400,7 +407,11 @@ Sampling samplingOf(const AxisBasis& bx, const AxisBasis& by, const geo::Control
                     const std::vector<Vec3>& samples) {
     Sampling out;
     SurfaceRow row;
-    for (const Vec3& s : samples) out.onNet += surfaceRow(bx, by, net, s.x, s.y, row);
+    std::vector<bool> onNet(samples.size());
+    for (size_t i = 0; i < samples.size(); ++i) {
+        onNet[i] = surfaceRow(bx, by, net, samples[i].x, samples[i].y, row);
+        out.onNet += onNet[i];
+    }
     if (out.onNet == 0) return out;
     out.spacing = std::sqrt(net.dx * (net.cols() - 1) * net.dy * (net.rows() - 1) / static_cast<double>(out.onNet));
     SampleCloud cloud{samples};
@@ -415,7 +426,7 @@ Sampling samplingOf(const AxisBasis& bx, const AxisBasis& by, const geo::Control
     out.folds = foldsOfBlocks(samples, net, out.blockM);
     std::array<size_t, kFolds> perFold{};
     for (size_t i = 0; i < samples.size(); ++i)
-        if (surfaceRow(bx, by, net, samples[i].x, samples[i].y, row)) ++perFold[static_cast<size_t>(out.folds[i])];
+        if (onNet[i]) ++perFold[static_cast<size_t>(out.folds[i])];
     // Every fold left out must leave samples, and more than one fold be scored.
     if (std::count_if(perFold.begin(), perFold.end(), [](size_t n) { return n > 0; }) < 2) return out;
     out.criterion = Criterion::folds;
@@ -439,7 +450,8 @@ void pullInWhileStraying(FitSystem& system, const Sampling& sampling, const std:
     const double stray = strayFromData(sampling, samples, solved.z);
     if (stray <= kStrayLimit) return;
     const double step = std::pow(10.0, kFinestSmoothingStep), top = std::pow(10.0, kLargestSmoothingLog);
-    for (double now = stray; now > kStrayLimit;) {
+    double now = stray;
+    while (now > kStrayLimit) {
         Penalty next = solved.penalty;
         if (!tensionGiven && next.tension < kGreatestTension) next.tension = std::max(2 * next.tension, 1.0);
         else if (next.smoothing * step <= top * (1 + 1e-9)) next.smoothing *= step;
@@ -449,11 +461,10 @@ void pullInWhileStraying(FitSystem& system, const Sampling& sampling, const std:
         solved = std::move(pulled);
         now = strayFromData(sampling, samples, solved.z);
     }
-    const double left = strayFromData(sampling, samples, solved.z);
     report.chosenBy += fmt::format(" (smoothing {:.3g}, tension {:.3g}), then pulled in: its surface rose or fell "
                                    "from the nearest sample {:.2f} times as steeply as any two samples do{}",
                                    from.smoothing, from.tension, stray,
-                                   left > kStrayLimit ? fmt::format(" (still {:.2f} at the search's greatest tension and smoothing)", left) : "");
+                                   now > kStrayLimit ? fmt::format(" (still {:.2f} at the search's greatest tension and smoothing)", now) : "");
 }
 
 }  // namespace

@@ -77,9 +77,11 @@ struct FitReport {
 /// supernodal factorization takes 2 % more than the simplicial one did: with
 /// 770,000 samples (their own memory included), the whole process 14.2 kB a
 /// node (gentle, 257 x 257), against 13.9.
-/// Cross-validation by blocks adds each fold's A'A beside the whole's (5
-/// stencils of 8 bytes an entry, up to 81 entries a node) and a worker's copy
-/// without a fold: up to 4 kB a node more, so 20 kB a node is reserved.
+/// Cross-validation by blocks adds each fold's A'A beside the whole's while
+/// they are summed (5 stencils of 8 bytes an entry, up to 81 entries a node)
+/// and the 5 systems without a fold (sparse lower triangles, about 41
+/// entries of 12 bytes): up to 5.7 kB a node more, so 20 kB a node is
+/// reserved.
 inline constexpr double kFitBytesPerNode = 20e3;
 
 /// A node farther than this many of the samples' mean spacings (sqrt(area /
