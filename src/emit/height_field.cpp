@@ -139,7 +139,7 @@ Drape imageDrape(const geo::GeoGrid& refined, const ScenePlacement& where, const
             if (!image.covered[node]) continue;
             std::uint16_t* px = row + n * static_cast<size_t>(c);
             const double light = where.skyLightAt(node);
-            if (where.fillAt(node)) {  // a fill laid over the image: its colour as a fraction, filled and lit
+            if (where.tinted(node)) {  // a fill or fade laid over the image: its colour as a fraction, tinted and lit
                 const LinearRgb drawn = where.nodeColour(
                     node, {linear[image.rgb[3 * node]] / 65535.0, linear[image.rgb[3 * node + 1]] / 65535.0,
                            linear[image.rgb[3 * node + 2]] / 65535.0});

@@ -30,6 +30,14 @@ struct NodeFills {
     std::vector<Fill> fills;
 };
 
+/// net.unsupported = "fade": a node no sample reaches has its colour washed
+/// towards a light neutral grey (sRGB 0.8), as a map greys what it was not
+/// surveyed for, up to kFadeOpacity where the data are farthest; in
+/// kFadeLevels steps (a mesh2's texture list holds each step's colours).
+inline constexpr LinearRgb kFadeColour{0.6, 0.6, 0.6};
+inline constexpr double kFadeOpacity = 0.75;
+inline constexpr int kFadeLevels = 16;
+
 /// Where the terrain sits in POV-Ray's scene, whatever geometry carries it.
 /// POV-Ray's axes: x = east, y = up, z = north (left-handed, so the map is
 /// not mirrored). One scene unit is `metresPerUnit` metres, a power of ten
@@ -65,16 +73,29 @@ struct ScenePlacement {
 
     /// [[layer]] fills, per refined node (row-major); null: none.
     std::shared_ptr<const NodeFills> fills;
+    /// net.unsupported = "fade": per refined node (row-major), 0..kFadeLevels,
+    /// how far its colour is washed towards kFadeColour; null: none.
+    std::shared_ptr<const std::vector<std::uint8_t>> fade;
 
     /// Node `node`'s sky light: the factor its colour is multiplied by.
     double skyLightAt(size_t node) const { return skyLight ? (*skyLight)[node] : 1.0; }
     /// Node `node`'s fill (0: none, k: fills->fills[k - 1]).
     unsigned fillAt(size_t node) const { return fills ? fills->fillOf[node] : 0u; }
-    /// A node's colour as every geometry draws it: its fill laid over `base`
-    /// (the ramp's, or a draped image's), then its sky light.
-    LinearRgb nodeColour(size_t node, const LinearRgb& base) const {
+    /// Node `node`'s fade (0: none, kFadeLevels: the most).
+    unsigned fadeAt(size_t node) const { return fade ? (*fade)[node] : 0u; }
+    /// Node `node`'s colour differs from its ramp's or image's before the light.
+    bool tinted(size_t node) const { return fillAt(node) || fadeAt(node); }
+    /// A node's colour before its sky light: its fill laid over `base` (the
+    /// ramp's, or a draped image's), then its fade.
+    LinearRgb tintedColour(size_t node, const LinearRgb& base) const {
         LinearRgb c = base;
         if (const unsigned f = fillAt(node)) c = mix(c, fills->fills[f - 1].colour, fills->fills[f - 1].opacity);
+        if (const unsigned f = fadeAt(node)) c = mix(c, kFadeColour, kFadeOpacity * f / kFadeLevels);
+        return c;
+    }
+    /// A node's colour as every geometry draws it: tintedColour, then its sky light.
+    LinearRgb nodeColour(size_t node, const LinearRgb& base) const {
+        const LinearRgb c = tintedColour(node, base);
         const double light = skyLightAt(node);
         return {c.r * light, c.g * light, c.b * light};
     }

@@ -10,23 +10,24 @@ void addSkyLight(ScenePlacement& where, const geo::GeoGrid& refined, const geo::
 }
 
 void nodeTextures(Mesh& mesh) {
-    if (!mesh.skyLight && !mesh.fills) return;
+    if (!mesh.skyLight && !mesh.fills && !mesh.fade) return;
     const size_t nodes = mesh.grid->grid.points.size();
     constexpr int kSteps = kSkyLightLevels + 1;  // 0/128 .. 128/128
     const size_t fills = mesh.fills ? mesh.fills->fills.size() + 1 : 1;
-    std::vector<std::int32_t> entryOf(mesh.paletteColors.size() * kSteps * fills, -1);
+    const size_t fades = mesh.fade ? kFadeLevels + 1 : 1;
+    std::vector<std::int32_t> entryOf(mesh.paletteColors.size() * kSteps * fills * fades, -1);
     mesh.litTexture.assign(nodes, 0);
     mesh.litColours.clear();
     for (size_t node = 0; node < nodes; ++node) {
         if (!mesh.isVertex(node)) continue;
-        const unsigned base = mesh.basePalette(node), fill = mesh.fillAt(node);
+        const unsigned base = mesh.basePalette(node);
         const long level = std::clamp(std::lround(mesh.skyLightAt(node) * kSkyLightLevels), 0L, long{kSkyLightLevels});
-        std::int32_t& entry = entryOf[(static_cast<size_t>(base) * kSteps + level) * fills + fill];
+        std::int32_t& entry =
+            entryOf[((static_cast<size_t>(base) * kSteps + level) * fills + mesh.fillAt(node)) * fades + mesh.fadeAt(node)];
         if (entry < 0) {
             entry = static_cast<std::int32_t>(mesh.litColours.size());
-            // The colour of a node with this palette entry, fill and (quantized) light.
-            LinearRgb c = mesh.paletteColors[base];
-            if (fill) c = mix(c, mesh.fills->fills[fill - 1].colour, mesh.fills->fills[fill - 1].opacity);
+            // The colour of a node with this palette entry, fill, fade and (quantized) light.
+            const LinearRgb c = mesh.tintedColour(node, mesh.paletteColors[base]);
             const double light = double(level) / kSkyLightLevels;
             mesh.litColours.push_back({c.r * light, c.g * light, c.b * light});
         }

@@ -18,9 +18,9 @@ inline constexpr int kSkyLightLevels = 128;
 /// Sets where.skyLight to every node's sky-view factor over `refined`.
 void addSkyLight(ScenePlacement& where, const geo::GeoGrid& refined, const geo::SkyViewOptions& options);
 
-/// With where.skyLight or where.fills set: gives `mesh` its own texture list
-/// (Mesh::litTexture, litColours): each node's palette colour with its fill
-/// and sky light (nodeColour), the light quantized to kSkyLightLevels, the
+/// With where.skyLight, where.fills or where.fade set: gives `mesh` its own
+/// texture list (Mesh::litTexture, litColours): each node's palette colour with
+/// its fill, fade and sky light (nodeColour), the light quantized to kSkyLightLevels, the
 /// entries in the order the nodes first use them.
 void nodeTextures(Mesh& mesh);
 

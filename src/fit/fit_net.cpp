@@ -568,7 +568,7 @@ std::optional<FitReport> fitNet(const subdiv::Scheme& scheme, int depth, const s
     report.meanReachM = sampling.reach.meanM;
     report.unsupportedShare = sampling.reach.shareBeyond;
     report.unsupportedBeyondM = kUnsupportedSpacings * sampling.spacing;
-    for (const double d : sampling.reach.distanceM) report.unsupportedNodes.push_back(d > report.unsupportedBeyondM);
+    report.reachM.assign(sampling.reach.distanceM.begin(), sampling.reach.distanceM.end());
     report.seconds = secondsSince(t0);
     return report;
 }

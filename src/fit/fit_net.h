@@ -57,8 +57,11 @@ struct FitReport {
     double meanReachM = 0;             ///< the nodes' mean distance from their nearest sample
     double unsupportedShare = 0;       ///< of the nodes, farther than unsupportedBeyondM from every sample
     double unsupportedBeyondM = 0;     ///< kUnsupportedSpacings times the samples' mean spacing
-    std::vector<std::uint8_t> unsupportedNodes;  ///< 1 for each node (row-major) farther than that
-    bool unsupportedMasked = false;    ///< left out of the surface (net.unsupported = "mask", the pipeline's)
+    std::vector<float> reachM;         ///< each node's (row-major) distance from its nearest sample
+    /// What became of those nodes (net.unsupported, the pipeline's doing).
+    scene::Unsupported unsupportedAs = scene::Unsupported::Show;
+    /// Node `node` (row-major) is farther than unsupportedBeyondM from every sample.
+    bool unsupported(size_t node) const { return reachM[node] > unsupportedBeyondM; }
     /// Over the nodes farther than half a net spacing from their nearest sample, the
     /// largest |node - sample| / (the samples' steepest slope x distance):
     /// above kStrayLimit the surface strays from its data (not chosen).

@@ -54,12 +54,12 @@ void addFit(Header& h, const SurfaceSummary& c) {
         h.add("net.fit", fmt::format("{} samples fitted at depth {}: RMSE {:.3g} m, largest residual {:.3g} m, "
                                      "smoothing {:.3g} ({}), tension {:.3g} ({}), {} of {} nodes constrained, data "
                                      "within {:.3g} m of every node, {:.1f} % of the net farther than {:.3g} m from any "
-                                     "sample ({})",
+                                     "sample (net.unsupported = {})",
                                      c.fit->samples, c.fit->depth, c.fit->rmseM, c.fit->maxResidualM,
                                      c.fit->smoothing, c.fit->chosenBy, c.fit->tension, c.fit->tensionChosenBy,
                                      c.fit->nodesConstrained, c.fit->nodes,
                                      c.fit->dataReachM, 100 * c.fit->unsupportedShare, c.fit->unsupportedBeyondM,
-                                     c.fit->unsupportedMasked ? "masked" : "shown"));
+                                     scene::nameOf(c.fit->unsupportedAs)));
     if (c.prefilter)
         h.add("net.fit", fmt::format("prefiltered at depth {}: the surface through the net's values, the largest "
                                      "change {:.3g} m, gain {:.3g}",

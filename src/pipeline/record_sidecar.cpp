@@ -52,7 +52,7 @@ void addFitToSidecar(ordered_json& j, const SurfaceSummary& c) {
                        {"mean_data_reach_m", f.meanReachM},
                        {"unsupported_share", f.unsupportedShare},
                        {"unsupported_beyond_m", f.unsupportedBeyondM},
-                       {"unsupported", f.unsupportedMasked ? "mask" : "show"},
+                       {"unsupported", scene::nameOf(f.unsupportedAs)},
                        {"stray_from_data", f.strayFromData},
                        {"refinement_steps", f.refinementSteps},
                        {"relative_residual", f.relativeResidual},

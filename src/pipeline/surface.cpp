@@ -140,21 +140,21 @@ geo::NetLimits netLimitsOf(const LoadedScene& loaded) {
 constexpr double kUnsupportedWarnShare = 0.1;
 
 // A fit's nodes no sample reaches: left out as nodata is (net.unsupported =
-// "mask"), or shown, with a warning when they are a share of the net a reader
-// would see and the scene has not said to show them.
+// "mask"), faded (compile's, on the refined surface's colours) or shown,
+// with a warning when they are a share of the net a reader would see and the
+// scene has not said what to do with them.
 void markUnsupported(const scene::NetSpec& spec, fit::FitReport& fit, geo::ControlNet& net, Diagnostics& diags) {
-    if (spec.unsupported == scene::Unsupported::Mask) {
-        fit.unsupportedMasked = true;
-        if (fit.unsupportedShare == 0) return;
+    fit.unsupportedAs = spec.unsupported;
+    if (spec.unsupported == scene::Unsupported::Mask && fit.unsupportedShare > 0) {
         net.masked.resize(net.grid.points.size(), 0);
-        for (size_t i = 0; i < net.masked.size(); ++i) net.masked[i] |= fit.unsupportedNodes[i];
-        return;
+        for (size_t i = 0; i < net.masked.size(); ++i) net.masked[i] |= fit.unsupported(i);
     }
     if (fit.unsupportedShare < kUnsupportedWarnShare || spec.locs.has("net.unsupported")) return;
     diags.warning(spec.locs.at("net.gridding"),
                   fmt::format("net.gridding = \"fit\": {:.0f} % of the net is farther than {:.3g} m (twice the "
                               "samples' mean spacing) from any sample: the surface there is the fit's, not the "
-                              "data's; net.unsupported = \"mask\" leaves it out, \"show\" keeps it without this warning",
+                              "data's; net.unsupported = \"fade\" washes its colour out, \"mask\" leaves it out, "
+                              "\"show\" keeps it without this warning",
                               100 * fit.unsupportedShare, fit.unsupportedBeyondM));
 }
 
@@ -189,7 +189,9 @@ bool fitToScheme(const LoadedScene& loaded, int depth, geo::ControlNet& net, Sur
                                   s.fit->samples, s.fit->rmseM, s.fit->maxResidualM, s.fit->smoothing,
                                   s.fit->chosenBy, s.fit->tension, s.fit->seconds, 100 * s.fit->unsupportedShare,
                                   s.fit->unsupportedBeyondM,
-                                  s.fit->unsupportedMasked && s.fit->unsupportedShare > 0 ? " (masked)" : ""),
+                                  s.fit->unsupportedShare > 0 && s.fit->unsupportedAs != scene::Unsupported::Show
+                                      ? fmt::format(" ({})", s.fit->unsupportedAs == scene::Unsupported::Mask ? "masked" : "faded")
+                                      : ""),
                       -1});
         return true;
     }

@@ -37,7 +37,8 @@ struct EnumNames<Gridding> {
 };
 template <>
 struct EnumNames<Unsupported> {
-    static constexpr NameRow<Unsupported> rows[] = {{Unsupported::Show, "show"}, {Unsupported::Mask, "mask"}};
+    static constexpr NameRow<Unsupported> rows[] = {
+        {Unsupported::Show, "show"}, {Unsupported::Fade, "fade"}, {Unsupported::Mask, "mask"}};
 };
 template <>
 struct EnumNames<Projection> {

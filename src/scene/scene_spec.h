@@ -61,9 +61,10 @@ enum class FrameKind { Utm, Local, Raster };
 enum class Gridding { Linear, InverseDistance, Nearest, Fit };
 /// A fitted net's nodes that no sample reaches (farther than
 /// fit::kUnsupportedSpacings mean spacings from every sample): shown as the
-/// fit makes them (with a warning when they are a tenth of the net or more), or
-/// left out of the surface as nodata is.
-enum class Unsupported { Show, Mask };
+/// fit makes them (with a warning when they are a tenth of the net or more),
+/// their colour washed out (emit::kFadeColour) the farther they are, or left
+/// out of the surface as nodata is.
+enum class Unsupported { Show, Fade, Mask };
 /// A camera's projection. Panoramic: a vertical cylinder about the eye
 /// (POV-Ray's cylinder 1), fov_deg of it across the still, the horizon level
 /// and its pixels square there. Spherical: the whole sphere about the eye as
