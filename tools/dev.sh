@@ -35,12 +35,15 @@ esac
 # gdal-bin: gdal_translate and gdalwarp, which the tests cut DEM tiles with and the benchmarks make
 # rasters of every size with (relief itself links libgdal).
 # ffmpeg: relief animate encodes its frames to MP4, WebM or GIF with it.
+# libassimp-dev, libtinygltf-dev: relief export's STL, OBJ and PLY, and its glTF; assimp-utils and
+# admesh: the tests read the glTF back with Assimp and check the STL is a closed solid.
 # poppler-utils: pdftotext, pdffonts, pdfimages, pdfinfo, which the tests read PDF stills back with.
 # ccache: a compiler cache outside the clone, so that a second build on this machine (a clean clone
 # of CI's included) compiles only what changed.
 packages=(cmake make g++ pkg-config
           libgeographiclib-dev libgdal-dev libopenimageio-dev openimageio-tools libtomlplusplus-dev
           libcli11-dev libfmt-dev nlohmann-json3-dev libnanoflann-dev libeigen3-dev libsuitesparse-dev libpng-dev libssl-dev libcairo2-dev libpango1.0-dev libnova-dev libgtest-dev libbenchmark-dev
+          libassimp-dev libtinygltf-dev assimp-utils admesh
           povray bubblewrap chromium fonts-dejavu-core locales clang libfuzzer-14-dev libclang-rt-14-dev libomp-14-dev
           slurm-wlm munge gdal-bin ffmpeg poppler-utils ccache)
 missing=()

@@ -68,6 +68,7 @@ void addAnimateCommands(CLI::App& app, std::vector<Command>& out);   // animate
 void addPlanStepCommands(CLI::App& app, std::vector<Command>& out);  // render-tile, finish
 void addSchemeCommands(CLI::App& app, std::vector<Command>& out);    // check, curve
 void addGeometryCommands(CLI::App& app, std::vector<Command>& out);  // hausdorff, profile, compare-geometry
+void addExportCommands(CLI::App& app, std::vector<Command>& out);    // export
 void addImageCommands(CLI::App& app, std::vector<Command>& out);     // diff, test, sweep (relief-images)
 
 /// The image commands run in a helper executable, relief-images, because

@@ -27,5 +27,6 @@ int main(int argc, char** argv) {
     addSchemeCommands(app, commands);
     addImageCommandEntries(app);
     addGeometryCommands(app, commands);
+    addExportCommands(app, commands);
     return runCommands(app, commands, argc, argv);
 }

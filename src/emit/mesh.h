@@ -211,6 +211,35 @@ struct Mesh : ScenePlacement {
     }
     /// Node `node`'s vertex in scene units, relative to `originM`.
     SceneVec3 position(size_t node) const { return scenePoint(grid->grid.points[node]); }
+    /// Calls face(a, b, c) for each triangle, as grid nodes counter-clockwise
+    /// from above: `faces`, or two a cell of the lattice, its south-west,
+    /// south-east, north-east and north-west corners cut along the south-east
+    /// to north-west diagonal as POV-Ray cuts a height_field's cells, so that
+    /// the two kinds make the same surface (a triangle with a node that is not
+    /// a vertex left out). `done(fraction)` hears how far it is, about a
+    /// hundred times.
+    template <class Face, class Done>
+    void forEachFace(const Face& face, const Done& done) const {
+        const size_t step = std::max<size_t>(faces.size() / 100, 1);
+        for (size_t i = 0; i < faces.size(); ++i) {
+            if (i % step == 0) done(static_cast<double>(i) / faces.size());
+            face(faces[i][0], faces[i][1], faces[i][2]);
+        }
+        const size_t lattice = static_cast<size_t>(cols);
+        for (size_t r = 0; faces.empty() && r + 1 < static_cast<size_t>(rows); ++r) {
+            done(static_cast<double>(r) / rows);
+            for (size_t c = 0; c + 1 < lattice; ++c) {
+                const size_t sw = r * lattice + c, se = sw + 1, nw = sw + lattice, ne = nw + 1;
+                if (!isVertex(se) || !isVertex(nw)) continue;
+                if (isVertex(sw)) face(sw, se, nw);
+                if (isVertex(ne)) face(se, ne, nw);
+            }
+        }
+    }
+    template <class Face>
+    void forEachFace(const Face& face) const {
+        forEachFace(face, [](double) {});
+    }
     /// The full surface's unit normal at node `node`, scene axes (surfaceNormal).
     SceneVec3 normal(size_t node) const;
     /// Node `node`'s entry of paletteColors: its true elevation on the ramp

@@ -125,7 +125,6 @@ size_t writeMesh2(const Mesh& mesh, std::FILE* out, const WriteProgressFn& progr
         w->commit(writeUnsigned(p, static_cast<std::uint64_t>(mesh.triangles)));
     }
     // A face by its corner nodes: their vertices, then their palette entries.
-    const size_t cols = static_cast<size_t>(mesh.cols);
     auto face = [&](size_t a, size_t b, size_t c) {
         char* p = w->reserve(96);
         *p++ = ',';
@@ -149,23 +148,7 @@ size_t writeMesh2(const Mesh& mesh, std::FILE* out, const WriteProgressFn& progr
         p = writeUnsigned(p, mesh.palette(c));
         w->commit(p);
     };
-    const size_t faceStep = std::max<size_t>(mesh.faces.size() / 100, 1);
-    for (size_t i = 0; i < mesh.faces.size(); ++i) {
-        if (i % faceStep == 0) report(0.5 + 0.5 * static_cast<double>(i) / mesh.faces.size());
-        face(mesh.faces[i][0], mesh.faces[i][1], mesh.faces[i][2]);
-    }
-    for (size_t r = 0; mesh.faces.empty() && r + 1 < static_cast<size_t>(mesh.rows); ++r) {
-        report(0.5 + 0.5 * static_cast<double>(r) / mesh.rows);
-        for (size_t c = 0; c + 1 < cols; ++c) {
-            // South-west, south-east, north-east, north-west corners of the quad, cut
-            // along the south-east to north-west diagonal as POV-Ray cuts a
-            // height_field's cells, so that the two kinds make the same surface.
-            const size_t sw = r * cols + c, se = sw + 1, nw = sw + cols, ne = nw + 1;
-            if (!mesh.isVertex(se) || !mesh.isVertex(nw)) continue;
-            if (mesh.isVertex(sw)) face(sw, se, nw);
-            if (mesh.isVertex(ne)) face(se, ne, nw);
-        }
-    }
+    mesh.forEachFace(face, [&](double fraction) { report(0.5 + 0.5 * fraction); });
     w->put("\n  }\n  inside_vector <0, 1, 0>\n}");
     report(1);
     return w->total();

@@ -17,7 +17,6 @@
 #include "emit/height_field.h"
 #include "emit/mesh.h"
 #include "emit/surface_contours.h"
-#include "emit/unsupported_fade.h"
 #include "geo/raster.h"
 #include "geo/sun_position.h"
 #include "pipeline/compile.h"
@@ -363,9 +362,7 @@ std::unique_ptr<SharedTerrain::State> compileTerrain(const LoadedScene& loaded, 
     if (!marks) return nullptr;
     st->marks = std::move(*marks);
     st->view.where.fills = st->marks.layers.fills;  // the polygons' tints, in every geometry's colours
-    if (const auto& fit = st->surface.fit; fit && fit->unsupportedAs == scene::Unsupported::Fade && fit->unsupportedShare > 0)
-        st->view.where.fade = std::make_shared<const std::vector<std::uint8_t>>(
-            emit::unsupportedFade(st->surface.net, fit->reachM, fit->unsupportedBeyondM, st->surface.refined));
+    st->view.where.fade = unsupportedFadeOf(st->surface);
     if (!buildMeshes(st->loaded, st->surface, st->view, st->terrain, diags)) return nullptr;
     const long long parsedTriangles =
         st->terrain.field ? 0 : st->terrain.triangles;  // a height field's are POV-Ray's own

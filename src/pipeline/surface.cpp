@@ -10,6 +10,7 @@
 
 #include "core/number_format.h"
 #include "core/stopwatch.h"
+#include "emit/unsupported_fade.h"
 #include "geo/geo.h"
 #include "subdiv/refine.h"
 
@@ -325,6 +326,13 @@ std::optional<Surface> buildSurface(const LoadedScene& loaded, Diagnostics& diag
                               s->peakLoss.lossM, s->peakLoss.peak.z, s->peakLoss.surfaceHighest.z),
                   -1});
     return s;
+}
+
+std::shared_ptr<const std::vector<std::uint8_t>> unsupportedFadeOf(const Surface& surface) {
+    const auto& fit = surface.fit;
+    if (!fit || fit->unsupportedAs != scene::Unsupported::Fade || fit->unsupportedShare == 0) return nullptr;
+    return std::make_shared<const std::vector<std::uint8_t>>(
+        emit::unsupportedFade(surface.net, fit->reachM, fit->unsupportedBeyondM, surface.refined));
 }
 
 }  // namespace relief

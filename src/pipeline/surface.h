@@ -2,8 +2,11 @@
 // Stages 2 and 3 composed: the control net (geo/) for the loaded scene and
 // the refined surface (subdiv/), at the depth the scene gives or relief
 // chooses (depth.h), held to the scene's [limits].
+#include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/diagnostics.h"
 #include "emit/geometry_kind.h"
@@ -63,6 +66,11 @@ inline constexpr double kEstimateReadNodes = 2e6;
 /// automatic depth (measured on the stand-in, and said so) and net.gridding
 /// = "fit" (not fitted).
 std::optional<Surface> estimateSurface(const LoadedScene& loaded, Diagnostics& diags);
+/// net.unsupported = "fade": the refined surface's nodes' fades
+/// (emit::ScenePlacement::fade); null when the scene does not fade or the
+/// data reach every node.
+std::shared_ptr<const std::vector<std::uint8_t>> unsupportedFadeOf(const Surface& surface);
+
 /// `progress` (may be empty) hears how far the gridding is.
 std::optional<Surface> buildSurface(const LoadedScene& loaded, Diagnostics& diags, int threads = 0,
                                     const ProgressFn& progress = {});

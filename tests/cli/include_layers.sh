@@ -12,6 +12,7 @@ layers=(
   "compare plot fit"
   "measure"
   "emit"
+  "model"                # the terrain as a 3-D model: emit's mesh to a file
   "annotate"
   "render"               # POV-Ray alone: it includes core only (below)
   "plan"

@@ -1,0 +1,141 @@
+#include "pipeline/export.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "core/output_set.h"
+#include "core/stopwatch.h"
+#include "emit/adaptive_mesh.h"
+#include "emit/height_field.h"
+#include "geo/raster.h"
+#include "model/terrain_model.h"
+#include "pipeline/load.h"
+#include "pipeline/surface.h"
+#include "relief/version.h"
+
+namespace relief {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// The model of the surface within `maxTriangles`: every node a vertex when that fits, else the
+// adaptive mesh at about the least tolerance that fits: raised (by how far over the last try was,
+// its triangles going as one over the tolerance on a smooth surface) until one fits, then halved
+// geometrically between the last over and the first within, kBisections times.
+struct Fitted {
+    model::TerrainModel model;
+    double toleranceM = 0;
+};
+constexpr int kBisections = 4;
+std::optional<Fitted> modelWithin(const Surface& surface, const emit::ScenePlacement& where,
+                                  std::span<const LinearRgb> colours, long long maxTriangles, const ProgressFn& progress) {
+    const std::optional<double> floor = where.baseElevationM;
+    Fitted f{model::terrainModel(emit::buildMesh(surface.refined, where), floor, colours), 0};
+    const auto within = [&](const Fitted& m) { return static_cast<long long>(m.model.triangles()) <= maxTriangles; };
+    if (within(f)) return f;
+    const auto adaptive = [&](double tolerance) {
+        if (progress)
+            progress({ProgressEvent::Stage::Compiling,
+                      fmt::format("over --max-triangles {}: an adaptive mesh within {:.3g} m", maxTriangles, tolerance),
+                      -1});
+        return Fitted{model::terrainModel(emit::buildAdaptiveMesh(surface.refined, where, tolerance), floor, colours),
+                      tolerance};
+    };
+    double over = 0, tolerance = 1e-4 * std::max(where.zMaxM - where.zMinM, 1e-3);
+    std::optional<Fitted> best;
+    for (int attempt = 0; attempt < 40 && !best; ++attempt) {
+        const double ratio = static_cast<double>(f.model.triangles()) / static_cast<double>(maxTriangles);
+        if (attempt) over = tolerance, tolerance *= std::clamp(ratio, 1.25, 8.0);
+        f = adaptive(tolerance);
+        if (within(f)) best = std::move(f);
+    }
+    for (int k = 0; best && over > 0 && k < kBisections; ++k) {
+        Fitted mid = adaptive(std::sqrt(over * best->toleranceM));
+        if (within(mid)) best = std::move(mid);
+        else over = mid.toleranceM;
+    }
+    return best;
+}
+
+// [texture] image: each refined node's colour as the drape PNG the still renders has it.
+std::optional<std::vector<LinearRgb>> drapedColours(const scene::SceneSpec& spec, const geo::GeoGrid& refined,
+                                                    const emit::ScenePlacement& where, Diagnostics& diags) {
+    const auto image = geo::imageOnGrid(spec.look.texture.drapeImage, spec.look.texture.drapeImageText, refined, diags);
+    if (!image) return std::nullopt;
+    const emit::Drape drape = emit::imageDrape(refined, where, *image);
+    std::vector<LinearRgb> colours(refined.grid.points.size());
+    const auto channels = static_cast<size_t>(drape.channels), cols = static_cast<size_t>(drape.cols);
+    for (size_t r = 0; r < static_cast<size_t>(drape.rows); ++r)
+        for (size_t c = 0; c < cols; ++c) {
+            const std::uint16_t* px = drape.pixels.data() + ((drape.rows - 1 - r) * cols + c) * channels;  // north first
+            colours[r * cols + c] = {px[0] / 65535.0, px[1] / 65535.0, px[2] / 65535.0};
+        }
+    return colours;
+}
+
+}  // namespace
+
+std::optional<ExportOutcome> exportTerrain(const ExportJob& job, Diagnostics& diags, const ProgressFn& progress) {
+    const auto t0 = Clock::now();
+    const fs::path output = job.output.empty() ? fs::path("out") / (job.scenePath.stem().string() + ".glb") : job.output;
+    const model::ModelFormatRow* format = model::modelFormatOf(output);
+    if (!format) {
+        diags.error({output.string(), 0, 0}, fmt::format("relief export writes {}, chosen by the extension: give -o "
+                                                         "one of them",
+                                                         model::modelExtensionsListed()));
+        return std::nullopt;
+    }
+    try {
+        if (progress) progress({ProgressEvent::Stage::Reading, "reading " + job.scenePath.string(), -1});
+        auto loaded = loadScene(job.scenePath, diags, job.overrides);
+        if (!loaded) return std::nullopt;
+        if (format->solid || job.solid) loaded->scene.look.base.enabled = true;
+        OutputSet outputs;
+        outputs.addInput(job.scenePath, "the scene");
+        const fs::path staged = outputs.add(output, "-o");
+        auto surface = buildSurface(*loaded, diags, job.threads, progress);
+        if (!surface) return std::nullopt;
+        emit::ScenePlacement where = emit::placeTerrain(surface->refined, loaded->scene.look);
+        where.fade = unsupportedFadeOf(*surface);
+        std::vector<LinearRgb> colours;
+        if (loaded->scene.look.texture.colouring == scene::TextureSpec::Colouring::Image) {
+            auto draped = drapedColours(loaded->scene, surface->refined, where, diags);
+            if (!draped) return std::nullopt;
+            colours = std::move(*draped);
+        }
+        auto fitted = modelWithin(*surface, where, colours, job.maxTriangles, progress);
+        if (!fitted) {
+            diags.error(budgetKey(loaded->scene),
+                        fmt::format("no mesh of the surface fits within --max-triangles {}: raise it", job.maxTriangles));
+            return std::nullopt;
+        }
+        if (job.acrossMM) model::scaleAcross(fitted->model, *job.acrossMM);
+        if (progress) progress({ProgressEvent::Stage::Finishing, "writing " + output.string(), -1});
+        model::writeModel(fitted->model, *format, staged, fmt::format("relief {}", kVersion));
+        ExportOutcome out;
+        out.bytes = fs::file_size(staged);
+        outputs.commit();
+        const model::TerrainModel& m = fitted->model;
+        const auto partSize = [&](const char* name) { return m.part(name) ? m.part(name)->faces.size() : size_t{0}; };
+        out.output = output;
+        out.format = format->name;
+        out.vertices = m.positions.size();
+        out.surfaceTriangles = partSize("surface"), out.wallTriangles = partSize("walls"), out.floorTriangles = partSize("floor");
+        out.rows = surface->refined.rows(), out.cols = surface->refined.cols(), out.depth = surface->depth;
+        out.toleranceM = fitted->toleranceM;
+        out.unitsPerMetre = m.unitsPerMetre;
+        out.floorElevationM = where.baseElevationM;
+        out.seconds = secondsSince(t0);
+        return out;
+    } catch (const OutputError& e) {
+        diags.error(e.at(), e.problem());
+    } catch (const std::runtime_error& e) {
+        diags.error({output.string(), 0, 0}, fmt::format("the model cannot be written: {}", e.what()));
+    }
+    return std::nullopt;
+}
+
+}  // namespace relief
