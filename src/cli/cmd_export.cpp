@@ -75,14 +75,14 @@ void addExportCommands(CLI::App& app, std::vector<Command>& out) {
                     fmt::format("at most this many triangles: above it, an adaptive mesh within the least tolerance "
                                 "that fits, said in the output (default {})",
                                 relief::kDefaultModelTriangles))
-        ->check(CLI::Range(100LL, 2'000'000'000LL));
+        ->check(CLI::Range(100LL, 100'000'000LL));
     cmd->add_flag("--solid", o->solid,
                   "close the surface into a solid (walls and a floor, as [base] draws them) whatever the format; "
                   ".stl always is one, and any format is when the scene has [base]");
     cmd->add_option("--threads", o->common.threads, "refiner threads (0: all cores)")->check(CLI::Range(0, 256));
     cmd->add_flag("-q,--quiet", o->common.quiet, "print errors only");
     cmd->add_option("--set", o->common.sets,
-                    "override a scene key: section.key=value, the value as TOML writes it (look.vertical.exaggeration=2, "
+                    "override a scene key: section.key=value, the value as TOML writes it (vertical.exaggeration=2, "
                     "subdivision.depth=2); repeatable");
     out.push_back({cmd, [o] { return runExport(*o); }});
 }

@@ -90,13 +90,17 @@ TerrainModel terrainModel(const emit::Mesh& mesh, std::optional<double> floorEle
     const auto& points = mesh.grid->grid.points;
     model.positions.resize(mesh.vertices);
     model.colours.resize(mesh.vertices);
+    model.normals.resize(mesh.vertices);
     std::vector<std::uint32_t> nodeOfVertex(mesh.vertices);
     for (size_t node = 0; node < points.size(); ++node) {
         if (!mesh.isVertex(node)) continue;
         const std::uint32_t v = mesh.vertexOf(node);
         nodeOfVertex[v] = static_cast<std::uint32_t>(node);
         model.positions[v] = modelPoint(mesh, mesh.position(node));
-        model.colours[v] = nodeColours.empty() ? mesh.textureColours()[mesh.palette(node)] : nodeColours[node];
+        model.colours[v] =
+            nodeColours.empty() ? mesh.nodeColour(node, mesh.paletteColors[mesh.basePalette(node)]) : nodeColours[node];
+        const SceneVec3 n = mesh.normal(node);
+        model.normals[v] = {n.x, n.z, n.y};
     }
     model.parts.push_back({"surface", surfaceFaces(mesh)});
     if (!floorElevationM) return model;
@@ -104,18 +108,26 @@ TerrainModel terrainModel(const emit::Mesh& mesh, std::optional<double> floorEle
     // The floor: a vertex under each of the surface's, its triangles theirs turned over.
     const auto top = static_cast<std::uint32_t>(mesh.vertices);
     const LinearRgb wall = emit::blockWallColour(mesh);
-    for (std::uint32_t v = 0; v < top; ++v) {
-        model.positions.push_back(modelPoint(mesh, mesh.scenePointAtElevation(points[nodeOfVertex[v]], *floorElevationM)));
-        model.colours.push_back(wall);
-    }
+    const auto add = [&](const Vec3& p, const Vec3& normal) {
+        model.positions.push_back(p), model.colours.push_back(wall), model.normals.push_back(normal);
+        return static_cast<std::uint32_t>(model.positions.size() - 1);
+    };
+    for (std::uint32_t v = 0; v < top; ++v)
+        add(modelPoint(mesh, mesh.scenePointAtElevation(points[nodeOfVertex[v]], *floorElevationM)), {0, 0, -1});
     ModelPart walls{"walls", {}}, floor{"floor", {}};
-    const ModelPart& surface = model.parts.front();
-    floor.faces.reserve(surface.faces.size());
-    for (const auto& f : surface.faces) floor.faces.push_back({top + f[0], top + f[2], top + f[1]});
-    // A wall under each outline edge a -> b (the surface to its left, seen from above), facing out.
-    for (const auto& [a, b] : outlineEdges(surface.faces, top)) {
-        walls.faces.push_back({a, top + a, top + b});
-        walls.faces.push_back({a, top + b, b});
+    floor.faces.reserve(model.parts.front().faces.size());
+    for (const auto& f : model.parts.front().faces) floor.faces.push_back({top + f[0], top + f[2], top + f[1]});
+    // A wall under each outline edge a -> b (the surface to its left, seen from above), facing
+    // out (to the edge's right), its four corners its own.
+    for (const auto& [a, b] : outlineEdges(model.parts.front().faces, top)) {
+        const Vec3 along = {model.positions[b].x - model.positions[a].x, model.positions[b].y - model.positions[a].y, 0};
+        const double length = std::hypot(along.x, along.y);
+        const Vec3 out = length > 0 ? Vec3{along.y / length, -along.x / length, 0} : Vec3{0, 0, 0};
+        const Vec3 pa = model.positions[a], pb = model.positions[b], fa = model.positions[top + a],
+                   fb = model.positions[top + b];
+        const std::uint32_t ta = add(pa, out), tb = add(pb, out), ba = add(fa, out), bb = add(fb, out);
+        walls.faces.push_back({ta, ba, bb});
+        walls.faces.push_back({ta, bb, tb});
     }
     model.parts.push_back(std::move(walls));
     model.parts.push_back(std::move(floor));

@@ -47,6 +47,10 @@ struct ModelPart {
 struct TerrainModel {
     std::vector<Vec3> positions;
     std::vector<LinearRgb> colours;
+    /// Unit, a vertex: the surface's the full refined surface's (as the .pov's
+    /// mesh2), the floor's straight down, a wall's square to it, outwards (the
+    /// walls have vertices of their own, so that a viewer shades them flat).
+    std::vector<Vec3> normals;
     std::vector<ModelPart> parts;
     double unitsPerMetre = 1;  ///< 1: metres; scaleAcross's millimetres per metre
 
@@ -60,9 +64,10 @@ struct TerrainModel {
 /// every edge of the surface that one triangle alone has (the outline, and
 /// holes where nodes have no data) to a floor at that true elevation, which
 /// is the surface's own triangles laid flat, facing down, so that every edge
-/// belongs to exactly two triangles.
+/// (by its corners' positions) belongs to exactly two triangles.
 /// `nodeColours`: each refined node's colour (a draped image's, as the drape
-/// PNG has it), else the mesh's own (its palette, fills, fade, sky light).
+/// PNG has it), else the mesh's own (nodeColour: its ramp, fills, fade and
+/// sky light, as `where` has them).
 TerrainModel terrainModel(const emit::Mesh& mesh, std::optional<double> floorElevationM,
                           std::span<const LinearRgb> nodeColours = {});
 

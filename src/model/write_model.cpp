@@ -11,10 +11,12 @@
 #include <cmath>
 #include <cstring>
 #include <memory>
+#include <sstream>
 #include <stdexcept>
 
 #include <fmt/format.h>
 
+#include "core/atomic_file.h"
 #include "model/terrain_model.h"
 
 namespace relief::model {
@@ -65,9 +67,10 @@ void writeGltf(const TerrainModel& model, const ModelFormatRow& format, const st
     gltf.asset.version = "2.0";
     gltf.asset.generator = generator;
     gltf.buffers.resize(1);
-    std::vector<float> positions, colours;
+    std::vector<float> positions, colours, normals;
     positions.reserve(3 * model.positions.size());
     colours.reserve(3 * model.colours.size());
+    normals.reserve(3 * model.normals.size());
     std::vector<double> lo(3, INFINITY), hi(3, -INFINITY);
     for (size_t v = 0; v < model.positions.size(); ++v) {
         const auto p = axesOf(model.positions[v], format.yUp);
@@ -75,12 +78,16 @@ void writeGltf(const TerrainModel& model, const ModelFormatRow& format, const st
         positions.insert(positions.end(), p.begin(), p.end());
         const LinearRgb& c = model.colours[v];
         colours.insert(colours.end(), {static_cast<float>(c.r), static_cast<float>(c.g), static_cast<float>(c.b)});
+        const auto n = axesOf(model.normals[v], format.yUp);
+        normals.insert(normals.end(), n.begin(), n.end());
     }
     const int position = addAccessor(gltf, addView(gltf, positions, TINYGLTF_TARGET_ARRAY_BUFFER),
                                      TINYGLTF_COMPONENT_TYPE_FLOAT, model.positions.size(), TINYGLTF_TYPE_VEC3);
     gltf.accessors[position].minValues = lo, gltf.accessors[position].maxValues = hi;
     const int colour = addAccessor(gltf, addView(gltf, colours, TINYGLTF_TARGET_ARRAY_BUFFER),
                                    TINYGLTF_COMPONENT_TYPE_FLOAT, model.colours.size(), TINYGLTF_TYPE_VEC3);
+    const int normal = addAccessor(gltf, addView(gltf, normals, TINYGLTF_TARGET_ARRAY_BUFFER),
+                                   TINYGLTF_COMPONENT_TYPE_FLOAT, model.normals.size(), TINYGLTF_TYPE_VEC3);
     // One matte material; the colours are the vertices' (COLOR_0 times a white base).
     tinygltf::Material matte;
     matte.name = "terrain";
@@ -93,7 +100,7 @@ void writeGltf(const TerrainModel& model, const ModelFormatRow& format, const st
         indices.reserve(3 * part.faces.size());
         for (const auto& f : part.faces) indices.insert(indices.end(), f.begin(), f.end());
         tinygltf::Primitive primitive;
-        primitive.attributes = {{"POSITION", position}, {"COLOR_0", colour}};
+        primitive.attributes = {{"POSITION", position}, {"NORMAL", normal}, {"COLOR_0", colour}};
         primitive.indices = addAccessor(gltf, addView(gltf, indices, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
                                         TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, indices.size(), TINYGLTF_TYPE_SCALAR);
         primitive.material = 0;
@@ -111,10 +118,13 @@ void writeGltf(const TerrainModel& model, const ModelFormatRow& format, const st
     scene.name = "terrain";
     gltf.scenes.push_back(std::move(scene));
     gltf.defaultScene = 0;
-    const bool binary = format.format == ModelFormat::Glb;
+    // Written to memory (a .gltf's buffer as a data URI), then to the file by relief, which checks
+    // every write: tinygltf 2.7 does not check its stream's.
+    std::ostringstream bytes;
     tinygltf::TinyGLTF writer;
-    if (!writer.WriteGltfSceneToFile(&gltf, path.string(), false, !binary, false, binary))
+    if (!writer.WriteGltfSceneToStream(&gltf, bytes, false, format.format == ModelFormat::Glb))
         throw std::runtime_error("tinygltf could not write it");
+    writeFileAtomically(path, bytes.view());
 }
 
 // The model as one Assimp mesh (every part's triangles; colours sRGB, as OBJ's and PLY's readers
@@ -139,10 +149,11 @@ std::unique_ptr<aiScene> assimpScene(const TerrainModel& model, bool yUp, bool f
     mesh->mNumVertices = n;
     mesh->mVertices = new aiVector3D[n];
     mesh->mColors[0] = new aiColor4D[n];
-    if (facets) mesh->mNormals = new aiVector3D[n];
+    mesh->mNormals = new aiVector3D[n];
     const auto vertex = [&](unsigned at, std::uint32_t v) {
-        const auto p = axesOf(model.positions[v], yUp);
+        const auto p = axesOf(model.positions[v], yUp), normal = axesOf(model.normals[v], yUp);
         mesh->mVertices[at] = aiVector3D(p[0], p[1], p[2]);
+        mesh->mNormals[at] = aiVector3D(normal[0], normal[1], normal[2]);
         const LinearRgb& c = model.colours[v];
         mesh->mColors[0][at] = aiColor4D(srgbOf(c.r), srgbOf(c.g), srgbOf(c.b), 1);
     };
@@ -181,9 +192,11 @@ void writeModel(const TerrainModel& model, const ModelFormatRow& format, const s
                 const std::string& generator) {
     if (format.format == ModelFormat::Glb || format.format == ModelFormat::Gltf) return writeGltf(model, format, path, generator);
     const auto scene = assimpScene(model, format.yUp, format.format == ModelFormat::Stl);
+    // To memory, then to the file by relief, which checks every write (Assimp's file system does not).
     Assimp::Exporter exporter;
-    if (exporter.Export(scene.get(), assimpFormatId(format.format), path.string()) != aiReturn_SUCCESS)
-        throw std::runtime_error(fmt::format("Assimp could not write it: {}", exporter.GetErrorString()));
+    const aiExportDataBlob* blob = exporter.ExportToBlob(scene.get(), assimpFormatId(format.format));
+    if (!blob) throw std::runtime_error(fmt::format("Assimp could not write it: {}", exporter.GetErrorString()));
+    writeFileAtomically(path, std::string_view(static_cast<const char*>(blob->data), blob->size));
 }
 
 }  // namespace relief::model

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <new>
+#include <span>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -21,21 +24,28 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// The model of the surface within `maxTriangles`: every node a vertex when that fits, else the
-// adaptive mesh at about the least tolerance that fits: raised (by how far over the last try was,
-// its triangles going as one over the tolerance on a smooth surface) until one fits, then halved
-// geometrically between the last over and the first within, kBisections times.
+// The model of the surface within `maxTriangles`: every node a vertex when that fits (a floor
+// doubles the surface's triangles: counted before the model is made), else the adaptive mesh at
+// about the least tolerance that fits: raised (by how far over the last try was, its triangles
+// going as one over the tolerance on a smooth surface) until one fits, then narrowed
+// geometrically between the last over and the first within, kNarrowings times. Nullopt when
+// raising the tolerance no longer lowers the count (the walls of many holes) and none fits.
 struct Fitted {
     model::TerrainModel model;
     double toleranceM = 0;
 };
-constexpr int kBisections = 4;
+constexpr int kNarrowings = 4;
 std::optional<Fitted> modelWithin(const Surface& surface, const emit::ScenePlacement& where,
                                   std::span<const LinearRgb> colours, long long maxTriangles, const ProgressFn& progress) {
     const std::optional<double> floor = where.baseElevationM;
-    Fitted f{model::terrainModel(emit::buildMesh(surface.refined, where), floor, colours), 0};
     const auto within = [&](const Fitted& m) { return static_cast<long long>(m.model.triangles()) <= maxTriangles; };
-    if (within(f)) return f;
+    {
+        const emit::Mesh mesh = emit::buildMesh(surface.refined, where);
+        if (mesh.triangles * (floor ? 2 : 1) <= maxTriangles) {
+            Fitted f{model::terrainModel(mesh, floor, colours), 0};
+            if (within(f)) return f;
+        }
+    }
     const auto adaptive = [&](double tolerance) {
         if (progress)
             progress({ProgressEvent::Stage::Compiling,
@@ -45,19 +55,21 @@ std::optional<Fitted> modelWithin(const Surface& surface, const emit::ScenePlace
                       tolerance};
     };
     double over = 0, tolerance = 1e-4 * std::max(where.zMaxM - where.zMinM, 1e-3);
-    std::optional<Fitted> best;
-    for (int attempt = 0; attempt < 40 && !best; ++attempt) {
+    Fitted f = adaptive(tolerance);
+    while (!within(f)) {
         const double ratio = static_cast<double>(f.model.triangles()) / static_cast<double>(maxTriangles);
-        if (attempt) over = tolerance, tolerance *= std::clamp(ratio, 1.25, 8.0);
+        over = tolerance;
+        tolerance *= std::clamp(ratio, 1.25, 8.0);
+        const size_t before = f.model.triangles();
         f = adaptive(tolerance);
-        if (within(f)) best = std::move(f);
+        if (!within(f) && f.model.triangles() >= before) return std::nullopt;
     }
-    for (int k = 0; best && over > 0 && k < kBisections; ++k) {
-        Fitted mid = adaptive(std::sqrt(over * best->toleranceM));
-        if (within(mid)) best = std::move(mid);
+    for (int k = 0; over > 0 && k < kNarrowings; ++k) {
+        Fitted mid = adaptive(std::sqrt(over * f.toleranceM));
+        if (within(mid)) f = std::move(mid);
         else over = mid.toleranceM;
     }
-    return best;
+    return f;
 }
 
 // [texture] image: each refined node's colour as the drape PNG the still renders has it.
@@ -112,6 +124,11 @@ std::optional<ExportOutcome> exportTerrain(const ExportJob& job, Diagnostics& di
                         fmt::format("no mesh of the surface fits within --max-triangles {}: raise it", job.maxTriangles));
             return std::nullopt;
         }
+        if (fitted->model.triangles() == 0) {
+            diags.error(budgetKey(loaded->scene), "no triangle of the surface has data at its three corners: there is "
+                                                  "no model to write (a finer net, or data over more of it)");
+            return std::nullopt;
+        }
         if (job.acrossMM) model::scaleAcross(fitted->model, *job.acrossMM);
         if (progress) progress({ProgressEvent::Stage::Finishing, "writing " + output.string(), -1});
         model::writeModel(fitted->model, *format, staged, fmt::format("relief {}", kVersion));
@@ -132,6 +149,8 @@ std::optional<ExportOutcome> exportTerrain(const ExportJob& job, Diagnostics& di
         return out;
     } catch (const OutputError& e) {
         diags.error(e.at(), e.problem());
+    } catch (const std::bad_alloc&) {
+        diags.error({output.string(), 0, 0}, "the model does not fit in memory: a lower --max-triangles");
     } catch (const std::runtime_error& e) {
         diags.error({output.string(), 0, 0}, fmt::format("the model cannot be written: {}", e.what()));
     }

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <map>
 #include <numbers>
+#include <set>
 #include <thread>
 
 #include <fmt/format.h>
@@ -369,10 +370,13 @@ bool withinFilmLimits(const FilmEstimate& e, double probeSeconds, const scene::L
 }
 
 // The film's sidecar: what it was made from, every frame's keys (relief render --set of them makes that frame).
+// `frameNodes`: a frame's nodes (plan::tileNodes of its plan), by frame.
 std::string filmSidecar(const film::FilmRecord& record, const AnimateOutcome& o, const film::VideoRequest& video,
-                        const FilmEstimate& estimate) {
+                        const FilmEstimate& estimate, const std::vector<std::vector<std::string>>& frameNodes) {
     nlohmann::ordered_json frames = nlohmann::ordered_json::array();
-    for (const auto& f : record.frames) {
+    std::map<std::string, int> framesOn;  // a node's name: the frames it rendered (a tile of)
+    for (size_t i = 0; i < record.frames.size(); ++i) {
+        const auto& f = record.frames[i];
         nlohmann::ordered_json set = nlohmann::ordered_json::object();
         for (const auto& [k, v] : f.settings.overrides) set[k] = v;
         nlohmann::ordered_json j = {{"number", f.settings.number}, {"set", set}};
@@ -381,6 +385,10 @@ std::string filmSidecar(const film::FilmRecord& record, const AnimateOutcome& o,
             j["file"] = film::frameFileName(f.fileNumber);
         else
             j["left_out"] = "night";
+        if (i < frameNodes.size() && !frameNodes[i].empty()) {
+            j["nodes"] = frameNodes[i];
+            for (const std::string& n : std::set<std::string>(frameNodes[i].begin(), frameNodes[i].end())) ++framesOn[n];
+        }
         frames.push_back(j);
     }
     // The command as run, with the working folder's frames and the staged film named as kept.
@@ -394,6 +402,7 @@ std::string filmSidecar(const film::FilmRecord& record, const AnimateOutcome& o,
         {"frames_in_film", video.frameCount},
         {"terrains_compiled", record.terrains},
         {"frames", frames},
+        {"nodes", framesOn},
         {"ffmpeg", {{"version", film::ffmpegVersion()}, {"command", command}}},
         {"estimate",
          {{"render_s", std::round(estimate.secondsLeft * 10) / 10},
@@ -557,7 +566,9 @@ void makeFilm(const film::FilmRecord& record, FilmWork& work, const execute::Opt
         return;
     }
     outcome.encodeSeconds = secondsSince(e0);
-    writeFileAtomically(outputs.staged(record.sidecar), filmSidecar(record, outcome, video, estimate));
+    std::vector<std::vector<std::string>> frameNodes(record.frames.size());
+    for (size_t p = 0; p < work.plans.size(); ++p) frameNodes[work.planFrame[p]] = plan::tileNodes(work.plans[p]);
+    writeFileAtomically(outputs.staged(record.sidecar), filmSidecar(record, outcome, video, estimate, frameNodes));
     outputs.commit();
     outcome.status = JobStatus::Ok;
     std::error_code ec;

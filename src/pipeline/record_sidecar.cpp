@@ -1,6 +1,8 @@
 // The JSON sidecar: what made the still, what it cost, what it shows.
 #include "pipeline/record.h"
 
+#include <map>
+
 #include "core/text_escape.h"
 #include "core/utf8_record.h"
 
@@ -207,10 +209,12 @@ ordered_json tenthsOf(const PixelPoint& p) { return {tenth(p.x), tenth(p.y)}; }
 void addRenderFacts(ordered_json& j, const RenderFacts& r) {
     double parse = 0, trace = 0;
     ordered_json tiles = ordered_json::array();
+    std::map<std::string, int> tilesOn;  // a node's name: its tiles
     for (const auto& t : r.tiles) {
         parse += t.parseSeconds;
         trace += t.traceSeconds;
         tiles.push_back(plan::tileRecordJson(t));
+        ++tilesOn[t.node.empty() ? plan::nodeName() : t.node];
     }
     // Every tile parses the whole scene: the parse is paid once a tile, and summed here.
     j["seconds"]["povray_parse"] = parse;
@@ -219,6 +223,7 @@ void addRenderFacts(ordered_json& j, const RenderFacts& r) {
     j["seconds"]["finish"] = r.finishSeconds;
     if (!r.tiles.empty()) j["povray_command"] = r.tiles.front().povrayCommand;
     j["tiles"] = tiles;
+    j["nodes"] = tilesOn;
     if (!r.overlays) return;
     const annotate::OverlayRecord& o = *r.overlays;
     j["overlay"] = {{"drawn", o.drawn}};

@@ -7,6 +7,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <mutex>
 #include <set>
@@ -489,6 +490,20 @@ bool checkRenderable(const RenderPlan& plan, Diagnostics& diags) {
     return false;
 }
 
+std::string nodeName() {
+    const char* slurm = std::getenv("SLURMD_NODENAME");
+    return slurm && *slurm ? slurm : hostName();
+}
+
+std::vector<std::string> tileNodes(const RenderPlan& plan) {
+    std::vector<std::string> nodes;
+    for (int k = 0; k < plan.tiles; ++k) {
+        std::string problem;
+        if (const auto r = readTileRecord(plan, k, problem)) nodes.push_back(r->node);
+    }
+    return nodes;
+}
+
 fs::path tileImage(const RenderPlan& plan, int index) {
     return plan.dir / "tiles" / fmt::format("tile-{:04}.png", index);
 }
@@ -503,6 +518,7 @@ ordered_json tileRecordJson(const TileRecord& r) {
             {"relief_version", r.reliefVersion},
             {"povray_version", r.povrayVersion},
             {"host", r.host.empty() ? hostName() : r.host},
+            {"node", r.node.empty() ? nodeName() : r.node},
             {"seconds", {{"povray_parse", r.parseSeconds}, {"povray_trace", r.traceSeconds}, {"povray_wall", r.wallSeconds}}},
             {"povray_peak_memory_mb", r.peakMemoryMB},
             {"povray_command", r.povrayCommand},
@@ -522,6 +538,7 @@ std::optional<TileRecord> readTileRecord(const RenderPlan& plan, int index, std:
         r.reliefVersion = j.at("relief_version").get<std::string>();
         r.povrayVersion = j.at("povray_version").get<std::string>();
         r.host = j.at("host").get<std::string>();
+        r.node = j.at("node").get<std::string>();
         r.parseSeconds = j.at("seconds").at("povray_parse").get<double>();
         r.traceSeconds = j.at("seconds").at("povray_trace").get<double>();
         r.wallSeconds = j.at("seconds").at("povray_wall").get<double>();

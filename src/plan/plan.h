@@ -113,6 +113,9 @@ struct TileRecord {
     int index = 0;
     TileRows rows;
     std::string planHash, reliefVersion, povrayVersion, host;
+    /// The node it ran on: Slurm's name for it ($SLURMD_NODENAME: nodes of one
+    /// host share its host name), else the host's.
+    std::string node;
     std::string imageSha256;  ///< the tile's PNG as rendered: the finish stitches only that image
     double parseSeconds = 0, traceSeconds = 0, wallSeconds = 0;
     double peakMemoryMB = 0;  ///< POV-Ray's largest resident size while it rendered the tile
@@ -121,6 +124,11 @@ struct TileRecord {
 std::filesystem::path tileImage(const RenderPlan& plan, int index);
 std::filesystem::path tileRecordPath(const RenderPlan& plan, int index);
 nlohmann::ordered_json tileRecordJson(const TileRecord& record);
+/// The node this process runs on: $SLURMD_NODENAME in a Slurm task, else the host's name.
+std::string nodeName();
+/// The nodes a plan's tiles ran on, a tile each, in tile order (a tile
+/// without a good record: none).
+std::vector<std::string> tileNodes(const RenderPlan& plan);
 /// The record of tile `index`, or nullopt (with `problem` set) when it is
 /// missing, damaged, or from another plan or another relief or POV-Ray, or
 /// its image is not the one it records (changed, missing, a link).

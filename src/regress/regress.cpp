@@ -372,6 +372,7 @@ std::vector<CaseResult> runCases(const Manifest& m, const RunOptions& o, const C
         const size_t i = caseOf[plan];
         CaseResult& r = results[i];
         Diagnostics diags;
+        r.nodes = plan::tileNodes(*planned[i].plan);
         if (!error.empty()) {
             r.status = CaseStatus::Error;
             r.message = "POV-Ray failed: " + error;

@@ -55,6 +55,7 @@ struct CaseResult {
     compare::ImageDifference difference;    ///< against the closest reference
     std::vector<GeometryResult> geometry;   ///< the case's geometry checks, in order
     std::filesystem::path newGeometry;      ///< the surface's curves now (what --update keeps)
+    std::vector<std::string> nodes;         ///< the node each of its tiles ran on (plan::tileNodes)
     double seconds = 0;
 };
 

@@ -245,7 +245,8 @@ std::string summaryJson(const Manifest& m, const std::vector<CaseResult>& result
     for (const auto& r : results) {
         nlohmann::ordered_json cj{{"name", r.testCase->name}, {"status", statusName(r.status)},
                                   {"message", r.message}, {"seconds", r.seconds},
-                                  {"new", r.newImage.empty() ? "" : fs::relative(r.newImage, o.reportDir).generic_string()}, {"reference", r.referenceName}};
+                                  {"new", r.newImage.empty() ? "" : fs::relative(r.newImage, o.reportDir).generic_string()}, {"reference", r.referenceName},
+                                  {"nodes", r.nodes}};
         if (r.difference.width > 0)
             cj["metrics"] = {{"max_error", r.difference.maxError},
                              {"failing_pixels", r.difference.failingPixels},

@@ -72,7 +72,8 @@ for line in "Number of parts *: *1 " "Total disconnected facets *: *0 *0" "Facet
   grep -qE "$line" solid.admesh || fail "the STL is not a closed solid facing out ($line): $(grep -E 'parts|disconnected facets|reversed|Backwards|Normals fixed' solid.admesh | tr -s ' \n' ' ')"
 done
 grep -qE "Volume *: *[1-9]" solid.admesh || fail "the solid's volume is not positive: $(grep Volume solid.admesh)"
-"$relief" export dem.tif -o solid.glb "${sets[@]}" --solid 2> solid-glb.txt || { fail "export --solid"; cat solid-glb.txt; }
+"$relief" export dem.tif -o solid.glb "${sets[@]}" --set base.thickness_m=false --solid 2> solid-glb.txt ||
+  { fail "export --solid"; cat solid-glb.txt; }
 assimp info solid.glb 2>&1 | grep -qE "^Meshes: *3$" || fail "--solid: not a surface, walls and a floor"
 
 # The same bytes under another name and on a second run, every format.
@@ -81,6 +82,8 @@ for ext in glb gltf obj ply; do
   "$relief" export -q dem.tif -o "again/other.$ext" "${sets[@]}" --set base.thickness_m=false || fail "export again .$ext"
   cmp -s "float.$ext" "again/other.$ext" || fail ".$ext: not the same bytes under another name"
 done
+"$relief" export -q dem.tif -o again/other.stl "${sets[@]}" --set base.thickness_m=false || fail "export again .stl"
+cmp -s solid.stl again/other.stl || fail ".stl: not the same bytes under another name"
 
 # --scale: the wider side that many millimetres; --max-triangles: met, the bound said.
 "$relief" export dem.tif -o print.glb "${sets[@]}" --scale 150 --max-triangles 20000 2> print.txt || { fail "export --scale"; cat print.txt; }
@@ -107,12 +110,39 @@ import sys
 for name in sys.argv[1:]:
     lines = open(name).read().split("\n"); end = lines.index("end_header") + 1
     n = int(next(l for l in lines if l.startswith("element vertex")).split()[2])
-    print(len({tuple(l.split()[3:6]) for l in lines[end:end + n]}), end=" ")
+    red = [l.split()[-1] for l in lines[:end] if l.startswith("property ") and "list" not in l].index("red")
+    print(len({tuple(l.split()[red:red + 3]) for l in lines[end:end + n]}), end=" ")
 PY
 )
 read -r draped ramp <<< "$colours"
 echo "colours: $draped draped, $ramp by elevation"
 [ "$draped" -gt 1000 ] && [ "$ramp" -le 256 ] || fail "the drape's colours: $draped draped, $ramp by elevation"
+
+# net.unsupported = "fade": the model's colours washed out as the still's are (the share of the
+# surface between two strips of samples less saturated than shown: all but those grey already).
+cp "$src/scenes/data/volcano_samples_1000_seed20251124.csv" s.csv
+{ head -1 s.csv; awk -F, 'NR > 1 && (($2 > -36.8734 && $2 < -36.8726) || ($2 > -36.8794 && $2 < -36.8786))' s.csv; } > strip.csv
+for mode in show fade; do
+  printf '[samples]\npath = "strip.csv"\n[net]\ngridding = "fit"\nrows = 17\ncols = 17\nunsupported = "%s"\n' $mode > strip-$mode.toml
+  "$relief" export -q strip-$mode.toml -o strip-$mode.ply --set base.thickness_m=false || fail "export strip-$mode"
+done
+faded=$(python3 - strip-show.ply strip-fade.ply <<'PY'
+import sys
+def colours(name):
+    lines = open(name).read().split("\n"); end = lines.index("end_header") + 1
+    n = int(next(l for l in lines if l.startswith("element vertex")).split()[2])
+    red = [l.split()[-1] for l in lines[:end] if l.startswith("property ") and "list" not in l].index("red")
+    return [tuple(int(x) for x in l.split()[red:red + 3]) for l in lines[end:end + n]]
+show, fade = colours(sys.argv[1]), colours(sys.argv[2])
+saturation = lambda p: (max(p) - min(p)) / max(max(p), 1)
+differ = [(a, b) for a, b in zip(show, fade) if a != b]
+greyer = sum(saturation(b) < saturation(a) for a, b in differ)
+print(f"{len(differ)} of {len(show)} vertices faded, {greyer} less saturated")
+PY
+)
+echo "fade: $faded"
+read -r differ _ all _ _ greyer _ <<< "$faded"
+[ "${differ:-0}" -gt $((all / 10)) ] && [ "$greyer" -ge $((differ * 99 / 100)) ] || fail "net.unsupported = \"fade\" in the model: $faded"
 
 # A format relief does not write: one line naming the file and the formats, exit 2, nothing written.
 "$relief" export dem.tif -o model.3ds "${sets[@]}" 2> bad.txt; code=$?

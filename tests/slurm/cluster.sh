@@ -1,17 +1,22 @@
 #!/usr/bin/env bash
-# A private single-node Slurm cluster for the tests: munged with its own key and socket, and
-# slurmctld and slurmd with a slurm.conf of their own, all in DIR, no systemd, no accounting
-# database. Clients find it through SLURM_CONF=DIR/slurm.conf.
-# Usage: cluster.sh start DIR | stop DIR | env DIR (prints export SLURM_CONF=...)
-#   start: exits 0 when `sinfo` sees the node idle; 77 when slurm-wlm or munge is not installed.
+# A private Slurm cluster of several nodes on this host for the tests: munged with its own key and
+# socket, slurmctld, and one slurmd a node (n1..nN, each its own port, spool, log and PID file:
+# Debian's slurmd runs several nodes on one host, `slurmd -N NAME`), with a slurm.conf of their
+# own, all in DIR, no systemd, no accounting database. Tasks are spread over the nodes (CR_LLN:
+# the least loaded first), so that a job array runs on several. Clients find it through
+# SLURM_CONF=DIR/slurm.conf; a task knows its node by $SLURMD_NODENAME.
+# Usage: cluster.sh start DIR [NODES] | stop DIR | env DIR (prints export SLURM_CONF=...)
+#   start: NODES nodes (default 3); exits 0 when `sinfo` sees every node idle; 77 when slurm-wlm
+#          or munge is not installed.
 #   stop:  stops the daemons it started (by the PIDs it recorded) and leaves DIR's logs.
 set -u
-cmd=${1:-} dir=${2:-}
-[ -n "$dir" ] || { echo "usage: cluster.sh start|stop|env DIR" >&2; exit 2; }
+cmd=${1:-} dir=${2:-} nodes=${3:-3}
+[ -n "$dir" ] || { echo "usage: cluster.sh start DIR [NODES] | stop DIR | env DIR" >&2; exit 2; }
+case "$nodes" in [1-9]) ;; *) echo "cluster.sh: NODES is 1 to 9, not $nodes" >&2; exit 2 ;; esac
 conf="$dir/slurm.conf"
 
 stop() {
-  for pidfile in "$dir/slurmd.pid" "$dir/slurmctld.pid" "$dir/munged.pid"; do
+  for pidfile in "$dir"/run/slurmd-*.pid "$dir/slurmctld.pid" "$dir/munged.pid"; do
     [ -s "$pidfile" ] || continue
     pid=$(cat "$pidfile")
     kill "$pid" 2>/dev/null
@@ -38,7 +43,9 @@ start() {
   done
   export PATH="$PATH:/usr/sbin"
   stop
-  rm -rf "$dir" && mkdir -p "$dir"/{state,spool} || exit 1
+  rm -rf "$dir" && mkdir -p "$dir"/{state,run,log} || exit 1
+  local k names=()
+  for k in $(seq "$nodes"); do names+=("n$k"); mkdir -p "$dir/spool/n$k" || exit 1; done
   # munge's socket path must fit a Unix socket's 108 bytes: a short folder in /tmp when DIR is deep.
   local munge="$dir/munge"
   [ ${#munge} -gt 80 ] && munge=$(mktemp -d /tmp/relief-munge-XXXXXX)
@@ -55,22 +62,21 @@ start() {
 ClusterName=relief-test
 SlurmctldHost=$host(127.0.0.1)
 SlurmctldPort=$(free_port)
-SlurmdPort=$(free_port)
 SlurmUser=$user
 SlurmdUser=$user
 AuthType=auth/munge
 CredType=cred/munge
 AuthInfo=socket=$munge/munge.socket
 StateSaveLocation=$dir/state
-SlurmdSpoolDir=$dir/spool
+SlurmdSpoolDir=$dir/spool/%n
 SlurmctldPidFile=$dir/slurmctld.pid
-SlurmdPidFile=$dir/slurmd.pid
+SlurmdPidFile=$dir/run/slurmd-%n.pid
 SlurmctldLogFile=$dir/slurmctld.log
-SlurmdLogFile=$dir/slurmd.log
+SlurmdLogFile=$dir/log/slurmd-%n.log
 ProctrackType=proctrack/linuxproc
 TaskPlugin=task/none
 SelectType=select/cons_tres
-SelectTypeParameters=CR_CPU
+SelectTypeParameters=CR_CPU,CR_LLN
 SchedulerParameters=batch_sched_delay=0
 DependencyParameters=kill_invalid_depend
 JobCompType=jobcomp/filetxt
@@ -78,21 +84,26 @@ JobCompLoc=$dir/jobcomp.txt
 MpiDefault=none
 ReturnToService=2
 MinJobAge=300
-NodeName=$host NodeAddr=127.0.0.1 CPUs=$(nproc) State=UNKNOWN
-PartitionName=test Nodes=$host Default=YES MaxTime=INFINITE State=UP
 EOF
+  for k in "${names[@]}"; do
+    echo "NodeName=$k NodeAddr=127.0.0.1 NodeHostname=localhost Port=$(free_port) CPUs=$(nproc) State=UNKNOWN" >> "$conf"
+  done
+  echo "PartitionName=test Nodes=n[1-$nodes] Default=YES MaxTime=INFINITE State=UP" >> "$conf"
   export SLURM_CONF="$conf"
   slurmctld || { echo "FAIL: slurmctld did not start"; tail -20 "$dir/slurmctld.log"; exit 1; }
-  slurmd || { echo "FAIL: slurmd did not start"; tail -20 "$dir/slurmd.log"; exit 1; }
+  for k in "${names[@]}"; do
+    slurmd -N "$k" || { echo "FAIL: slurmd -N $k did not start"; tail -20 "$dir/log/slurmd-$k.log"; stop; exit 1; }
+  done
   # A deadline, not a count: sinfo waits out its own timeout when slurmctld does not answer.
   local deadline=$((SECONDS + 30)) state=
   while [ "$SECONDS" -lt "$deadline" ]; do
-    state=$(timeout 5 sinfo -h -o %T 2>/dev/null | head -1)
-    [ "$state" = idle ] && { echo "slurm: node $host idle (SLURM_CONF=$conf)"; exit 0; }
+    state=$(timeout 5 sinfo -h -N -o '%N %T' 2>/dev/null | sort | tr '\n' ' ')
+    [ "$(grep -o ' idle' <<< " $state" | wc -l)" = "$nodes" ] &&
+      { echo "slurm: nodes ${names[*]} idle on $host (SLURM_CONF=$conf)"; exit 0; }
     sleep 0.1
   done
-  echo "FAIL: the node is not idle after 30 s (state: ${state:-none})"
-  for log in "$dir/slurmctld.log" "$dir/slurmd.log"; do echo "-- $log"; tail -n 10 "$log"; done
+  echo "FAIL: the nodes are not all idle after 30 s (${state:-no answer})"
+  for log in "$dir/slurmctld.log" "$dir"/log/slurmd-*.log; do echo "-- $log"; tail -n 10 "$log"; done
   stop; exit 1
 }
 

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Through the private Slurm cluster (cluster.sh; SLURM_CONF names it): a still as 7 tiles, a
-# sweep, a test suite and a film give the bytes they give on this machine alone; a task that fails names
+# Through the private Slurm cluster (cluster.sh: 3 nodes; SLURM_CONF names it): a still as 9 tiles
+# (each tile's record naming its node, the sidecar counting them), a sweep, a test suite and a
+# 12-frame film give the bytes they give on this machine alone, each on at least 2 nodes; a task that fails names
 # its Slurm job, state and log; a task that cannot see its plan says so; a task list or plan
 # changed after submission is refused; a plan in a folder named with % (sbatch's patterns) and
 # --slurm-args quoted as a shell quotes work; without SLURM_CONF, or with a controller that does
@@ -16,12 +17,20 @@ fail() { echo "FAIL: $*"; status=1; }
 small="$src/tests/golden/small/scene.toml"
 size=(--set render.width=480 --set render.height=320)
 
-# 1. A still: 7 tiles on Slurm, 1 here.
+# 1. A still: 9 tiles on Slurm's nodes, 1 here.
 "$relief" render -q "$src/scenes/default.toml" "${size[@]}" -o local/still.png || fail "the local still"
-"$relief" render -q "$src/scenes/default.toml" "${size[@]}" --tiles 7 --executor slurm -o slurm/still.png 2> still.txt ||
+"$relief" render -q "$src/scenes/default.toml" "${size[@]}" --tiles 9 --executor slurm -o slurm/still.png 2> still.txt ||
   { fail "the still on Slurm"; cat still.txt; }
 for f in png pov; do cmp -s local/still.$f slurm/still.$f || fail "Slurm's still.$f is not the local one"; done
-grep -q '"host":' slurm/still.json && [ "$(grep -c '"plan_hash":' slurm/still.json)" = 7 ] || fail "the sidecar lacks the 7 tiles' records"
+grep -q '"host":' slurm/still.json && [ "$(grep -c '"plan_hash":' slurm/still.json)" = 9 ] || fail "the sidecar lacks the 9 tiles' records"
+nodes=$(python3 -c "
+import json, sys
+j = json.load(open('slurm/still.json'))
+tiles = [t['node'] for t in j['tiles']]
+ok = sorted(set(tiles)) == sorted(j['nodes']) and all(j['nodes'][n] == tiles.count(n) for n in j['nodes'])
+print(len(j['nodes']), ' '.join(f'{n}:{c}' for n, c in sorted(j['nodes'].items())), 'ok' if ok and set(tiles) <= {'n1', 'n2', 'n3'} else 'WRONG')")
+echo "the still's tiles ran on $nodes"
+case "$nodes" in [2-9]\ *ok) ;; *) fail "the still's 9 tiles did not run on 2 nodes or more, named in their records: $nodes" ;; esac
 
 # 2. A sweep: a task a still.
 vary=(--vary subdivision.omega=1/64,1/16 --set render.width=64 --set render.height=48)
@@ -30,6 +39,21 @@ vary=(--vary subdivision.omega=1/64,1/16 --set render.width=64 --set render.heig
 for f in sheet.png sheet-stills/001.png sheet-stills/002.png; do
   cmp -s "local-sweep/$f" "slurm-sweep/$f" || fail "the sweep's $f differs on Slurm"
 done
+# The nodes a set of records name (the sidecars' "nodes", the suite's cases', the film's frames'): at least 2.
+on_nodes() {  # what, then a Python expression of the nodes' names from j (each file's JSON) over the files
+  local what=$1 expr=$2; shift 2
+  local seen
+  seen=$(python3 -c "
+import json, sys
+names = set()
+for f in sys.argv[1:]:
+    j = json.load(open(f))
+    names |= set($expr)
+print(' '.join(sorted(names)))" "$@")
+  echo "$what ran on: $seen"
+  [ "$(wc -w <<< "$seen")" -ge 2 ] || fail "$what did not run on 2 nodes or more: ${seen:-none named}"
+}
+on_nodes "the sweep's stills" "j['nodes']" slurm-sweep/sheet-stills/*.json
 
 # 3. A test suite: a task a case; the same verdicts and the same new images.
 mkdir -p suite
@@ -55,14 +79,16 @@ for c in small gentle eden; do
 done
 [ "$(grep -o '"status": "[A-Z]*"' local-report/summary.json)" = "$(grep -o '"status": "[A-Z]*"' slurm-report/summary.json)" ] ||
   fail "the verdicts differ on Slurm"
+on_nodes "the suite's cases" "n for c in j['cases'] for n in c['nodes']" slurm-report/summary.json
 
-# 3b. A film: a task a frame on Slurm, the same MP4 as here.
+# 3b. A film: a task a frame on Slurm's nodes, the same MP4 as here.
 if command -v ffmpeg >/dev/null; then
-  film=(--set animation.frames=3 --set 'animation.path="orbit"' --set render.width=160 --set render.height=120)
+  film=(--set animation.frames=12 --set 'animation.path="orbit"' --set render.width=160 --set render.height=120)
   "$relief" animate -q "$small" "${film[@]}" -o local-film/film.mp4 || fail "the local film"
   "$relief" animate -q "$small" "${film[@]}" --executor slurm -o slurm-film/film.mp4 2> film.txt ||
     { fail "the film on Slurm"; cat film.txt; }
   cmp -s local-film/film.mp4 slurm-film/film.mp4 || fail "the film differs on Slurm"
+  on_nodes "the film's 12 frames" "n for f in j['frames'] for n in f.get('nodes', [])" slurm-film/film.json
 fi
 
 # 4. A task that fails: named by job, state and log; nothing written; the plan kept.

@@ -8,6 +8,9 @@
 
 namespace relief::testing {
 
+/// The source tree: its scenes, templates and test data.
+inline const std::filesystem::path kSourceDir = RELIEF_SOURCE_DIR;
+
 inline std::filesystem::path freshTestDir(const std::string& name) {
     const std::filesystem::path dir =
         std::filesystem::path(RELIEF_TEST_WORK_DIR) / (name + "-" + std::to_string(::getpid()));

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <memory>
 #include <random>
+#include <tuple>
 #include <vector>
 
 #include "emit/adaptive_mesh.h"
@@ -27,25 +29,38 @@ geo::GeoGrid hills(const std::vector<std::uint8_t>& masked) {
 Vec3 minus(const Vec3& a, const Vec3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
 Vec3 cross(const Vec3& a, const Vec3& b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
 
-// A closed solid facing out: every directed edge as often as its reverse (once each, two
-// triangles an edge in opposite directions, where `manifold`: holes that touch each other only at
-// a corner pinch the solid there, the vertical edge under that node with four walls); the
-// surface's triangles face up, the floor's down; the volume (divergence theorem) positive, and
-// the surface's triangles those of the mesh.
+// A closed solid facing out: corners taken by their positions (the walls have vertices of their
+// own), every directed edge as often as its reverse (once each, two triangles an edge in opposite
+// directions, where `manifold`: holes that touch each other only at a corner pinch the solid
+// there, the vertical edge under that node with four walls); every triangle facing as its
+// vertices' normals say (unit; the surface's up, the floor's down, the walls' level); the volume
+// (divergence theorem) positive, and the surface's triangles those of the mesh.
 void expectClosedSolid(const TerrainModel& m, size_t surfaceTriangles, bool manifold) {
+    std::map<std::tuple<double, double, double>, std::uint32_t> at;
+    std::vector<std::uint32_t> corner(m.positions.size());
+    for (size_t v = 0; v < m.positions.size(); ++v)
+        corner[v] = at.try_emplace({m.positions[v].x, m.positions[v].y, m.positions[v].z}, static_cast<std::uint32_t>(v))
+                        .first->second;
+    ASSERT_EQ(m.normals.size(), m.positions.size());
     std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;
     double volume = 0;
     for (const ModelPart& part : m.parts)
         for (const auto& f : part.faces) {
-            for (int k = 0; k < 3; ++k) ++edges[{f[k], f[(k + 1) % 3]}];
+            for (int k = 0; k < 3; ++k) ++edges[{corner[f[k]], corner[f[(k + 1) % 3]]}];
             const Vec3 &a = m.positions[f[0]], &b = m.positions[f[1]], &c = m.positions[f[2]];
             const Vec3 n = cross(minus(b, a), minus(c, a));
             volume += (a.x * n.x + a.y * n.y + a.z * n.z) / 6;
-            if (part.name == "surface") {
-                EXPECT_GT(n.z, 0);
-            }
-            if (part.name == "floor") {
-                EXPECT_LT(n.z, 0);
+            const double length = std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
+            for (const std::uint32_t v : f) {
+                const Vec3& vn = m.normals[v];
+                EXPECT_NEAR(vn.x * vn.x + vn.y * vn.y + vn.z * vn.z, 1, 1e-9);
+                const double facing = (vn.x * n.x + vn.y * n.y + vn.z * n.z) / length;
+                if (part.name == "surface") {
+                    EXPECT_GT(facing, 0) << part.name;  // the full surface's normal, near the triangle's
+                    EXPECT_GT(vn.z, 0);
+                } else {
+                    EXPECT_NEAR(facing, 1, 1e-9) << part.name;  // flat: the triangle's own
+                }
             }
         }
     for (const auto& [edge, count] : edges) {
@@ -103,8 +118,15 @@ TEST(TerrainModel, MetresFromTheOriginAndScaledToMillimetres) {
         EXPECT_NEAR(q.x, p.x - where.originM.x, 1e-9);
         EXPECT_NEAR(q.y, p.y - where.originM.y, 1e-9);
         EXPECT_NEAR(q.z, p.z, 1e-9);
-        EXPECT_EQ(m.colours[mesh.vertexOf(node)], mesh.textureColours()[mesh.palette(node)]);
+        EXPECT_EQ(m.colours[mesh.vertexOf(node)], where.paletteColors[emit::paletteIndex(where, p.z)]);
     }
+    // The still's colours: a fade (net.unsupported = "fade") washes them here as there.
+    emit::ScenePlacement faded = where;
+    faded.fade = std::make_shared<const std::vector<std::uint8_t>>(grid.grid.points.size(), std::uint8_t{emit::kFadeLevels});
+    const emit::Mesh fadedMesh = emit::buildMesh(grid, faded);
+    const TerrainModel washed = terrainModel(fadedMesh, std::nullopt);
+    const LinearRgb ramp = where.paletteColors[emit::paletteIndex(where, grid.grid.points[7].z)];
+    EXPECT_EQ(washed.colours[fadedMesh.vertexOf(7)], mix(ramp, emit::kFadeColour, emit::kFadeOpacity));
     const double z = m.positions[0].z;
     scaleAcross(m, 150);  // 160 m across
     EXPECT_NEAR(m.unitsPerMetre, 150.0 / 160, 1e-12);

@@ -10,12 +10,12 @@
 #include "pipeline/load.h"
 #include "pipeline/surface.h"
 #include "pipeline/view.h"
+#include "unit/test_dirs.h"
 
 namespace relief {
 namespace {
 
 namespace fs = std::filesystem;
-const fs::path kSource = RELIEF_SOURCE_DIR;
 using Side = annotate::MapFrame::Side;
 
 struct Framed {
@@ -57,7 +57,7 @@ std::vector<Framed> everyFramedMap() {
     std::vector<Framed> out;
     for (const char* dem : kDems)
         for (const auto& look : kLooks)
-            if (auto f = framed(kSource / dem, look)) out.push_back(std::move(*f));
+            if (auto f = framed(testing::kSourceDir / dem, look)) out.push_back(std::move(*f));
     return out;
 }
 
@@ -148,7 +148,7 @@ TEST(MapFrame, TheMapFillsTheRoomTheFrameLeaves) {
 
 // A frame where no map can be: the eye at a place, a camera looking across.
 TEST(MapFrame, AViewThatIsNoMapIsRefusedAtTheKey) {
-    const fs::path dem = kSource / "tests/data/rasters/maungawhau-20m.tif";
+    const fs::path dem = testing::kSourceDir / "tests/data/rasters/maungawhau-20m.tif";
     for (const auto& sets : std::vector<scene::SceneOverrides>{
              {{"overlay.frame", "true"}, {"camera.elevation_deg", "40"}},
              {{"overlay.frame", "true"}, {"camera.projection", "\"perspective\""}},

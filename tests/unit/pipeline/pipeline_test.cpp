@@ -28,7 +28,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kSource = RELIEF_SOURCE_DIR;
 
 fs::path freshDir(const std::string& name) {
     const fs::path dir = relief::testing::freshTestDir("relief-pipeline-" + name);
@@ -41,7 +40,7 @@ SceneJob compileJob(const fs::path& scene, const fs::path& pov) {
     job.until = SceneJob::Until::Pov;
     job.scenePath = scene;
     job.output = pov;
-    job.templatesDir = kSource / "templates";
+    job.templatesDir = testing::kSourceDir / "templates";
     job.threads = 1;
     return job;
 }
@@ -56,7 +55,7 @@ TEST(Pipeline, OutputPathsSitBesideTheStill) {
 // library writes the sidecar, whose sizes come from the one mesh size formula.
 TEST(Pipeline, CompileJobWritesThePovAndItsSidecar) {
     const fs::path dir = freshDir("compile");
-    SceneJob job = compileJob(kSource / "tests/golden/small/scene.toml", dir / "small.pov");
+    SceneJob job = compileJob(testing::kSourceDir / "tests/golden/small/scene.toml", dir / "small.pov");
     Diagnostics diags;
     std::vector<ProgressEvent> events;
     const JobOutcome outcome = runSceneJob(job, diags, [&](const ProgressEvent& e) { events.push_back(e); });
@@ -85,7 +84,7 @@ TEST(Pipeline, CompileJobWritesThePovAndItsSidecar) {
     EXPECT_EQ(tasks, expected);
     EXPECT_EQ(events.back().percent, 100);
     const std::string pov = readFile(dir / "small.pov");
-    const std::string golden = readFile(kSource / "tests/golden/small/ref.pov");
+    const std::string golden = readFile(testing::kSourceDir / "tests/golden/small/ref.pov");
     // The header names the scene as given; everything after it must match.
     EXPECT_EQ(pov.substr(pov.find("\n#")), golden.substr(golden.find("\n#")));
     const auto sidecar = nlohmann::json::parse(readFile(dir / "small.json"));
@@ -105,7 +104,7 @@ TEST(Pipeline, BadSceneWritesNothing) {
     SceneJob job;
     job.scenePath = dir / "s.toml";
     job.output = dir / "out" / "s.png";
-    job.templatesDir = kSource / "templates";
+    job.templatesDir = testing::kSourceDir / "templates";
     Diagnostics diags;
     const JobOutcome outcome = runSceneJob(job, diags, nullptr);
     EXPECT_EQ(outcome.status, JobStatus::BadInput);
@@ -116,7 +115,7 @@ TEST(Pipeline, BadSceneWritesNothing) {
 // The surface: the refined grid keeps the net's frame and extent.
 TEST(Pipeline, RefinedSurfaceKeepsTheNetsFrameAndExtent) {
     Diagnostics diags;
-    const auto loaded = loadScene(kSource / "tests/golden/small/scene.toml", diags);
+    const auto loaded = loadScene(testing::kSourceDir / "tests/golden/small/scene.toml", diags);
     ASSERT_TRUE(loaded);
     const auto s = buildSurface(*loaded, diags, 1);
     ASSERT_TRUE(s);
@@ -136,7 +135,7 @@ TEST(Pipeline, RefinedSurfaceKeepsTheNetsFrameAndExtent) {
 // grid north there is 1.3 degrees east of true north).
 TEST(Pipeline, TheSunFromADateLightsAlongTheGridBearing) {
     const fs::path dir = freshDir("sun");
-    SceneJob job = compileJob(kSource / "tests/golden/small/scene.toml", dir / "small.pov");
+    SceneJob job = compileJob(testing::kSourceDir / "tests/golden/small/scene.toml", dir / "small.pov");
     job.overrides = {{"lighting.datetime", "2026-06-21T14:00:00+12:00"}};
     Diagnostics diags;
     const JobOutcome outcome = runSceneJob(job, diags, nullptr);
@@ -182,8 +181,8 @@ TEST(Pipeline, ARastersOwnCreditIsTheDefaultAttribution) {
         GDALClose(mem);
         GDALClose(src);
     };
-    copyWithCredit(kSource / "scenes/data/rasters/cyl_elev.tif", dir / "dem.tif", "DEM: someone, CC BY 4.0");
-    copyWithCredit(kSource / "scenes/data/rasters/cyl_tile.tif", dir / "map.tif", "Map: someone else, CC BY-SA");
+    copyWithCredit(testing::kSourceDir / "scenes/data/rasters/cyl_elev.tif", dir / "dem.tif", "DEM: someone, CC BY 4.0");
+    copyWithCredit(testing::kSourceDir / "scenes/data/rasters/cyl_tile.tif", dir / "map.tif", "Map: someone else, CC BY-SA");
     std::ofstream(dir / "s.toml") << "[samples]\npath = \"dem.tif\"\nvertical_unit = \"m\"\n[net]\nspacing_m = 10000\n"
                                      "[subdivision]\ndepth = 0\n";
     SceneJob job = compileJob(dir / "s.toml", dir / "s.pov");
@@ -215,19 +214,19 @@ std::optional<Surface> planForStill(const std::string& width, const std::string&
                                     scene::SceneOverrides more = {}) {
     more.emplace_back("render.width", width);
     more.emplace_back("render.height", height);
-    auto loaded = loadScene(kSource / "scenes/data/rasters/volcano2.tif", diags, more);
+    auto loaded = loadScene(testing::kSourceDir / "scenes/data/rasters/volcano2.tif", diags, more);
     if (!loaded) return std::nullopt;
     return planSurface(*loaded, diags, 1);
 }
 
 // A DEM that reaches the sea floor gets the topobathy ramp (blues below 0 m); one of dry land does not.
 TEST(Pipeline, TheSceneForASeaFloorTakesTheTopobathyRamp) {
-    const std::string asia = sceneTextForData(kSource / "scenes/data/rasters/asia.tif");  // -8,000 to 4,800 m
+    const std::string asia = sceneTextForData(testing::kSourceDir / "scenes/data/rasters/asia.tif");  // -8,000 to 4,800 m
     EXPECT_NE(asia.find("\n[texture]\nramp = \"topobathy\"\n"), std::string::npos) << asia;
-    const std::string volcano = sceneTextForData(kSource / "scenes/data/rasters/volcano2.tif");
+    const std::string volcano = sceneTextForData(testing::kSourceDir / "scenes/data/rasters/volcano2.tif");
     EXPECT_EQ(volcano.find("[texture]"), std::string::npos) << volcano;
     Diagnostics diags;
-    const auto loaded = loadScene(kSource / "scenes/data/rasters/asia.tif", diags);
+    const auto loaded = loadScene(testing::kSourceDir / "scenes/data/rasters/asia.tif", diags);
     ASSERT_TRUE(loaded) << (diags.all().empty() ? "" : formatDiagnostic(diags.all().back()));
     EXPECT_EQ(loaded->scene.look.texture.ramp.preset, "topobathy");
 }
@@ -235,7 +234,7 @@ TEST(Pipeline, TheSceneForASeaFloorTakesTheTopobathyRamp) {
 // A copy of the test DEM (Maungawhau, 20 m) with its metadata items set to `items` ("" removes one).
 void copyDemWith(const fs::path& to, const std::vector<std::pair<const char*, std::string>>& items) {
     geo::setUpGdal();
-    GDALDatasetH src = GDALOpen((kSource / "tests/data/rasters/maungawhau-20m.tif").c_str(), GA_ReadOnly);
+    GDALDatasetH src = GDALOpen((testing::kSourceDir / "tests/data/rasters/maungawhau-20m.tif").c_str(), GA_ReadOnly);
     ASSERT_NE(src, nullptr);
     GDALDatasetH mem = GDALCreateCopy(GDALGetDriverByName("MEM"), "", src, FALSE, nullptr, nullptr, nullptr);
     for (const auto& [key, value] : items)
@@ -402,7 +401,7 @@ TEST(Pipeline, DefaultDepthIsLoweredToTheLimitsNotRefused) {
 TEST(Pipeline, AFineRasterGetsANetForTheStill) {
     Diagnostics diags;
     scene::SceneOverrides o{{"render.width", "160"}, {"render.height", "120"}};
-    auto loaded = loadScene(kSource / "scenes/data/rasters/volcano2hires.tif", diags, o);
+    auto loaded = loadScene(testing::kSourceDir / "scenes/data/rasters/volcano2hires.tif", diags, o);
     ASSERT_TRUE(loaded);
     const auto s = planSurface(*loaded, diags, 1);
     ASSERT_TRUE(s);
@@ -446,7 +445,7 @@ TEST(Pipeline, InfoEstimatesWhatThePlanThatReadsTheNetFinds) {
         GDALDatasetH ds = GDALCreate(GDALGetDriverByName("GTiff"), big.c_str(), 3200, 3200, 1, GDT_Float32, nullptr);
         const double transform[6] = {1750000, 1, 0, 5920000, 0, -1};
         GDALSetGeoTransform(ds, const_cast<double*>(transform));
-        GDALDatasetH nztm = GDALOpen((kSource / "tests/data/rasters/maungawhau-20m.tif").c_str(), GA_ReadOnly);
+        GDALDatasetH nztm = GDALOpen((testing::kSourceDir / "tests/data/rasters/maungawhau-20m.tif").c_str(), GA_ReadOnly);
         ASSERT_NE(nztm, nullptr);
         GDALSetProjection(ds, GDALGetProjectionRef(nztm));
         GDALClose(nztm);
@@ -463,7 +462,7 @@ TEST(Pipeline, InfoEstimatesWhatThePlanThatReadsTheNetFinds) {
         std::string said = std::string(*data ? data : "big.tif") + " ";
         for (const auto& [k, v] : sets) said += k + "=" + v + " ";
         Diagnostics diags;
-        const auto loaded = loadScene(*data ? kSource / data : big, diags, sets);
+        const auto loaded = loadScene(*data ? testing::kSourceDir / data : big, diags, sets);
         ASSERT_TRUE(loaded) << said << firstWarning(diags);
         const auto read = planSurface(*loaded, diags, 1);
         const auto estimated = estimateSurface(*loaded, diags);
