@@ -29,12 +29,14 @@ namespace {
 // about the least tolerance that fits: raised (by how far over the last try was, its triangles
 // going as one over the tolerance on a smooth surface) until one fits, then narrowed
 // geometrically between the last over and the first within, kNarrowings times. Nullopt when
-// raising the tolerance no longer lowers the count (the walls of many holes) and none fits.
+// raising the tolerance kStalledTries times in a row lowers the count no more (the walls of many
+// holes) and none fits.
 struct Fitted {
     model::TerrainModel model;
     double toleranceM = 0;
 };
 constexpr int kNarrowings = 4;
+constexpr int kStalledTries = 3;  // raisings in a row that lower nothing: no tolerance will
 std::optional<Fitted> modelWithin(const Surface& surface, const emit::ScenePlacement& where,
                                   std::span<const LinearRgb> colours, long long maxTriangles, const ProgressFn& progress) {
     const std::optional<double> floor = where.baseElevationM;
@@ -56,13 +58,14 @@ std::optional<Fitted> modelWithin(const Surface& surface, const emit::ScenePlace
     };
     double over = 0, tolerance = 1e-4 * std::max(where.zMaxM - where.zMinM, 1e-3);
     Fitted f = adaptive(tolerance);
-    while (!within(f)) {
+    for (int stalled = 0; !within(f);) {
         const double ratio = static_cast<double>(f.model.triangles()) / static_cast<double>(maxTriangles);
         over = tolerance;
         tolerance *= std::clamp(ratio, 1.25, 8.0);
         const size_t before = f.model.triangles();
         f = adaptive(tolerance);
-        if (!within(f) && f.model.triangles() >= before) return std::nullopt;
+        stalled = f.model.triangles() < before ? 0 : stalled + 1;
+        if (!within(f) && stalled == kStalledTries) return std::nullopt;
     }
     for (int k = 0; over > 0 && k < kNarrowings; ++k) {
         Fitted mid = adaptive(std::sqrt(over * f.toleranceM));

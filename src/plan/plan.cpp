@@ -538,7 +538,7 @@ std::optional<TileRecord> readTileRecord(const RenderPlan& plan, int index, std:
         r.reliefVersion = j.at("relief_version").get<std::string>();
         r.povrayVersion = j.at("povray_version").get<std::string>();
         r.host = j.at("host").get<std::string>();
-        r.node = j.at("node").get<std::string>();
+        r.node = j.value("node", r.host);  // a record from before nodes were named: its host
         r.parseSeconds = j.at("seconds").at("povray_parse").get<double>();
         r.traceSeconds = j.at("seconds").at("povray_trace").get<double>();
         r.wallSeconds = j.at("seconds").at("povray_wall").get<double>();

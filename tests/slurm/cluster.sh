@@ -28,13 +28,15 @@ stop() {
   return 0
 }
 
-free_port() {  # a TCP port nothing listens on, from the kernel's range
+taken=" "  # the ports given out so far: each daemon its own, though none listens yet
+free_port() {  # sets port: a TCP port nothing listens on and not given out, from 20000-39999
+  port=0
   local p
   for _ in $(seq 50); do
     p=$((20000 + RANDOM % 20000))
-    (exec 3<>/dev/tcp/127.0.0.1/$p) 2>/dev/null || { echo "$p"; return; }
+    [[ "$taken" == *" $p "* ]] && continue
+    (exec 3<>/dev/tcp/127.0.0.1/$p) 2>/dev/null || { taken+="$p "; port=$p; return; }
   done
-  echo 0
 }
 
 start() {
@@ -58,10 +60,11 @@ start() {
   munged --socket="$munge/munge.socket" --key-file="$munge/munge.key" --pid-file="$dir/munged.pid" \
          --log-file="$munge/munged.log" --seed-file="$munge/munged.seed" --force \
     || { echo "FAIL: munged did not start"; cat "$munge/munged.log" 2>/dev/null; exit 1; }
+  free_port; local controller=$port
   cat > "$conf" <<EOF
 ClusterName=relief-test
 SlurmctldHost=$host(127.0.0.1)
-SlurmctldPort=$(free_port)
+SlurmctldPort=$controller
 SlurmUser=$user
 SlurmdUser=$user
 AuthType=auth/munge
@@ -86,7 +89,8 @@ ReturnToService=2
 MinJobAge=300
 EOF
   for k in "${names[@]}"; do
-    echo "NodeName=$k NodeAddr=127.0.0.1 NodeHostname=localhost Port=$(free_port) CPUs=$(nproc) State=UNKNOWN" >> "$conf"
+    free_port
+    echo "NodeName=$k NodeAddr=127.0.0.1 NodeHostname=localhost Port=$port CPUs=$(nproc) State=UNKNOWN" >> "$conf"
   done
   echo "PartitionName=test Nodes=n[1-$nodes] Default=YES MaxTime=INFINITE State=UP" >> "$conf"
   export SLURM_CONF="$conf"
@@ -98,7 +102,7 @@ EOF
   local deadline=$((SECONDS + 30)) state=
   while [ "$SECONDS" -lt "$deadline" ]; do
     state=$(timeout 5 sinfo -h -N -o '%N %T' 2>/dev/null | sort | tr '\n' ' ')
-    [ "$(grep -o ' idle' <<< " $state" | wc -l)" = "$nodes" ] &&
+    [ "$(xargs -n 2 <<< "$state" | awk '$2 == "idle"' | wc -l)" = "$nodes" ] &&
       { echo "slurm: nodes ${names[*]} idle on $host (SLURM_CONF=$conf)"; exit 0; }
     sleep 0.1
   done
