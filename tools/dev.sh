@@ -37,15 +37,20 @@ esac
 # ffmpeg: relief animate encodes its frames to MP4, WebM or GIF with it.
 # libassimp-dev, libtinygltf-dev: relief export's STL, OBJ and PLY, and its glTF; assimp-utils and
 # admesh: the tests read the glTF back with Assimp and check the STL is a closed solid.
+# libcpp-httplib-dev: relief preview's server. nodejs, npm: the build installs the preview page's
+# packages (web/package-lock.json: three.js, esbuild, playwright-core) with npm ci and bundles the
+# page; a Node.js of another source with its own npm (NodeSource's) is used as it is. curl, iproute2
+# (ss): the preview's test asks its server and reads where it listens.
 # poppler-utils: pdftotext, pdffonts, pdfimages, pdfinfo, which the tests read PDF stills back with.
 # ccache: a compiler cache outside the clone, so that a second build on this machine (a clean clone
 # of CI's included) compiles only what changed.
 packages=(cmake make g++ pkg-config
           libgeographiclib-dev libgdal-dev libopenimageio-dev openimageio-tools libtomlplusplus-dev
           libcli11-dev libfmt-dev nlohmann-json3-dev libnanoflann-dev libeigen3-dev libsuitesparse-dev libpng-dev libssl-dev libcairo2-dev libpango1.0-dev libnova-dev libgtest-dev libbenchmark-dev
-          libassimp-dev libtinygltf-dev assimp-utils admesh
+          libassimp-dev libtinygltf-dev assimp-utils admesh libcpp-httplib-dev curl iproute2
           povray bubblewrap chromium fonts-dejavu-core locales clang libfuzzer-14-dev libclang-rt-14-dev libomp-14-dev
           slurm-wlm munge gdal-bin ffmpeg poppler-utils ccache)
+command -v npm >/dev/null || packages+=(nodejs npm)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

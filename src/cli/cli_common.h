@@ -69,6 +69,7 @@ void addPlanStepCommands(CLI::App& app, std::vector<Command>& out);  // render-t
 void addSchemeCommands(CLI::App& app, std::vector<Command>& out);    // check, curve
 void addGeometryCommands(CLI::App& app, std::vector<Command>& out);  // hausdorff, profile, compare-geometry
 void addExportCommands(CLI::App& app, std::vector<Command>& out);    // export
+void addPreviewCommands(CLI::App& app, std::vector<Command>& out);   // preview
 void addImageCommands(CLI::App& app, std::vector<Command>& out);     // diff, test, sweep (relief-images)
 
 /// The image commands run in a helper executable, relief-images, because

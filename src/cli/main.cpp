@@ -28,5 +28,6 @@ int main(int argc, char** argv) {
     addImageCommandEntries(app);
     addGeometryCommands(app, commands);
     addExportCommands(app, commands);
+    addPreviewCommands(app, commands);
     return runCommands(app, commands, argc, argv);
 }

@@ -75,6 +75,10 @@ TerrainModel terrainModel(const emit::Mesh& mesh, std::optional<double> floorEle
 /// millimetres (a print's size), about the origin.
 void scaleAcross(TerrainModel& model, double acrossMM);
 
+/// `model` as `format`'s bytes (what writeModel writes; what relief preview
+/// serves). Throws std::runtime_error with the library's reason when it cannot.
+std::string modelBytes(const TerrainModel& model, const ModelFormatRow& format, const std::string& generator);
+
 /// Writes `model` as `format` to `path` (which must be new: a staged output).
 /// `generator` names the program in the file where the format has room.
 /// Throws std::runtime_error with the library's reason when it cannot.

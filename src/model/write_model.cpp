@@ -61,8 +61,7 @@ int addAccessor(tinygltf::Model& gltf, int view, int componentType, size_t count
     return static_cast<int>(gltf.accessors.size() - 1);
 }
 
-void writeGltf(const TerrainModel& model, const ModelFormatRow& format, const std::filesystem::path& path,
-               const std::string& generator) {
+std::string gltfBytes(const TerrainModel& model, const ModelFormatRow& format, const std::string& generator) {
     tinygltf::Model gltf;
     gltf.asset.version = "2.0";
     gltf.asset.generator = generator;
@@ -124,7 +123,7 @@ void writeGltf(const TerrainModel& model, const ModelFormatRow& format, const st
     tinygltf::TinyGLTF writer;
     if (!writer.WriteGltfSceneToStream(&gltf, bytes, false, format.format == ModelFormat::Glb))
         throw std::runtime_error("tinygltf could not write it");
-    writeFileAtomically(path, bytes.view());
+    return std::move(bytes).str();
 }
 
 // The model as one Assimp mesh (every part's triangles; colours sRGB, as OBJ's and PLY's readers
@@ -188,15 +187,19 @@ const char* assimpFormatId(ModelFormat format) {
 
 }  // namespace
 
-void writeModel(const TerrainModel& model, const ModelFormatRow& format, const std::filesystem::path& path,
-                const std::string& generator) {
-    if (format.format == ModelFormat::Glb || format.format == ModelFormat::Gltf) return writeGltf(model, format, path, generator);
+std::string modelBytes(const TerrainModel& model, const ModelFormatRow& format, const std::string& generator) {
+    if (format.format == ModelFormat::Glb || format.format == ModelFormat::Gltf) return gltfBytes(model, format, generator);
     const auto scene = assimpScene(model, format.yUp, format.format == ModelFormat::Stl);
     // To memory, then to the file by relief, which checks every write (Assimp's file system does not).
     Assimp::Exporter exporter;
     const aiExportDataBlob* blob = exporter.ExportToBlob(scene.get(), assimpFormatId(format.format));
     if (!blob) throw std::runtime_error(fmt::format("Assimp could not write it: {}", exporter.GetErrorString()));
-    writeFileAtomically(path, std::string_view(static_cast<const char*>(blob->data), blob->size));
+    return std::string(static_cast<const char*>(blob->data), blob->size);
+}
+
+void writeModel(const TerrainModel& model, const ModelFormatRow& format, const std::filesystem::path& path,
+                const std::string& generator) {
+    writeFileAtomically(path, modelBytes(model, format, generator));
 }
 
 }  // namespace relief::model

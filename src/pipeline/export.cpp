@@ -31,10 +31,7 @@ namespace {
 // geometrically between the last over and the first within, kNarrowings times. Nullopt when
 // raising the tolerance kStalledTries times in a row lowers the count no more (the walls of many
 // holes) and none fits.
-struct Fitted {
-    model::TerrainModel model;
-    double toleranceM = 0;
-};
+using Fitted = SceneModel;
 constexpr int kNarrowings = 4;
 constexpr int kStalledTries = 3;  // raisings in a row that lower nothing: no tolerance will
 std::optional<Fitted> modelWithin(const Surface& surface, const emit::ScenePlacement& where,
@@ -44,7 +41,7 @@ std::optional<Fitted> modelWithin(const Surface& surface, const emit::ScenePlace
     {
         const emit::Mesh mesh = emit::buildMesh(surface.refined, where);
         if (mesh.triangles * (floor ? 2 : 1) <= maxTriangles) {
-            Fitted f{model::terrainModel(mesh, floor, colours), 0};
+            Fitted f{model::terrainModel(mesh, floor, colours), 0, {}};
             if (within(f)) return f;
         }
     }
@@ -54,7 +51,7 @@ std::optional<Fitted> modelWithin(const Surface& surface, const emit::ScenePlace
                       fmt::format("over --max-triangles {}: an adaptive mesh within {:.3g} m", maxTriangles, tolerance),
                       -1});
         return Fitted{model::terrainModel(emit::buildAdaptiveMesh(surface.refined, where, tolerance), floor, colours),
-                      tolerance};
+                      tolerance, {}};
     };
     double over = 0, tolerance = 1e-4 * std::max(where.zMaxM - where.zMinM, 1e-3);
     Fitted f = adaptive(tolerance);
@@ -93,6 +90,31 @@ std::optional<std::vector<LinearRgb>> drapedColours(const scene::SceneSpec& spec
 
 }  // namespace
 
+std::optional<SceneModel> sceneModel(const LoadedScene& loaded, const Surface& surface, long long maxTriangles,
+                                     Diagnostics& diags, const ProgressFn& progress) {
+    emit::ScenePlacement where = emit::placeTerrain(surface.refined, loaded.scene.look);
+    where.fade = unsupportedFadeOf(surface);
+    std::vector<LinearRgb> colours;
+    if (loaded.scene.look.texture.colouring == scene::TextureSpec::Colouring::Image) {
+        auto draped = drapedColours(loaded.scene, surface.refined, where, diags);
+        if (!draped) return std::nullopt;
+        colours = std::move(*draped);
+    }
+    auto fitted = modelWithin(surface, where, colours, maxTriangles, progress);
+    if (!fitted) {
+        diags.error(budgetKey(loaded.scene),
+                    fmt::format("no mesh of the surface fits within --max-triangles {}: raise it", maxTriangles));
+        return std::nullopt;
+    }
+    if (fitted->model.triangles() == 0) {
+        diags.error(budgetKey(loaded.scene), "no triangle of the surface has data at its three corners: there is "
+                                             "no model to write (a finer net, or data over more of it)");
+        return std::nullopt;
+    }
+    fitted->where = std::move(where);
+    return fitted;
+}
+
 std::optional<ExportOutcome> exportTerrain(const ExportJob& job, Diagnostics& diags, const ProgressFn& progress) {
     const auto t0 = Clock::now();
     const fs::path output = job.output.empty() ? fs::path("out") / (job.scenePath.stem().string() + ".glb") : job.output;
@@ -113,25 +135,8 @@ std::optional<ExportOutcome> exportTerrain(const ExportJob& job, Diagnostics& di
         const fs::path staged = outputs.add(output, "-o");
         auto surface = buildSurface(*loaded, diags, job.threads, progress);
         if (!surface) return std::nullopt;
-        emit::ScenePlacement where = emit::placeTerrain(surface->refined, loaded->scene.look);
-        where.fade = unsupportedFadeOf(*surface);
-        std::vector<LinearRgb> colours;
-        if (loaded->scene.look.texture.colouring == scene::TextureSpec::Colouring::Image) {
-            auto draped = drapedColours(loaded->scene, surface->refined, where, diags);
-            if (!draped) return std::nullopt;
-            colours = std::move(*draped);
-        }
-        auto fitted = modelWithin(*surface, where, colours, job.maxTriangles, progress);
-        if (!fitted) {
-            diags.error(budgetKey(loaded->scene),
-                        fmt::format("no mesh of the surface fits within --max-triangles {}: raise it", job.maxTriangles));
-            return std::nullopt;
-        }
-        if (fitted->model.triangles() == 0) {
-            diags.error(budgetKey(loaded->scene), "no triangle of the surface has data at its three corners: there is "
-                                                  "no model to write (a finer net, or data over more of it)");
-            return std::nullopt;
-        }
+        auto fitted = sceneModel(*loaded, *surface, job.maxTriangles, diags, progress);
+        if (!fitted) return std::nullopt;
         if (job.acrossMM) model::scaleAcross(fitted->model, *job.acrossMM);
         if (progress) progress({ProgressEvent::Stage::Finishing, "writing " + output.string(), -1});
         model::writeModel(fitted->model, *format, staged, fmt::format("relief {}", kVersion));
@@ -147,7 +152,7 @@ std::optional<ExportOutcome> exportTerrain(const ExportJob& job, Diagnostics& di
         out.rows = surface->refined.rows(), out.cols = surface->refined.cols(), out.depth = surface->depth;
         out.toleranceM = fitted->toleranceM;
         out.unitsPerMetre = m.unitsPerMetre;
-        out.floorElevationM = where.baseElevationM;
+        out.floorElevationM = fitted->where.baseElevationM;
         out.seconds = secondsSince(t0);
         return out;
     } catch (const OutputError& e) {

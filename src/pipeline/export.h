@@ -9,7 +9,11 @@
 #include <string>
 
 #include "core/diagnostics.h"
+#include "emit/mesh.h"
+#include "model/terrain_model.h"
+#include "pipeline/load.h"
 #include "pipeline/progress.h"
+#include "pipeline/surface.h"
 #include "scene/scene_spec.h"
 
 namespace relief {
@@ -41,6 +45,19 @@ struct ExportOutcome {
     std::uintmax_t bytes = 0;
     double seconds = 0;
 };
+
+/// The model of a loaded scene's surface that export writes and preview
+/// shows: its colours as the still draws them, within `maxTriangles`, and
+/// where the terrain sits in the scene (the still's placement, which the
+/// model's metres are of: scene units times where.metresPerUnit).
+struct SceneModel {
+    model::TerrainModel model;
+    double toleranceM = 0;  ///< ExportOutcome::toleranceM
+    emit::ScenePlacement where;
+};
+/// nullopt after an error (none fits, nothing has data, a drape unread), in `diags`.
+std::optional<SceneModel> sceneModel(const LoadedScene& loaded, const Surface& surface, long long maxTriangles,
+                                     Diagnostics& diags, const ProgressFn& progress = {});
 
 /// Loads the scene, builds its surface, and writes the model to job.output
 /// (whole or not at all); nullopt after an error, reported in `diags`.
