@@ -37,11 +37,12 @@ ValueSpan spanOf(const toml::node& value) {
 
 // The key's lines with its value replaced: the first line up to its '=' (the
 // key as the author wrote it), the new value, the last line's rest.
-std::string replacedValue(const std::vector<std::string>& lines, const ValueSpan& span, const std::string& value) {
+std::string replacedValue(const std::vector<std::string>& lines, const ValueSpan& span, const std::string& value,
+                          const std::string& newline) {
     const std::string& first = lines[span.firstLine];
     const std::string& last = lines[span.lastLine];
     const size_t eq = first.find('=');
-    const std::string rest = span.endByte < last.size() ? last.substr(span.endByte) : std::string("\n");
+    const std::string rest = span.endByte < last.size() ? last.substr(span.endByte) : newline;
     return first.substr(0, eq + 1) + " " + value + rest;
 }
 
@@ -58,20 +59,26 @@ std::optional<std::string> withTableKeys(std::string_view text, const std::strin
                     fmt::format("{}: fix the file, then use the view again", e.description()));
         return std::nullopt;
     }
+    // New lines end as the file's do (a file written on Windows keeps its CRLF).
+    const std::string newline = text.find("\r\n") != std::string_view::npos ? "\r\n" : "\n";
     std::vector<std::string> lines = linesOf(text);
-    if (!lines.empty() && lines.back().back() != '\n') lines.back() += '\n';
+    if (!lines.empty() && lines.back().back() != '\n') lines.back() += newline;
     const toml::table* t = root[table].as_table();
     if (!t) {
         std::string out;
         for (const auto& l : lines) out += l;
-        out += fmt::format("{}[{}]\n", lines.empty() ? "" : "\n", table);
-        for (const auto& [key, value] : values) out += fmt::format("{} = {}\n", key, value);
-        for (const auto& [key, value] : defaults) out += fmt::format("{} = {}\n", key, value);
+        out += fmt::format("{}[{}]{}", lines.empty() ? "" : newline, table, newline);
+        for (const auto& [key, value] : values) out += fmt::format("{} = {}{}", key, value, newline);
+        for (const auto& [key, value] : defaults) out += fmt::format("{} = {}{}", key, value, newline);
         return out;
     }
     const size_t header = static_cast<size_t>(std::max<int>(t->source().begin.line - 1, 0));
     const std::regex headerLine(fmt::format(R"(^\s*\[\s*{}\s*\].*)", table));
-    if (t->is_inline() || header >= lines.size() || !std::regex_match(lines[header].substr(0, lines[header].size() - 1), headerLine)) {
+    const auto withoutEnding = [](std::string line) {
+        while (!line.empty() && (line.back() == '\n' || line.back() == '\r')) line.pop_back();
+        return line;
+    };
+    if (t->is_inline() || header >= lines.size() || !std::regex_match(withoutEnding(lines[header]), headerLine)) {
         diags.error({shown, static_cast<int>(header + 1), 0},
                     fmt::format("{} is written inline or as dotted keys: write it as a [{}] table, then use the view again",
                                 table, table));
@@ -90,7 +97,7 @@ std::optional<std::string> withTableKeys(std::string_view text, const std::strin
             continue;
         }
         const ValueSpan span = spanOf(*node);
-        replaced[span.firstLine] = replacedValue(lines, span, value);
+        replaced[span.firstLine] = replacedValue(lines, span, value, newline);
         for (size_t l = span.firstLine + 1; l <= span.lastLine; ++l) dropped.push_back(l);
     }
     for (const auto& [key, value] : defaults)
@@ -106,7 +113,7 @@ std::optional<std::string> withTableKeys(std::string_view text, const std::strin
         const auto r = replaced.find(l);
         out += r == replaced.end() ? lines[l] : r->second;
         if (l == lastLine)
-            for (const auto& [key, value] : added) out += fmt::format("{} = {}\n", key, value);
+            for (const auto& [key, value] : added) out += fmt::format("{} = {}{}", key, value, newline);
     }
     return out;
 }

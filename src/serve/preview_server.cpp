@@ -199,7 +199,7 @@ private:
         Diagnostics diags;
         const auto keys = cameraKeysOf(*b->preview, *view, diags);
         if (!keys) return reply(res, 422, {{"error", diagnosticsText(diags)}});
-        then(*b, *keys);
+        then(*b, *view, *keys);
     }
 
     void routes() {
@@ -237,11 +237,13 @@ private:
         });
         server_.Post(token + "keys", [this](const httplib::Request& req, httplib::Response& res) {
             if (!allowed(req)) return void(res.status = 404);
-            withView(req, res, [&](const Built&, const CameraKeys& keys) { reply(res, 200, {{"toml", tomlLines(keys)}}); });
+            withView(req, res, [&](const Built&, const PageView&, const CameraKeys& keys) {
+                reply(res, 200, {{"toml", tomlLines(keys)}});
+            });
         });
         server_.Post(token + "use", [this](const httplib::Request& req, httplib::Response& res) {
             if (!allowed(req)) return void(res.status = 404);
-            withView(req, res, [&](const Built& b, const CameraKeys& keys) { use(b, keys, res); });
+            withView(req, res, [&](const Built& b, const PageView& view, const CameraKeys& keys) { use(b, view, keys, res); });
         });
         server_.Post(token + "path", [this](const httplib::Request& req, httplib::Response& res) {
             if (!allowed(req)) return void(res.status = 404);
@@ -249,7 +251,7 @@ private:
         });
         server_.Post(token + "render", [this](const httplib::Request& req, httplib::Response& res) {
             if (!allowed(req)) return void(res.status = 404);
-            withView(req, res, [&](const Built&, const CameraKeys& keys) { render(keys, res); });
+            withView(req, res, [&](const Built&, const PageView&, const CameraKeys& keys) { render(keys, res); });
         });
         server_.Get(token + "still", [this](const httplib::Request& req, httplib::Response& res) {
             if (!allowed(req)) return void(res.status = 404);
@@ -269,7 +271,7 @@ private:
         });
     }
 
-    void use(const Built& b, const CameraKeys& keys, httplib::Response& res) {
+    void use(const Built& b, const PageView& view, const CameraKeys& keys, httplib::Response& res) {
         if (job_.printOnly) {
             log_(fmt::format("[camera]\n{}", tomlLines(keys)));
             return reply(res, 200, {{"written", nullptr}, {"toml", tomlLines(keys)}});
@@ -277,8 +279,23 @@ private:
         Diagnostics diags;
         const auto written = writeSceneKeys(*b.preview, scenePath(), "camera", keys.toml(), kOrbitCameraKeys, diags);
         if (!written) return reply(res, 422, {{"error", diagnosticsText(diags)}});
+        ownWrite(*written, view);
         log_(fmt::format("wrote the view into {} (the file before: {}.bak)", written->string(), written->string()));
         reply(res, 200, {{"written", written->string()}, {"toml", tomlLines(keys)}});
+    }
+
+    // The scene file as relief itself just wrote it is not a change to rebuild the model for: its
+    // camera (or animation) moved, which a page loaded afresh starts from.
+    void ownWrite(const fs::path& written, const std::optional<PageView>& view = std::nullopt) {
+        if (written != scenePath()) return;
+        std::lock_guard lock(mutex_);
+        stamp_ = fileStamp(written);
+        if (!view || !built_->preview) return;
+        auto moved = std::make_shared<Built>(*built_);
+        moved->preview->page["camera"]["eye"] = {view->eye.x, view->eye.y, view->eye.z};
+        moved->preview->page["camera"]["target"] = {view->target.x, view->target.y, view->target.z};
+        moved->preview->page["camera"]["fovDeg"] = view->fovDeg;
+        built_ = std::move(moved);
     }
 
     // The keyframes as the scene's flyover ([animation]), written or (--print) printed.
@@ -306,6 +323,7 @@ private:
         const auto written = writeSceneKeys(*b->preview, scenePath(), "animation", *keys, kReplacedAnimationKeys, diags,
                                             flyoverDefaultsOf(keyframes.size()));
         if (!written) return reply(res, 422, {{"error", diagnosticsText(diags)}});
+        ownWrite(*written);
         log_(fmt::format("wrote {} keyframes as [animation] into {} (the file before: {}.bak)", keyframes.size(),
                          written->string(), written->string()));
         reply(res, 200, {{"written", written->string()}, {"toml", text}});

@@ -80,6 +80,11 @@ NODE_PATH="$node_modules" timeout 300 node "$src/tests/web/preview_views.cjs" "$
   > "$work/browser.log" 2>&1 || fail "the browser's script failed"
 cat "$work/browser.log"
 
+# Its own writes rebuild nothing (the same model), and a page opened afresh starts from the view used last.
+state=$(curl -s "${url}state")
+[ "$state" = '{"building":false,"generation":1}' ] || fail "the view's own write rebuilt the preview: $state"
+curl -s "${url}page.json" | grep -q '"fovDeg":35.0' || fail "page.json's camera is not the view used last"
+
 # Ctrl-C stops it, with exit code 0.
 kill -INT "$pid"; wait "$pid"; rc=$?
 [ "$rc" = 0 ] || fail "relief preview exited $rc after SIGINT"
