@@ -61,6 +61,10 @@ tar -C "$root" -xf "$pristine"
 # /bin/sh. A machine's / is 0755.
 chmod 755 "$root"
 cp -L /etc/resolv.conf "$root/etc/resolv.conf" 2>/dev/null || true
+# The machine's own certificate authorities (what its way out may need: a TLS-inspecting proxy's),
+# for npm's registry, which is HTTPS where apt's mirror is not: the host's local ones, given to
+# Node.js as the host gives them to its own npm (a machine with a direct way out needs none).
+cat /usr/local/share/ca-certificates/*.crt > "$root/etc/host-local-ca.crt" 2>/dev/null || true
 # The machine's own name resolves, as Debian's installer writes it (debootstrap writes no hosts file).
 printf '127.0.0.1\tlocalhost\n127.0.1.1\t%s\t%s\n::1\tlocalhost ip6-localhost ip6-loopback\n' \
   "$(hostname -f 2>/dev/null || hostname)" "$(hostname -s)" > "$root/etc/hosts"
@@ -95,7 +99,7 @@ run_in_root() {  # run_in_root LOG COMMAND
     # /sys with what is mounted below it, cgroups included, as on a real machine (slurmd needs them).
     mount --rbind /sys "$root/sys"
     mount --bind "$cache/archives" "$root/var/cache/apt/archives"
-    exec chroot "$root" /usr/bin/env -i HOME=/root TERM=dumb LANG=C.UTF-8 \
+    exec chroot "$root" /usr/bin/env -i HOME=/root TERM=dumb LANG=C.UTF-8 NODE_EXTRA_CA_CERTS=/etc/host-local-ca.crt \
       PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin \
       /bin/bash -c "cd /root/relief && $cmd"' _ "$root" "$cache" "$cmd" >"$log" 2>&1
 }
