@@ -1,17 +1,22 @@
 #include "pipeline/preview.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
 #include <fmt/format.h>
 
+#include "annotate/overlay.h"
 #include "core/atomic_file.h"
+#include "core/png_file.h"
 #include "core/number_format.h"
 #include "emit/camera.h"
 #include "geo/normalize.h"
 #include "model/terrain_model.h"
 #include "pipeline/export.h"
+#include "pipeline/compile.h"
 #include "pipeline/load.h"
+#include "pipeline/map_frame.h"
 #include "pipeline/record.h"
 #include "pipeline/surface.h"
 #include "pipeline/view.h"
@@ -64,6 +69,34 @@ nlohmann::json pageFacts(const LoadedScene& loaded, const View& view, const Scen
     return page;
 }
 
+// Where the still's furniture (title, legend, scale bar, north arrow, credits, a map frame's
+// annotations) goes from the scene's camera, in the still's pixels: drawn on a blank still of its
+// size, the drawing being the placement's one implementation, and each item's box kept.
+nlohmann::json furnitureBoxes(const LoadedScene& loaded, const Surface& surface, const View& view) {
+    const scene::SceneSpec& spec = loaded.scene;
+    nlohmann::json boxes = nlohmann::json::array();
+    if (!annotate::overlaysWanted(spec.overlay, spec.render.width)) return boxes;
+    annotate::OverlayFacts facts =
+        annotate::overlayFacts(spec.look, view.where, view.camera, spec.render,
+                               geo::gridConvergenceDeg(surface.net.frame, view.where.originM.x, view.where.originM.y));
+    facts.credits = spec.overlay.credits ? *spec.overlay.credits : dataCredit(spec.samples, surface.net).text;
+    if (view.frameTicks)
+        facts.mapFrame = mapFrameOnImage(*view.frameTicks, view.where, view.camera, spec.render.width, spec.render.height);
+    PngImage8 blank{spec.render.width, spec.render.height, 4, {}};
+    blank.pixels.assign(static_cast<size_t>(blank.width) * static_cast<size_t>(blank.height) * 4, 0);
+    Diagnostics unused;  // what was left out is the still's to say
+    annotate::OverlayRecord record;
+    if (!annotate::drawOverlays(blank, spec.overlay, facts, {}, unused, &record)) return boxes;
+    for (const auto& [item, b] : record.boxes) {
+        const nlohmann::json box = {b.x0, b.y0, b.x1, b.y1};
+        // Items drawn as one block (the title and its subtitle) are one outline named for both.
+        auto same = std::find_if(boxes.begin(), boxes.end(), [&](const nlohmann::json& o) { return o["box"] == box; });
+        if (same != boxes.end()) (*same)["item"] = (*same)["item"].get<std::string>() + ", " + item;
+        else boxes.push_back({{"item", item}, {"box", box}});
+    }
+    return boxes;
+}
+
 std::string lonLatHeight(const GeoPoint& g) {
     return fmt::format("[{}, {}, {}]", formatShortest(g.lonDeg), formatShortest(g.latDeg), formatShortest(g.heightM));
 }
@@ -90,6 +123,7 @@ std::optional<PreviewScene> previewScene(const PreviewJob& job, Diagnostics& dia
         return std::nullopt;
     }
     out.page = pageFacts(*loaded, *view, *model);
+    out.page["furniture"] = furnitureBoxes(*loaded, *surface, *view);
     out.where = model->where;
     out.frame = surface->net.frame;
     if (!loaded->scene.madeForData.empty()) {

@@ -136,8 +136,11 @@ kill -INT "$pid"; wait "$pid"
 [ "$(echo "$reply" | tail -n1)" = 200 ] || fail "--print: use replied $reply"
 cmp -s "$work/scene.toml" "$work/before-print.toml" || fail "--print changed the scene file"
 grep -q '^relief preview: fov_deg = 30$' "$work/preview.log" || fail "--print: the keys are not printed"
-# Bad views are refused with a reason.
-start "$work/scene.toml" --print
+# Bad views are refused with a reason. (Overlays on: the furniture's places are in the page's facts.)
+start "$work/scene.toml" --print --set overlay.enabled=true
+furniture=$(curl -s "${url}page.json" | grep -o '"item":"[a-z_]*"' | sort | tr '\n' ' ')
+echo "the furniture's places: $furniture"
+[ "$furniture" = '"item":"legend" "item":"north_arrow" "item":"scale_bar" ' ] || fail "the furniture's places: $furniture"
 for bad in '{"eye": [1, 2], "target": [0, 0, 0], "fovDeg": 30}' '{"eye": [1, 2, 3], "target": [0, 0, 0], "fovDeg": 300}' 'not json'; do
   reply=$(post use "$bad")
   case "$(echo "$reply" | tail -n1)" in 400|422) ;; *) fail "a bad view ($bad) replied $reply" ;; esac

@@ -129,6 +129,31 @@ function placeWater(page) {
   scene.add(water);
 }
 
+// The still's furniture as outlines on the frame, where relief places it from the scene's camera
+// (names set as text, never markup).
+function drawFurniture(page) {
+  const svg = $('furniture');
+  const ns = 'http://www.w3.org/2000/svg';
+  svg.replaceChildren();
+  svg.setAttribute('viewBox', `0 0 ${page.still.width} ${page.still.height}`);
+  svg.setAttribute('preserveAspectRatio', 'none');
+  for (const { item, box: [x0, y0, x1, y1] } of page.furniture || []) {
+    const rect = document.createElementNS(ns, 'rect');
+    for (const [k, v] of Object.entries({ x: x0, y: y0, width: x1 - x0, height: y1 - y0 })) rect.setAttribute(k, v);
+    rect.setAttribute('fill', 'none');
+    rect.setAttribute('stroke', 'rgba(255,255,255,0.85)');
+    rect.setAttribute('stroke-dasharray', '6 4');
+    rect.setAttribute('vector-effect', 'non-scaling-stroke');
+    const label = document.createElementNS(ns, 'text');
+    label.setAttribute('x', x0 + 3);
+    label.setAttribute('y', y0 + 14);
+    label.setAttribute('fill', 'rgba(255,255,255,0.9)');
+    label.setAttribute('font-size', 12 * page.still.width / Math.max(1, $('frame').clientWidth));
+    label.textContent = item;
+    svg.append(rect, label);
+  }
+}
+
 let frameRequested = false;
 function changed() {
   if (frameRequested) return;
@@ -184,6 +209,7 @@ async function load() {
   await loadModel(page.generation);
   mark('model');
   placeWater(state.page);
+  drawFurniture(state.page);
   if (first) {
     setView(state.page.camera);
     placeSun(state.page.sun.azimuthDeg, state.page.sun.altitudeDeg);
