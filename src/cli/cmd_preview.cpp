@@ -2,8 +2,12 @@
 
 // relief preview: the scene in the browser, the view chosen by looking
 // (serve/preview_server.h).
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cstdlib>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <thread>
@@ -26,10 +30,23 @@ struct PreviewOptions {
     bool noOpen = false;
 };
 
-// The user's browser, where there is a desktop to show it on (xdg-open's choice); none is no error.
-void openBrowser(const std::string& url) {
-    if (!std::getenv("DISPLAY") && !std::getenv("WAYLAND_DISPLAY")) return;
-    std::thread([url] { execute::runCommand({"xdg-open", url}, {{}, 30}); }).detach();
+// The user's browser, where there is a desktop to show it on (xdg-open's choice); none is no
+// error. The address is not on the browser's command line, which any user of the machine can read
+// (/proc/PID/cmdline), but in a page of the user's own (0600, in a 0700 folder) that sends the
+// browser on to it; the folder is removed when the preview stops.
+std::filesystem::path openBrowser(const std::string& url) {
+    if (!std::getenv("DISPLAY") && !std::getenv("WAYLAND_DISPLAY")) return {};
+    std::string folder = (std::filesystem::temp_directory_path() / "relief-preview-XXXXXX").string();
+    if (!::mkdtemp(folder.data())) return {};
+    const std::filesystem::path page = std::filesystem::path(folder) / "open.html";
+    const int fd = ::open(page.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW, 0600);
+    if (fd < 0) return folder;
+    // The address is relief's own (digits, hex, ':', '/', '.'): nothing in it is markup.
+    const std::string html = fmt::format("<!doctype html><meta http-equiv=\"refresh\" content=\"0; url={}\">\n", url);
+    const bool written = ::write(fd, html.data(), html.size()) == static_cast<ssize_t>(html.size());
+    ::close(fd);
+    if (written) std::thread([page] { execute::runCommand({"xdg-open", page.string()}, {{}, 30}); }).detach();
+    return folder;
 }
 
 int runPreview(const PreviewOptions& o) {
@@ -49,13 +66,18 @@ int runPreview(const PreviewOptions& o) {
             at = end + 1;
         }
     };
+    std::filesystem::path opened;  // the page that sent the browser to the address
     const auto listening = [&](const std::string& url) {
         // The address on stdout alone (a script reads it there); the rest on stderr.
         std::cout << url << std::endl;
         if (!o.common.quiet) say("open the address above in a browser (Ctrl-C stops the preview; it serves 127.0.0.1 only)");
-        if (!o.noOpen) openBrowser(url);
+        if (!o.noOpen) opened = openBrowser(url);
     };
     const bool served = serve::servePreview(job, diags, listening, o.common.quiet ? serve::ServeLog([](const std::string&) {}) : serve::ServeLog(say));
+    if (!opened.empty()) {
+        std::error_code ec;
+        std::filesystem::remove_all(opened, ec);
+    }
     printDiagnostics(diags, false);
     return code(served ? Exit::Ok : Exit::BadInput);
 }

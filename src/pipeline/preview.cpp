@@ -8,6 +8,7 @@
 
 #include "annotate/overlay.h"
 #include "core/atomic_file.h"
+#include "core/input_file.h"
 #include "core/png_file.h"
 #include "core/number_format.h"
 #include "emit/camera.h"
@@ -22,6 +23,7 @@
 #include "pipeline/view.h"
 #include "relief/version.h"
 #include "scene/edit_scene.h"
+#include "scene/read_scene.h"
 
 namespace relief {
 
@@ -146,15 +148,16 @@ std::optional<CameraKeys> cameraKeysOf(const PreviewScene& preview, const PageVi
         return Vec3{x, y, drawn + fall - fall / where.exaggeration};
     };
     const auto geographic = [&](const Vec3& m, const char* what) -> std::optional<GeoPoint> {
-        if (auto g = geo::reverse(preview.frame, framePoint(m))) return g;
+        const auto g = geo::reverse(preview.frame, framePoint(m));
+        if (g && std::isfinite(g->lonDeg) && std::isfinite(g->latDeg) && std::isfinite(g->heightM)) return g;
         diags.error({"camera", 0, 0}, fmt::format("the view's {} has no longitude and latitude in the scene's frame "
                                                   "({}): bring it nearer the terrain",
                                                   what, preview.frame.describe()));
         return std::nullopt;
     };
-    if (!(view.fovDeg > 0.01 && view.fovDeg <= 170)) {
+    if (!(view.fovDeg >= 1 && view.fovDeg <= 170)) {
         diags.error({"camera", 0, 0}, fmt::format("the view's field of view ({} degrees across) is outside what a "
-                                                  "perspective camera takes (0.01 to 170)",
+                                                  "perspective camera takes (1 to 170)",
                                                   formatShortest(view.fovDeg)));
         return std::nullopt;
     }
@@ -205,14 +208,38 @@ std::optional<fs::path> writeSceneKeys(const PreviewScene& preview, const fs::pa
                                        std::span<const char* const> retired, Diagnostics& diags,
                                        const std::vector<std::pair<std::string, std::string>>& defaults) {
     const fs::path target = preview.newScenePath.empty() ? scenePath : preview.newScenePath;
-    const bool exists = fs::exists(target);
+    std::error_code ec;
+    const bool exists = fs::exists(fs::symlink_status(target, ec));
+    std::string before = preview.newSceneText;
+    if (exists) {
+        std::string problem;
+        auto text = readInputFile(target, kMaxSceneBytes, problem);
+        if (!text) {
+            diags.error({target.string(), 0, 0}, fmt::format("{}: the view is not written", problem));
+            return std::nullopt;
+        }
+        before = std::move(*text);
+    }
+    const std::vector<std::string> retiredKeys(retired.begin(), retired.end());
+    const auto after = scene::withTableKeys(before, target.string(), table, keys, retiredKeys, diags, defaults);
+    if (!after) return std::nullopt;
+    // The scene as it would be, read as relief reads it: one that would not load is not written
+    // (camera.position with a map frame or an orbit film), and the reason is the reader's.
+    Diagnostics check;
+    if (!scene::readSceneText(*after, target, check) || check.hasErrors()) {
+        for (const auto& d : check.all())
+            if (d.severity == Severity::Error) diags.error(d.loc, d.message + " (so the view is not written)");
+        return std::nullopt;
+    }
     try {
-        const std::string before = exists ? readFile(target) : preview.newSceneText;
-        const std::vector<std::string> retiredKeys(retired.begin(), retired.end());
-        const auto after = scene::withTableKeys(before, target.string(), table, keys, retiredKeys, diags, defaults);
-        if (!after) return std::nullopt;
+        const auto perms = exists ? fs::status(target).permissions() : fs::perms::unknown;
         if (exists) writeFileAtomically(fs::path(target.string() + ".bak"), before);
         writeFileAtomically(target, *after);
+        // The scene keeps its permissions (a private scene stays private), its backup too.
+        if (exists) {
+            fs::permissions(target, perms);
+            fs::permissions(fs::path(target.string() + ".bak"), perms);
+        }
     } catch (const std::exception& e) {
         diags.error({target.string(), 0, 0}, fmt::format("the scene cannot be written: {}", e.what()));
         return std::nullopt;

@@ -87,9 +87,19 @@ std::optional<std::string> withTableKeys(std::string_view text, const std::strin
     // Per line, what replaces it (a key's lines become one; a retired key's are commented out).
     std::map<size_t, std::string> replaced;
     std::vector<size_t> dropped;
-    size_t lastLine = header;
+    // The table's own keys end at its last value's last line (a sub-table's header and keys,
+    // [camera.x], are not its: new keys go before them). A key replaced is written where its value
+    // began, so a new key after the last goes after that line.
+    size_t lastKey = header, insertAfter = header;
+    for (auto&& [key, node] : *t) {
+        if ((node.is_table() && !node.as_table()->is_inline()) || node.is_array_of_tables()) continue;
+        const ValueSpan span = spanOf(node);
+        if (span.lastLine >= lastKey) lastKey = span.lastLine, insertAfter = span.lastLine;
+    }
     std::vector<TomlKeyValue> added;
-    for (auto&& [key, node] : *t) lastLine = std::max(lastLine, spanOf(node).lastLine);
+    const auto isSet = [&](const std::string& key) {
+        return std::any_of(values.begin(), values.end(), [&](const TomlKeyValue& kv) { return kv.first == key; });
+    };
     for (const auto& [key, value] : values) {
         const toml::node* node = t->get(key);
         if (!node) {
@@ -99,11 +109,12 @@ std::optional<std::string> withTableKeys(std::string_view text, const std::strin
         const ValueSpan span = spanOf(*node);
         replaced[span.firstLine] = replacedValue(lines, span, value, newline);
         for (size_t l = span.firstLine + 1; l <= span.lastLine; ++l) dropped.push_back(l);
+        if (span.lastLine == lastKey) insertAfter = span.firstLine;
     }
     for (const auto& [key, value] : defaults)
         if (!t->get(key)) added.push_back({key, value});
-    for (const std::string& key : retired)
-        if (const toml::node* node = t->get(key)) {
+    for (const std::string& key : retired)  // a key both set and retired is set
+        if (const toml::node* node = t->get(key); node && !isSet(key)) {
             const ValueSpan span = spanOf(*node);
             for (size_t l = span.firstLine; l <= span.lastLine; ++l) replaced[l] = "# " + lines[l];
         }
@@ -112,7 +123,7 @@ std::optional<std::string> withTableKeys(std::string_view text, const std::strin
         if (std::find(dropped.begin(), dropped.end(), l) != dropped.end()) continue;
         const auto r = replaced.find(l);
         out += r == replaced.end() ? lines[l] : r->second;
-        if (l == lastLine)
+        if (l == insertAfter)
             for (const auto& [key, value] : added) out += fmt::format("{} = {}{}", key, value, newline);
     }
     return out;

@@ -18,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.h"
+#include "core/input_file.h"
 #include "core/number_format.h"
 #include "core/stopwatch.h"
 #include "execute/command.h"
@@ -117,7 +118,16 @@ public:
         builder.join();
         if (renderThread_.joinable()) renderThread_.join();
     }
-    void stop() { server_.stop(); }
+    // Stops serving: requests waiting for a build are answered (with nothing), the server ends.
+    void stop() {
+        {
+            std::lock_guard lock(mutex_);
+            stopping_ = true;
+        }
+        wake_.notify_all();
+        server_.stop();
+    }
+    bool listening() const { return server_.is_running(); }
 
 private:
     const fs::path& scenePath() const { return job_.preview.scenePath; }
@@ -151,17 +161,24 @@ private:
         wake_.notify_all();
     }
 
-    // Every half second, the scene file's stamp; a new one rebuilds the preview.
+    // Every half second, the scene file's stamp; a new one rebuilds the preview. relief's own write
+    // and the stamp it records are seen together (writeMutex_, then mutex_, as a write takes them).
     void watch() {
         std::unique_lock lock(mutex_);
         while (!stopping_) {
             wake_.wait_for(lock, std::chrono::milliseconds(500));
             if (stopping_) break;
-            const std::string stamp = fileStamp(scenePath());
-            if (stamp == stamp_) continue;
             lock.unlock();
-            log_(fmt::format("{} changed: rebuilding the preview", scenePath().string()));
-            rebuild();
+            bool changed = false;
+            {
+                std::lock_guard writing(writeMutex_);
+                std::lock_guard state(mutex_);
+                changed = fileStamp(scenePath()) != stamp_;
+            }
+            if (changed) {
+                log_(fmt::format("{} changed: rebuilding the preview", scenePath().string()));
+                rebuild();
+            }
             lock.lock();
         }
     }
@@ -189,10 +206,25 @@ private:
     }
 
     // Handles a POST of a view: the preview it is of, and the view, or an error replied.
+    // The preview a view is of, unless the scene file has changed since it was built (a view's
+    // heights are the model's: taken back with an exaggeration that is no longer the scene's, they
+    // would be wrong): nullptr, after a reply saying why.
+    std::shared_ptr<const Built> current(httplib::Response& res) {
+        const auto b = built();
+        bool stale = false;
+        {
+            std::lock_guard lock(mutex_);
+            stale = building_ || fileStamp(scenePath()) != stamp_;
+        }
+        if (stale) return reply(res, 409, {{"error", "the scene file changed: wait for the preview to reload, then use the view"}}), nullptr;
+        if (!b->preview) return reply(res, 409, {{"error", "the scene does not compile: fix it first"}}), nullptr;
+        return b;
+    }
+
     template <class Then>
     void withView(const httplib::Request& req, httplib::Response& res, Then then) {
-        const auto b = built();
-        if (!b->preview) return reply(res, 409, {{"error", "the scene does not compile: fix it first"}});
+        const auto b = current(res);
+        if (!b) return;
         const json body = json::parse(req.body, nullptr, false);
         const auto view = body.is_object() ? pageViewOf(body) : std::nullopt;
         if (!view) return reply(res, 400, {{"error", "a view is {eye: [x, y, z], target: [x, y, z], fovDeg}"}});
@@ -277,6 +309,7 @@ private:
             return reply(res, 200, {{"written", nullptr}, {"toml", tomlLines(keys)}});
         }
         Diagnostics diags;
+        std::lock_guard writing(writeMutex_);
         const auto written = writeSceneKeys(*b.preview, scenePath(), "camera", keys.toml(), kOrbitCameraKeys, diags);
         if (!written) return reply(res, 422, {{"error", diagnosticsText(diags)}});
         ownWrite(*written, view);
@@ -300,8 +333,8 @@ private:
 
     // The keyframes as the scene's flyover ([animation]), written or (--print) printed.
     void usePath(const httplib::Request& req, httplib::Response& res) {
-        const auto b = built();
-        if (!b->preview) return reply(res, 409, {{"error", "the scene does not compile: fix it first"}});
+        const auto b = current(res);
+        if (!b) return;
         const json body = json::parse(req.body, nullptr, false);
         std::vector<PageView> keyframes;
         if (body.is_object() && body.contains("keyframes") && body["keyframes"].is_array()) {
@@ -320,6 +353,7 @@ private:
             log_(fmt::format("[animation]\n{}", text));
             return reply(res, 200, {{"written", nullptr}, {"toml", text}});
         }
+        std::lock_guard writing(writeMutex_);
         const auto written = writeSceneKeys(*b->preview, scenePath(), "animation", *keys, kReplacedAnimationKeys, diags,
                                             flyoverDefaultsOf(keyframes.size()));
         if (!written) return reply(res, 422, {{"error", diagnosticsText(diags)}});
@@ -335,18 +369,24 @@ private:
         std::lock_guard lock(mutex_);
         if (still_.value("running", false)) return reply(res, 409, {{"error", "a still is being rendered: wait for it"}});
         if (renderThread_.joinable()) renderThread_.join();
-        still_ = {{"running", true}};
-        std::vector<std::string> argv{fs::read_symlink("/proc/self/exe").string(), "render", scenePath().string(), "-q",
-                                      "-o", stillPath().string()};
+        // The preview's own --set keys, then the view's: the still is of the scene as previewed.
+        std::vector<std::string> argv{"relief", "render", scenePath().string(), "-q", "-o", stillPath().string()};
+        for (const auto& [key, value] : job_.preview.overrides) argv.insert(argv.end(), {"--set", key + "=" + value});
         for (const auto& [key, value] : keys.toml()) argv.insert(argv.end(), {"--set", "camera." + key + "=" + value});
+        std::error_code ec;
+        argv[0] = fs::read_symlink("/proc/self/exe", ec).string();
+        if (ec) return reply(res, 500, {{"error", "relief cannot find its own executable to render with"}});
+        still_ = {{"running", true}};
         renderThread_ = std::thread([this, argv] {
             const auto t0 = Clock::now();
             const auto out = execute::runCommand(argv);
-            std::string bytes;
-            if (out.status == 0) bytes = readFile(stillPath());
+            json status = {{"running", false}, {"seconds", secondsSince(t0)}};
+            std::string bytes, problem;
+            if (out.status != 0) status["error"] = out.output.empty() ? "relief render failed" : out.output;
+            else if (auto png = readInputFile(stillPath(), std::uintmax_t{1} << 31, problem)) bytes = std::move(*png);
+            else status["error"] = problem;
             std::lock_guard lock(mutex_);
-            still_ = {{"running", false}, {"seconds", secondsSince(t0)}};
-            if (out.status != 0) still_["error"] = out.output;
+            still_ = std::move(status);
             stillBytes_ = std::move(bytes);
         });
         reply(res, 202, {{"running", true}});
@@ -361,6 +401,7 @@ private:
     httplib::Server server_;
     int port_ = -1;
     std::mutex mutex_;
+    std::mutex writeMutex_;  // one write of the scene file at a time (read, edit, write)
     std::condition_variable wake_;
     bool stopping_ = false, building_ = false;
     std::shared_ptr<const Built> built_;
@@ -392,7 +433,10 @@ bool servePreview(const PreviewServeJob& job, Diagnostics& diags, const ServeLog
     std::thread signals([&] {
         int signal = 0;
         sigwait(&stopSignals, &signal);
-        if (!served) server.stop();
+        if (served) return;
+        // A signal before the server listens would be lost on it (stop() acts on a running server).
+        while (!server.listening() && !served) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        server.stop();
     });
     listening(server.url());
     server.run();

@@ -167,6 +167,19 @@ mkdir -p "$work/dem" && cp "$src/scenes/data/rasters/volcano2.tif" "$work/dem/de
 grep -q '^position = \[' "$work/dem/dem.toml" || fail "a DEM's view did not write dem.toml with its camera"
 (cd "$work/dem" && "$relief" compile -q dem.toml -o dem.pov) || fail "the DEM's new scene does not compile"
 
+# A view that would leave a scene relief cannot load (an orbit film's camera placed by position) is
+# refused with the reader's reason, the file unchanged.
+cp "$work/scene.original.toml" "$work/orbit.toml"
+printf '\n[animation]\nframes = 24\npath = "orbit"\nazimuth_from_deg = 0\nazimuth_to_deg = 90\n' >> "$work/orbit.toml"
+cp "$work/orbit.toml" "$work/orbit.before.toml"
+start "$work/orbit.toml"
+reply=$(post use "$view")
+kill -INT "$pid"; wait "$pid"
+echo "an orbit film's view: $reply"
+[ "$(echo "$reply" | tail -n1)" = 422 ] || fail "a view making the scene unreadable replied $reply"
+echo "$reply" | grep -q 'not written' || fail "the refusal does not say the view is not written"
+cmp -s "$work/orbit.toml" "$work/orbit.before.toml" || fail "a refused view changed the scene file"
+
 # A scene that does not compile: served, its diagnostics in the page's data (as text).
 printf '[samples]\npath = "missing.csv"\n' > "$work/broken.toml"
 start "$work/broken.toml"

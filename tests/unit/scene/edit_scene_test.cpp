@@ -40,6 +40,12 @@ const std::vector<EditCase> kCases = {
     {"CRLF line endings kept, new lines too",
      "[camera]\r\nfov_deg = 40\r\n[render]\r\nwidth = 64\r\n",
      "[camera]\r\nfov_deg = 35\r\nposition = [174.5, -36.9, 500]\r\nlook_at = [174.6, -36.8, 100]\r\n[render]\r\nwidth = 64\r\n"},
+    {"the last key's value over several lines, replaced: new keys after it",
+     "[camera]\nfov_deg = 40\nposition = [\n  1,\n  2,\n  3]\n",
+     "[camera]\nfov_deg = 35\nposition = [174.5, -36.9, 500]\nlook_at = [174.6, -36.8, 100]\n"},
+    {"a sub-table after the table: new keys before its header",
+     "[camera]\nfov_deg = 40\n\n[camera.extra]\nx = 1\n",
+     "[camera]\nfov_deg = 35\nposition = [174.5, -36.9, 500]\nlook_at = [174.6, -36.8, 100]\n\n[camera.extra]\nx = 1\n"},
     {"a header with spaces and a comment",
      "[ camera ]  # the view\ndistance_m = 900\n",
      "[ camera ]  # the view\n# distance_m = 900\nposition = [174.5, -36.9, 500]\nlook_at = [174.6, -36.8, 100]\nfov_deg = 35\n"},
@@ -79,6 +85,15 @@ TEST(EditScene, DefaultsOnlyWhereTheTableLacksThem) {
                                      {{"frames", "48"}});
     ASSERT_TRUE(added);
     EXPECT_EQ(*added, "[animation]\npath = \"flyover\"\nframes = 48\n");
+}
+
+TEST(EditScene, AKeyBothSetAndRetiredIsSet) {
+    Diagnostics diags;
+    const std::vector<std::string> retired = {"look_at", "azimuth_from_deg"};
+    const auto out = withTableKeys("[animation]\nazimuth_from_deg = 0\nlook_at = [1, 2, 3]\n", "s.toml", "animation",
+                                   {{"look_at", "[4, 5, 6]"}}, retired, diags);
+    ASSERT_TRUE(out);
+    EXPECT_EQ(*out, "[animation]\n# azimuth_from_deg = 0\nlook_at = [4, 5, 6]\n");
 }
 
 TEST(EditScene, RefusesWhatItCannotEditWithTheFix) {
