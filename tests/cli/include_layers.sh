@@ -19,6 +19,7 @@ layers=(
   "execute film"
   "pipeline"
   "figures regress"
+  "serve"                # relief preview's server: the pipeline's preview on loopback
   "cli"
 )
 # Folders that may include fewer than every lower layer: FOLDER -> the folders it may include.
